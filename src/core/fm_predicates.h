@@ -1,0 +1,39 @@
+/* faultmesh core: exact geometric predicates.
+ *
+ * Every decision that changes topology (is this triangle degenerate, which
+ * side of an edge is a point on, is a point inside a circumcircle) goes
+ * through these. Each first evaluates the determinant in floating point with
+ * a forward error bound and, only when the sign is uncertain, recomputes it
+ * exactly with floating-point expansion arithmetic (error-free sums and
+ * products), after Shewchuk, "Adaptive Precision Floating-Point Arithmetic
+ * and Fast Robust Geometric Predicates", DCG 18 (1997). Results are exact for
+ * all finite inputs whose intermediate products neither overflow nor
+ * underflow (coordinates between about 1e-90 and 1e90 in magnitude). */
+#ifndef FM_PREDICATES_H
+#define FM_PREDICATES_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* +1 if a, b, c (2D) turn counter-clockwise, -1 if clockwise, 0 if collinear. */
+int fm_orient2d(const double *a, const double *b, const double *c);
+
+/* +1 if d lies below the plane through a, b, c (a, b, c counter-clockwise
+ * seen from above, i.e. seen from the side the normal (b-a)x(c-a) points
+ * to), -1 above, 0 coplanar. Same convention as Shewchuk's orient3d sign
+ * flipped so that +1 means "d is on the side opposite the normal". */
+int fm_orient3d(const double *a, const double *b, const double *c, const double *d);
+
+/* +1 if d lies strictly inside the circle through a, b, c (which must be
+ * counter-clockwise), -1 outside, 0 on it. */
+int fm_incircle(const double *a, const double *b, const double *c, const double *d);
+
+/* 1 if the 3D points a, b, c are exactly collinear (the triangle has zero
+ * area), else 0. */
+int fm_collinear3d(const double *a, const double *b, const double *c);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,126 @@
+#include "fm_mesh.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+struct fm_mesh {
+    double *xyz;
+    int32_t *tri;
+    int32_t *tag;
+    size_t nv, nt;
+    size_t cap_v, cap_t;
+};
+
+fm_mesh *fm_mesh_create(void)
+{
+    return calloc(1, sizeof(fm_mesh));
+}
+
+void fm_mesh_destroy(fm_mesh *m)
+{
+    if (!m)
+        return;
+    free(m->xyz);
+    free(m->tri);
+    free(m->tag);
+    free(m);
+}
+
+static int grow_vertices(fm_mesh *m, size_t nv)
+{
+    if (nv <= m->cap_v)
+        return 0;
+    if (nv > (size_t)INT32_MAX)
+        return -1;
+    double *p = realloc(m->xyz, nv * 3 * sizeof *p);
+    if (!p)
+        return -1;
+    m->xyz = p;
+    m->cap_v = nv;
+    return 0;
+}
+
+static int grow_triangles(fm_mesh *m, size_t nt)
+{
+    if (nt <= m->cap_t)
+        return 0;
+    if (nt > (size_t)INT32_MAX)
+        return -1;
+    int32_t *p = realloc(m->tri, nt * 3 * sizeof *p);
+    if (!p)
+        return -1;
+    m->tri = p;
+    int32_t *q = realloc(m->tag, nt * sizeof *q);
+    if (!q)
+        return -1;
+    m->tag = q;
+    m->cap_t = nt;
+    return 0;
+}
+
+fm_status fm_mesh_reserve(fm_mesh *m, size_t nv, size_t nt)
+{
+    if (grow_vertices(m, nv) || grow_triangles(m, nt))
+        return FM_ERR_NOMEM;
+    return FM_OK;
+}
+
+fm_mesh *fm_mesh_clone(const fm_mesh *m)
+{
+    fm_mesh *c = fm_mesh_create();
+    if (!c)
+        return NULL;
+    if (fm_mesh_reserve(c, m->nv, m->nt) != FM_OK) {
+        fm_mesh_destroy(c);
+        return NULL;
+    }
+    if (m->nv)
+        memcpy(c->xyz, m->xyz, m->nv * 3 * sizeof *m->xyz);
+    if (m->nt) {
+        memcpy(c->tri, m->tri, m->nt * 3 * sizeof *m->tri);
+        memcpy(c->tag, m->tag, m->nt * sizeof *m->tag);
+    }
+    c->nv = m->nv;
+    c->nt = m->nt;
+    return c;
+}
+
+int32_t fm_mesh_add_vertex(fm_mesh *m, double x, double y, double z)
+{
+    if (m->nv == m->cap_v && grow_vertices(m, m->cap_v ? m->cap_v * 2 : 64))
+        return -1;
+    double *p = m->xyz + 3 * m->nv;
+    p[0] = x;
+    p[1] = y;
+    p[2] = z;
+    return (int32_t)m->nv++;
+}
+
+int32_t fm_mesh_add_triangle(fm_mesh *m, int32_t a, int32_t b, int32_t c, int32_t tag)
+{
+    if (m->nt == m->cap_t && grow_triangles(m, m->cap_t ? m->cap_t * 2 : 64))
+        return -1;
+    int32_t *t = m->tri + 3 * m->nt;
+    t[0] = a;
+    t[1] = b;
+    t[2] = c;
+    m->tag[m->nt] = tag;
+    return (int32_t)m->nt++;
+}
+
+size_t fm_mesh_nvertices(const fm_mesh *m) { return m->nv; }
+size_t fm_mesh_ntriangles(const fm_mesh *m) { return m->nt; }
+const double *fm_mesh_vertices(const fm_mesh *m) { return m->xyz; }
+double *fm_mesh_vertices_mut(fm_mesh *m) { return m->xyz; }
+const int32_t *fm_mesh_triangles(const fm_mesh *m) { return m->tri; }
+int32_t *fm_mesh_triangles_mut(fm_mesh *m) { return m->tri; }
+const int32_t *fm_mesh_tags(const fm_mesh *m) { return m->tag; }
+int32_t *fm_mesh_tags_mut(fm_mesh *m) { return m->tag; }
+
+void fm_mesh_truncate(fm_mesh *m, size_t nv, size_t nt)
+{
+    if (nv < m->nv)
+        m->nv = nv;
+    if (nt < m->nt)
+        m->nt = nt;
+}

@@ -1,0 +1,107 @@
+/* faultmesh io: GoCAD TSurf (.ts) reading and writing.
+ *
+ * A TSurf object is kept as faithfully as the file gives it, so that the
+ * writer can reproduce it and the repair stage can report what it changed:
+ *  - every VRTX, PVRTX, ATOM and PATOM line becomes one vertex of the mesh,
+ *    in file order; an ATOM/PATOM vertex copies the coordinates (and
+ *    properties) of the vertex it names and records that vertex in
+ *    fm_tsurf_atom_targets() (-1 for an ordinary vertex). Nothing is welded
+ *    here: the repair stage welds.
+ *  - every TRGL becomes one triangle, tagged with its 0-based TFACE part.
+ *  - the original vertex ids are kept (they need not be 1..n).
+ *  - the HEADER block, the coordinate-system block, the property names
+ *    and the other header lines are kept for the writer.
+ * A file may hold several objects ("GOCAD TSurf 1" ... "END" repeated).
+ *
+ * Coordinates are as in the file: for CFM, UTM metres with z elevation
+ * (ZPOSITIVE Elevation). A file whose ZPOSITIVE is Depth is converted on
+ * reading to elevation (z negated) and the writer writes Elevation, so that
+ * every later stage sees z up. */
+#ifndef FM_TSURF_H
+#define FM_TSURF_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fm_core.h"
+#include "fm_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fm_tsurf fm_tsurf;
+
+/* Reads every TSurf object of a file. On success *objects is a malloc'ed
+ * array of *count (>= 1) objects, to be freed with fm_tsurf_free_all().
+ * On failure nothing is returned and err reads "FILE:LINE: what". */
+fm_status fm_tsurf_read_file(const char *path, fm_tsurf ***objects, size_t *count,
+                             fm_error *err);
+/* Same from memory; name is used in messages. buf need not be
+ * NUL-terminated. */
+fm_status fm_tsurf_read_buffer(const char *name, const char *buf, size_t len,
+                               fm_tsurf ***objects, size_t *count, fm_error *err);
+void fm_tsurf_free_all(fm_tsurf **objects, size_t count);
+
+/* Writes objects to path atomically (temporary file, then rename). */
+fm_status fm_tsurf_write_file(const char *path, fm_tsurf *const *objects, size_t count,
+                              fm_error *err);
+
+/* Building an object from scratch (synthetic faults, remeshed output). */
+fm_tsurf *fm_tsurf_create(const char *name);
+void fm_tsurf_destroy(fm_tsurf *ts);
+/* Adds a part; triangles added to the mesh afterwards carry its index as
+ * tag. Returns the part index, -1 on allocation failure. */
+int fm_tsurf_add_part(fm_tsurf *ts);
+/* Sets a HEADER key (replacing an existing one). */
+fm_status fm_tsurf_set_header(fm_tsurf *ts, const char *key, const char *value);
+
+/* Name from the HEADER (name:...), or "" if none. */
+const char *fm_tsurf_name(const fm_tsurf *ts);
+/* The geometry: all vertices, triangles tagged by part. */
+const fm_mesh *fm_tsurf_mesh(const fm_tsurf *ts);
+fm_mesh *fm_tsurf_mesh_mut(fm_tsurf *ts);
+size_t fm_tsurf_nparts(const fm_tsurf *ts);
+
+/* Per vertex: the id written in the file (VRTX id). When a tsurf is built
+ * with fm_tsurf_create, ids are NULL until written; the writer then uses
+ * 1..n. */
+const int64_t *fm_tsurf_vertex_ids(const fm_tsurf *ts);
+/* Per vertex: index of the vertex an ATOM/PATOM refers to, or -1. NULL when
+ * the object has no atoms. */
+const int32_t *fm_tsurf_atom_targets(const fm_tsurf *ts);
+
+/* HEADER block entries, in file order ("*solid*color" keys keep their '*'). */
+size_t fm_tsurf_nheader(const fm_tsurf *ts);
+const char *fm_tsurf_header_key(const fm_tsurf *ts, size_t i);
+const char *fm_tsurf_header_value(const fm_tsurf *ts, size_t i);
+/* Value for key, or NULL. */
+const char *fm_tsurf_header_get(const fm_tsurf *ts, const char *key);
+
+/* Coordinate system (GOCAD_ORIGINAL_COORDINATE_SYSTEM block); fields are ""
+ * when absent. */
+typedef struct fm_tsurf_crs {
+    const char *name;       /* NAME */
+    const char *projection; /* PROJECTION, if any */
+    const char *datum;      /* DATUM, if any */
+    const char *axis_unit;  /* AXIS_UNIT line, as written */
+    int z_positive_depth;   /* 1 if ZPOSITIVE Depth (already converted) */
+} fm_tsurf_crs;
+void fm_tsurf_get_crs(const fm_tsurf *ts, fm_tsurf_crs *crs);
+
+/* Vertex properties (PROPERTIES line + PVRTX columns): nprops names, and
+ * nprops values per vertex (row-major), NULL when there are none. */
+size_t fm_tsurf_nprops(const fm_tsurf *ts);
+const char *fm_tsurf_prop_name(const fm_tsurf *ts, size_t i);
+const double *fm_tsurf_prop_values(const fm_tsurf *ts);
+
+/* BSTONE lines (vertex indices) and BORDER lines (id, two vertex indices). */
+size_t fm_tsurf_nbstones(const fm_tsurf *ts);
+const int32_t *fm_tsurf_bstones(const fm_tsurf *ts);
+size_t fm_tsurf_nborders(const fm_tsurf *ts);
+const int32_t *fm_tsurf_borders(const fm_tsurf *ts); /* 3 per border: id, v1, v2 */
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,106 @@
+/* faultmesh repair: from a raw triangulation to clean manifold sheets.
+ *
+ * Input is a triangle soup as read from a file (fm_mesh; tags = parts).
+ * The steps run in this order, and each one is counted in the report:
+ *  1. weld exactly coincident vertices (bitwise equal coordinates), then,
+ *     if weld_tolerance > 0, vertices closer than that tolerance;
+ *  2. remove degenerate triangles (a repeated vertex, or zero area decided
+ *     with exact predicates) and duplicate triangles (same three vertices,
+ *     either orientation);
+ *  3. drop small disconnected fragments (components below both
+ *     min_fragment_triangles and min_fragment_area_fraction of the largest);
+ *  4. split the surface along non-manifold edges into manifold sheets:
+ *     at an edge shared by k > 2 triangles, the triangles are paired by the
+ *     smallest bend across the edge so that a through-going fault stays one
+ *     sheet and a splay becomes another; the edges where sheets branch are
+ *     kept as junction curves. Vertices where a sheet is pinched (two fans
+ *     meeting at one vertex) are duplicated;
+ *  5. orient each sheet consistently, with its area-weighted normal pointing
+ *     up (normal z > 0); a vertical sheet (|normal z| < 1e-3) is oriented so
+ *     that its normal points to azimuth [90, 270) degrees, i.e. the right of
+ *     a strike taken in [0, 180) (Aki-Richards with dip 90);
+ *  6. boundary loops per sheet, oriented with the sheet, the outer loop told
+ *     apart from holes by its vector area along the sheet normal. */
+#ifndef FM_REPAIR_H
+#define FM_REPAIR_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fm_core.h"
+#include "fm_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fm_repair_options {
+    double weld_tolerance;             /* metres; 0 = exact welding only (default) */
+    size_t min_fragment_triangles;     /* default 10 */
+    double min_fragment_area_fraction; /* of the largest component; default 0.001 */
+    int drop_fragments;                /* default 1 */
+    int split_nonmanifold;             /* default 1 */
+    int orient;                        /* default 1 */
+} fm_repair_options;
+
+void fm_repair_options_default(fm_repair_options *opt);
+
+typedef struct fm_repair_report {
+    size_t vertices_in, triangles_in;
+    size_t welded_exact;        /* vertices merged into an identical one */
+    size_t welded_tolerance;    /* vertices merged within weld_tolerance */
+    size_t unused_vertices;     /* vertices no triangle uses (removed) */
+    size_t degenerate_removed;  /* repeated-vertex or zero-area triangles */
+    size_t duplicates_removed;  /* same vertex set as an earlier triangle */
+    size_t fragments_dropped;   /* components dropped as tiny */
+    size_t fragment_triangles_dropped;
+    size_t components;          /* connected components after cleaning */
+    size_t nonmanifold_edges;   /* edges with > 2 triangles, before splitting */
+    size_t nonmanifold_vertices;/* pinch vertices duplicated */
+    size_t sheets;
+    size_t junctions;           /* junction curves between sheets */
+    size_t triangles_flipped;   /* to make orientation consistent / up */
+    size_t nonorientable_sheets;/* sheets that are not orientable (reported, kept) */
+    size_t boundary_loops, holes; /* over all sheets */
+    size_t vertices_out, triangles_out;
+} fm_repair_report;
+
+/* The repaired surface: sheets and the junctions between them. */
+typedef struct fm_surface fm_surface;
+
+fm_status fm_repair(const fm_mesh *in, const fm_repair_options *opt, fm_surface **out,
+                    fm_error *err);
+void fm_surface_destroy(fm_surface *s);
+
+const fm_repair_report *fm_surface_report(const fm_surface *s);
+
+size_t fm_surface_nsheets(const fm_surface *s);
+/* A sheet's own compact mesh (tags keep the input part of each triangle). */
+const fm_mesh *fm_surface_sheet_mesh(const fm_surface *s, size_t sheet);
+/* For each sheet vertex, the index of the input vertex it came from (the
+ * lowest index of a welded group). */
+const int32_t *fm_surface_sheet_vertex_origin(const fm_surface *s, size_t sheet);
+/* Unit area-weighted normal of the sheet, after orientation. */
+void fm_surface_sheet_normal(const fm_surface *s, size_t sheet, double n[3]);
+
+/* Boundary loops of a sheet: closed sequences of sheet vertex indices (the
+ * first vertex is not repeated), traversed so that the sheet lies on the
+ * left seen from the normal side. */
+size_t fm_surface_sheet_nloops(const fm_surface *s, size_t sheet);
+const int32_t *fm_surface_sheet_loop(const fm_surface *s, size_t sheet, size_t loop,
+                                     size_t *n);
+/* Index of the outer loop, or -1 for a closed sheet (no boundary). */
+long fm_surface_sheet_outer_loop(const fm_surface *s, size_t sheet);
+
+/* Junction curves: polylines along which sheets branch, as coordinates
+ * (3 doubles per point), with the sheets that meet there. A closed
+ * junction repeats no point; fm_surface_junction_closed tells. */
+size_t fm_surface_njunctions(const fm_surface *s);
+const double *fm_surface_junction_points(const fm_surface *s, size_t j, size_t *npoints);
+int fm_surface_junction_closed(const fm_surface *s, size_t j);
+const int32_t *fm_surface_junction_sheets(const fm_surface *s, size_t j, size_t *nsheets);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
