@@ -1,1 +1,47 @@
-int main(void){return 0;}
+/* faultmesh: triangulated fault surfaces in, simulator-ready meshes out. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+#include "fm_core.h"
+
+static const struct {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *summary;
+} commands[] = {
+    {"info", fm_cmd_info, "read, repair and describe TSurf files"},
+    {"synth", fm_cmd_synth, "generate the synthetic fault system (TSurf)"},
+};
+
+static void usage(FILE *fp)
+{
+    fprintf(fp, "usage: faultmesh COMMAND [options] ...\n\ncommands:\n");
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        fprintf(fp, "  %-8s %s\n", commands[i].name, commands[i].summary);
+    fprintf(fp, "\n`faultmesh COMMAND --help` describes a command's options.\n"
+                "Exit status: 0 success, 1 some inputs failed, 2 bad usage.\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return FM_EXIT_USAGE;
+    }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
+        usage(stdout);
+        return FM_EXIT_OK;
+    }
+    if (!strcmp(cmd, "--version")) {
+        printf("faultmesh %s\n", FM_VERSION_STRING);
+        return FM_EXIT_OK;
+    }
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (!strcmp(cmd, commands[i].name))
+            return commands[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "faultmesh: unknown command '%s'\n", cmd);
+    usage(stderr);
+    return FM_EXIT_USAGE;
+}

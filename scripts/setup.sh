@@ -1,0 +1,14 @@
+#!/bin/bash
+# Installs what faultmesh needs to build and test, from Debian's packages.
+# Run as root (or through sudo) on Debian 12 or later.
+set -euo pipefail
+packages=(
+  build-essential cmake      # C17 compiler, CMake
+  python3                    # Debian's interpreter for the independent test checks
+)
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
+echo "faultmesh: build dependencies installed"

@@ -1,0 +1,29 @@
+/* faultmesh command-line tool: shared pieces of the subcommands.
+ *
+ * Exit codes (documented in the README): 0 all inputs processed, 1 some
+ * inputs failed (reported, the others still processed), 2 bad usage. */
+#ifndef FM_CLI_H
+#define FM_CLI_H
+
+#include <stddef.h>
+
+#define FM_EXIT_OK 0
+#define FM_EXIT_FAILURES 1
+#define FM_EXIT_USAGE 2
+
+int fm_cmd_info(int argc, char **argv);
+int fm_cmd_synth(int argc, char **argv);
+
+/* Paths of the .ts files named by args: files as given, folders searched
+ * recursively, each folder's entries in byte order so runs are
+ * reproducible. Returns the number of paths (in *out, to be freed with
+ * fm_input_list_free), or -1 after printing why (a missing path). */
+long fm_input_list(char *const *args, size_t nargs, char ***out);
+void fm_input_list_free(char **list, long n);
+
+/* Parses a non-negative number option value; prints and returns -1 on
+ * error. */
+int fm_parse_double(const char *opt, const char *s, double *out);
+int fm_parse_size(const char *opt, const char *s, size_t *out);
+
+#endif

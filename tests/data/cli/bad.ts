@@ -1,0 +1,10 @@
+GOCAD TSurf 1
+HEADER {
+name:tiny_bad
+}
+TFACE
+VRTX 1 0 0 0
+VRTX 2 1000 0 0
+VRTX 3 0 0 -1000
+TRGL 1 2 7
+END

@@ -1,0 +1,20 @@
+# Script tests: the CLI as a user runs it, and independent re-computations
+# in Python (Debian's /usr/bin/python3, standard library only).
+find_program(FM_SYSTEM_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
+set(FM_TOOLS ${CMAKE_CURRENT_SOURCE_DIR}/tools)
+
+add_test(NAME cli_behaviour
+  COMMAND bash ${FM_TOOLS}/cli_test.sh $<TARGET_FILE:faultmesh_cli> ${CMAKE_CURRENT_SOURCE_DIR}/data
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/cli)
+
+if(FM_SYSTEM_PYTHON)
+  add_test(NAME synth_info_independent
+    COMMAND bash ${FM_TOOLS}/synth_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/synth_check)
+  foreach(res 500m 1000m 2000m native)
+    add_test(NAME cfm_info_independent_${res}
+      COMMAND ${FM_SYSTEM_PYTHON} ${FM_TOOLS}/check_info.py $<TARGET_FILE:faultmesh_cli>
+              ${FM_CFM_DIR}/CFM5.3/${res})
+    set_tests_properties(cfm_info_independent_${res} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
+  endforeach()
+endif()
