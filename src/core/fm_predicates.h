@@ -8,7 +8,8 @@
  * products), after Shewchuk, "Adaptive Precision Floating-Point Arithmetic
  * and Fast Robust Geometric Predicates", DCG 18 (1997). Results are exact for
  * all finite inputs whose intermediate products neither overflow nor
- * underflow (coordinates between about 1e-90 and 1e90 in magnitude). */
+ * underflow: coordinates between about 1e-90 and 1e90 in magnitude for the
+ * orientation tests, 1e-65 and 1e75 for fm_incircle (products of four). */
 #ifndef FM_PREDICATES_H
 #define FM_PREDICATES_H
 
@@ -19,10 +20,10 @@ extern "C" {
 /* +1 if a, b, c (2D) turn counter-clockwise, -1 if clockwise, 0 if collinear. */
 int fm_orient2d(const double *a, const double *b, const double *c);
 
-/* +1 if d lies below the plane through a, b, c (a, b, c counter-clockwise
- * seen from above, i.e. seen from the side the normal (b-a)x(c-a) points
- * to), -1 above, 0 coplanar. Same convention as Shewchuk's orient3d sign
- * flipped so that +1 means "d is on the side opposite the normal". */
+/* +1 if d lies on the side opposite the normal (b-a)x(c-a) of the plane
+ * through a, b, c (below it when a, b, c turn counter-clockwise seen from
+ * above), -1 on the normal's side, 0 coplanar. This is the sign of
+ * Shewchuk's orient3d. */
 int fm_orient3d(const double *a, const double *b, const double *c, const double *d);
 
 /* +1 if d lies strictly inside the circle through a, b, c (which must be
