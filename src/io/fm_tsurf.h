@@ -22,6 +22,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "fm_core.h"
 #include "fm_mesh.h"
@@ -43,9 +44,33 @@ fm_status fm_tsurf_read_buffer(const char *name, const char *buf, size_t len,
                                fm_tsurf ***objects, size_t *count, fm_error *err);
 void fm_tsurf_free_all(fm_tsurf **objects, size_t count);
 
-/* Writes objects to path atomically (temporary file, then rename). */
+/* Writes objects to path atomically (temporary file, then rename).
+ *
+ * Output: "GOCAD TSurf 1", the HEADER block, the coordinate-system block
+ * (when the object has one: read from a file, or set by fm_tsurf_create),
+ * PROPERTIES and the other kept header lines, then one TFACE per part with
+ * its vertices (VRTX, or PVRTX when there are properties; ATOM for an atom
+ * vertex whose coordinates still equal its target's) and its TRGL lines,
+ * then BSTONE/BORDER, END. Coordinates are written in the shortest text
+ * that reads back to the same double. Parts without triangles are left out.
+ *
+ * A vertex is written in the first part whose triangles use it (unused
+ * vertices stay with the part before them). GoCAD wants every vertex a
+ * part's triangles use declared in that TFACE, so a vertex also used by a
+ * later part is declared there again as "ATOM newid id" with a fresh id:
+ * reading such output back gives one extra (atom) vertex per such use.
+ * Files read from disk already follow that rule and read back identical.
+ *
+ * Vertex ids are the file's ids when fm_tsurf_vertex_ids() is not NULL,
+ * else 1..n. Properties whose values do not cover every vertex make the
+ * call fail with FM_ERR_INVALID; a non-finite coordinate with
+ * FM_ERR_NUMERIC. Nothing is left under path on failure. */
 fm_status fm_tsurf_write_file(const char *path, fm_tsurf *const *objects, size_t count,
                               fm_error *err);
+/* Same to an open stream (e.g. stdout); name is used in messages. Not
+ * atomic. */
+fm_status fm_tsurf_write_stream(FILE *fp, const char *name, fm_tsurf *const *objects,
+                                size_t count, fm_error *err);
 
 /* Building an object from scratch (synthetic faults, remeshed output). */
 fm_tsurf *fm_tsurf_create(const char *name);
@@ -100,6 +125,20 @@ size_t fm_tsurf_nbstones(const fm_tsurf *ts);
 const int32_t *fm_tsurf_bstones(const fm_tsurf *ts);
 size_t fm_tsurf_nborders(const fm_tsurf *ts);
 const int32_t *fm_tsurf_borders(const fm_tsurf *ts); /* 3 per border: id, v1, v2 */
+
+/* Body lines with a keyword the reader does not know (skipped). */
+size_t fm_tsurf_nskipped(const fm_tsurf *ts);
+
+/* Sets the per-vertex ids (n must be the vertex count, ids >= 0 and
+ * distinct); ids NULL drops them, so that the writer numbers 1..n. */
+fm_status fm_tsurf_set_vertex_ids(fm_tsurf *ts, const int64_t *ids, size_t n);
+/* Sets nprops properties (names without blanks) with nprops values per
+ * current vertex, row-major; replaces any previous ones. */
+fm_status fm_tsurf_set_props(fm_tsurf *ts, size_t nprops, const char *const *names,
+                             const double *values);
+/* Drops ids, atoms, properties, BSTONE and BORDER lines: for stages that
+ * rebuild the vertex set and keep only the header of the object. */
+void fm_tsurf_clear_vertex_data(fm_tsurf *ts);
 
 #ifdef __cplusplus
 }

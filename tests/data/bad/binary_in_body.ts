@@ -1,0 +1,5 @@
+GOCAD TSurf 1
+TFACE
+VRTX 1 0 0 0
+
+END

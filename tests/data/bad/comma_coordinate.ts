@@ -1,0 +1,7 @@
+GOCAD TSurf 1
+HEADER {
+name:bad
+}
+TFACE
+VRTX 1 0 1,5 0
+END

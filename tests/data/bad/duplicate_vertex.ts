@@ -1,0 +1,10 @@
+GOCAD TSurf 1
+HEADER {
+name:bad
+}
+TFACE
+VRTX 1 0 0 0
+VRTX 2 1 0 0
+VRTX 2 0 1 0
+TRGL 1 2 2
+END

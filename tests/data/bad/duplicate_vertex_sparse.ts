@@ -1,0 +1,10 @@
+GOCAD TSurf 1
+HEADER {
+name:bad
+}
+TFACE
+VRTX 10 0 0 0
+VRTX 5 1 0 0
+VRTX 10 0 1 0
+TRGL 10 5 10
+END

@@ -1,0 +1,3 @@
+GOCAD TSurf 1
+HEADER {
+name:open

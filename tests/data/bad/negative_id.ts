@@ -1,0 +1,7 @@
+GOCAD TSurf 1
+HEADER {
+name:bad
+}
+TFACE
+VRTX -3 0 0 0
+END

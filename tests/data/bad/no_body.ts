@@ -1,0 +1,5 @@
+GOCAD TSurf 1
+HEADER {
+name:nothing
+}
+END

@@ -1,0 +1,2 @@
+hello world
+GOCAD TSurf 1

@@ -1,0 +1,4 @@
+GOCAD PLine 1
+HEADER {
+name:line
+}

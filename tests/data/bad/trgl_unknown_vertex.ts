@@ -1,0 +1,8 @@
+GOCAD TSurf 1
+HEADER {
+name:bad
+}
+TFACE
+VRTX 1 0 0 0
+TRGL 1 12 1
+END
