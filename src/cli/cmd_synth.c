@@ -34,8 +34,8 @@ int fm_cmd_synth(int argc, char **argv)
             dir = val;
             i++;
         } else if (!strcmp(a, "--spacing")) {
-            if (fm_parse_double(a, val, &opt.spacing) || opt.spacing < 10.0) {
-                fprintf(stderr, "faultmesh synth: --spacing must be at least 10 m\n");
+            if (fm_parse_double(a, val, &opt.spacing) || opt.spacing < 20.0 || opt.spacing > 20000.0) {
+                fprintf(stderr, "faultmesh synth: --spacing must be between 20 and 20000 m\n");
                 return FM_EXIT_USAGE;
             }
             i++;
