@@ -31,6 +31,28 @@ static uint64_t tri_hash(const int32_t *s)
     return rep_mix64(h ^ (uint32_t)s[2]);
 }
 
+/* Kept triangles by sorted vertex triple; the key is stored in the slot so
+ * a probe costs one cache miss. v[0] < 0 marks an empty slot. */
+typedef struct tri_slot {
+    int32_t v[3];
+} tri_slot;
+
+/* 1 if s (sorted) is already in the table, else inserts it and returns 0. */
+static int seen_before(tri_slot *table, size_t mask, const int32_t *s)
+{
+    size_t slot = (size_t)tri_hash(s) & mask;
+    for (;;) {
+        tri_slot *e = &table[slot];
+        if (e->v[0] < 0) {
+            memcpy(e->v, s, sizeof e->v);
+            return 0;
+        }
+        if (e->v[0] == s[0] && e->v[1] == s[1] && e->v[2] == s[2])
+            return 1;
+        slot = (slot + 1) & mask;
+    }
+}
+
 fm_status rep_clean(const fm_mesh *in, const int32_t *rep, rep_tris *out,
                     fm_repair_report *r)
 {
@@ -40,7 +62,7 @@ fm_status rep_clean(const fm_mesh *in, const int32_t *rep, rep_tris *out,
     const double *xyz = fm_mesh_vertices(in);
     memset(out, 0, sizeof *out);
     size_t size = rep_table_size(nt);
-    int32_t *table = size ? malloc(size * sizeof *table) : NULL;
+    tri_slot *table = size ? malloc(size * sizeof *table) : NULL;
     out->v = malloc((nt ? nt : 1) * 3 * sizeof *out->v);
     out->tag = malloc((nt ? nt : 1) * sizeof *out->tag);
     out->orig = malloc((nt ? nt : 1) * sizeof *out->orig);
@@ -50,7 +72,7 @@ fm_status rep_clean(const fm_mesh *in, const int32_t *rep, rep_tris *out,
         return FM_ERR_NOMEM;
     }
     memset(table, 0xff, size * sizeof *table);
-    size_t mask = size - 1, n = 0;
+    size_t n = 0;
     for (size_t t = 0; t < nt; t++) {
         int32_t v[3] = {rep[tri[3 * t]], rep[tri[3 * t + 1]], rep[tri[3 * t + 2]]};
         if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2] ||
@@ -59,25 +81,10 @@ fm_status rep_clean(const fm_mesh *in, const int32_t *rep, rep_tris *out,
             r->degenerate_removed++;
             continue;
         }
-        /* The table holds kept triangles; the first of a vertex set wins. */
-        int32_t s[3], o[3];
+        /* Triangles are tried in input order, so the first copy is kept. */
+        int32_t s[3];
         sort3(v, s);
-        size_t slot = (size_t)tri_hash(s) & mask;
-        int dup = 0;
-        for (;;) {
-            int32_t k = table[slot];
-            if (k < 0) {
-                table[slot] = (int32_t)n;
-                break;
-            }
-            sort3(out->v + 3 * (size_t)k, o);
-            if (o[0] == s[0] && o[1] == s[1] && o[2] == s[2]) {
-                dup = 1;
-                break;
-            }
-            slot = (slot + 1) & mask;
-        }
-        if (dup) {
+        if (seen_before(table, size - 1, s)) {
             r->duplicates_removed++;
             continue;
         }

@@ -22,22 +22,23 @@ static void edge_ends(const rep_tris *t, int32_t h, int32_t *lo, int32_t *hi)
     *hi = a < b ? b : a;
 }
 
-/* Stable counting sort of src into dst by one end of the edge. */
+/* Stable counting sort of src (NULL: the identity 0..nh-1) into dst by one
+ * end of the edge. */
 static void sort_by(const rep_tris *t, const int32_t *src, int32_t *dst, size_t nh,
                     int32_t *count, size_t nv, int by_lo)
 {
     memset(count, 0, (nv + 1) * sizeof *count);
     for (size_t i = 0; i < nh; i++) {
         int32_t lo, hi;
-        edge_ends(t, src[i], &lo, &hi);
+        edge_ends(t, src ? src[i] : (int32_t)i, &lo, &hi);
         count[(by_lo ? lo : hi) + 1]++;
     }
     for (size_t v = 0; v < nv; v++)
         count[v + 1] += count[v];
     for (size_t i = 0; i < nh; i++) {
-        int32_t lo, hi;
-        edge_ends(t, src[i], &lo, &hi);
-        dst[count[by_lo ? lo : hi]++] = src[i];
+        int32_t h = src ? src[i] : (int32_t)i, lo, hi;
+        edge_ends(t, h, &lo, &hi);
+        dst[count[by_lo ? lo : hi]++] = h;
     }
 }
 
@@ -56,9 +57,7 @@ fm_status rep_edges_build(const rep_tris *t, size_t nv, rep_edges *e)
         rep_edges_free(e);
         return FM_ERR_NOMEM;
     }
-    for (size_t h = 0; h < nh; h++)
-        e->he[h] = (int32_t)h;
-    sort_by(t, e->he, tmp, nh, count, nv, 0);
+    sort_by(t, NULL, tmp, nh, count, nv, 0);
     sort_by(t, tmp, e->he, nh, count, nv, 1);
     free(tmp);
     free(count);

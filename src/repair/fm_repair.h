@@ -20,7 +20,27 @@
  *     that its normal points to azimuth [90, 270) degrees, i.e. the right of
  *     a strike taken in [0, 180) (Aki-Richards with dip 90);
  *  6. boundary loops per sheet, oriented with the sheet, the outer loop told
- *     apart from holes by its vector area along the sheet normal. */
+ *     apart from holes by its vector area along the sheet normal.
+ *
+ * Definitions the counts and outputs rely on:
+ *  - weld_tolerance welds vertices at distance <= tol, transitively (a chain
+ *    of close vertices becomes one); the lowest input index represents a
+ *    group and gives it its coordinates;
+ *  - components are edge-connected: triangles touching only at a vertex are
+ *    separate components (and separate sheets);
+ *  - sheets are numbered in order of their first input triangle; a sheet's
+ *    triangles keep input order, its vertices are numbered by first use;
+ *  - a sheet vertex is a fan of triangles around an input vertex, so a
+ *    vertex on a junction appears once in every sheet meeting there, and a
+ *    pinched vertex once per fan; the rare triangle that would glue a sheet
+ *    to itself along an edge is cut from its fan the same way;
+ *  - with split_nonmanifold = 0, sheets are the components, edges of more
+ *    than two triangles count as boundary for orientation and loops, and
+ *    no vertex is duplicated; junction curves are reported all the same;
+ *  - with orient = 0, triangles keep their input orientation (the normal is
+ *    still computed from it);
+ *  - a loop that cannot be closed (only on a non-orientable sheet) is kept
+ *    as an open chain listing its last vertex too. */
 #ifndef FM_REPAIR_H
 #define FM_REPAIR_H
 
@@ -49,25 +69,30 @@ typedef struct fm_repair_report {
     size_t vertices_in, triangles_in;
     size_t welded_exact;        /* vertices merged into an identical one */
     size_t welded_tolerance;    /* vertices merged within weld_tolerance */
-    size_t unused_vertices;     /* vertices no triangle uses (removed) */
+    size_t unused_vertices;     /* welded vertices no clean triangle uses (removed;
+                                   fragment vertices are not counted) */
     size_t degenerate_removed;  /* repeated-vertex or zero-area triangles */
     size_t duplicates_removed;  /* same vertex set as an earlier triangle */
     size_t fragments_dropped;   /* components dropped as tiny */
     size_t fragment_triangles_dropped;
-    size_t components;          /* connected components after cleaning */
+    size_t components;          /* components kept (after dropping fragments) */
     size_t nonmanifold_edges;   /* edges with > 2 triangles, before splitting */
-    size_t nonmanifold_vertices;/* pinch vertices duplicated */
+    size_t nonmanifold_vertices;/* (vertex, sheet) pairs duplicated: pinches */
     size_t sheets;
     size_t junctions;           /* junction curves between sheets */
-    size_t triangles_flipped;   /* to make orientation consistent / up */
+    size_t triangles_flipped;   /* reversed w.r.t. the input, in the end */
     size_t nonorientable_sheets;/* sheets that are not orientable (reported, kept) */
     size_t boundary_loops, holes; /* over all sheets */
-    size_t vertices_out, triangles_out;
+    size_t vertices_out, triangles_out; /* summed over sheets */
 } fm_repair_report;
 
 /* The repaired surface: sheets and the junctions between them. */
 typedef struct fm_surface fm_surface;
 
+/* opt may be NULL (defaults). Fails with FM_ERR_INVALID on a bad option or
+ * an out-of-range vertex index, FM_ERR_NUMERIC on a non-finite coordinate,
+ * FM_ERR_NOMEM; *out is then NULL. Any other mesh, even empty or entirely
+ * degenerate (0 sheets), gives a surface. Same input, same output. */
 fm_status fm_repair(const fm_mesh *in, const fm_repair_options *opt, fm_surface **out,
                     fm_error *err);
 void fm_surface_destroy(fm_surface *s);
@@ -80,7 +105,11 @@ const fm_mesh *fm_surface_sheet_mesh(const fm_surface *s, size_t sheet);
 /* For each sheet vertex, the index of the input vertex it came from (the
  * lowest index of a welded group). */
 const int32_t *fm_surface_sheet_vertex_origin(const fm_surface *s, size_t sheet);
-/* Unit area-weighted normal of the sheet, after orientation. */
+/* For each sheet triangle, the index of the input triangle it came from
+ * (sheet triangles keep input order). */
+const int32_t *fm_surface_sheet_triangle_origin(const fm_surface *s, size_t sheet);
+/* Unit area-weighted normal of the sheet, after orientation; (0,0,0) when
+ * the sheet's area vector vanishes (a closed sheet). */
 void fm_surface_sheet_normal(const fm_surface *s, size_t sheet, double n[3]);
 
 /* Boundary loops of a sheet: closed sequences of sheet vertex indices (the
@@ -98,6 +127,9 @@ long fm_surface_sheet_outer_loop(const fm_surface *s, size_t sheet);
 size_t fm_surface_njunctions(const fm_surface *s);
 const double *fm_surface_junction_points(const fm_surface *s, size_t j, size_t *npoints);
 int fm_surface_junction_closed(const fm_surface *s, size_t j);
+/* The input vertex (lowest index of its welded group) of each point. */
+const int32_t *fm_surface_junction_vertex_origin(const fm_surface *s, size_t j,
+                                                 size_t *npoints);
 const int32_t *fm_surface_junction_sheets(const fm_surface *s, size_t j, size_t *nsheets);
 
 #ifdef __cplusplus

@@ -102,16 +102,18 @@ fm_status rep_drop_fragments(rep_tris *t, const double *xyz, size_t nv,
 fm_status rep_pair_edges(const rep_tris *t, const rep_edges *e, const double *xyz,
                          int split, int32_t *nbr, size_t *nonmanifold_edges);
 
+/* Step 4 (sheets.c): output vertex key of every corner: corners with the
+ * same key become one sheet vertex. With split, corners are grouped by the
+ * fans that nbr links around their vertex (so pinched vertices come apart;
+ * links that would glue a sheet to itself along an edge are cut from nbr
+ * first); without, by input vertex (keys are then vertex ids, else corner
+ * ids). Runs before rep_sheets, which must see the final links. */
+fm_status rep_corner_keys(const rep_tris *t, int32_t *nbr, int split, int32_t *key);
 /* Step 4 (sheets.c): sheet id of every triangle, numbered in order of their
  * first triangle. With split, sheets follow nbr; without, they are the
  * edge-connected components. */
 fm_status rep_sheets(const rep_tris *t, const rep_edges *e, const int32_t *nbr, int split,
                      int32_t *sheet, size_t *nsheets);
-/* Output vertex key of every corner: corners with the same key become one
- * sheet vertex. With split, corners are grouped by the fans that nbr links
- * around their vertex (so pinched vertices come apart); without, by input
- * vertex (keys are then vertex ids, else corner ids). */
-fm_status rep_corner_keys(const rep_tris *t, const int32_t *nbr, int split, int32_t *key);
 
 /* Step 5 (orient.c): flip[t] = 1 where triangle t must be reversed; the
  * area-weighted unit normal of each sheet after flipping (zero for a sheet
@@ -151,10 +153,12 @@ struct fm_surface {
 
 fm_surface *rep_surface_create(void);
 
-/* Step 4-5 output (extract.c): one compact mesh per sheet. */
+/* Step 4-5 output (extract.c): one compact mesh per sheet, with its loops;
+ * fills vertices_out, triangles_out, nonmanifold_vertices, boundary_loops
+ * and holes. */
 fm_status rep_extract_sheets(fm_surface *s, const rep_tris *t, const int32_t *sheet,
                              size_t nsheets, const int32_t *key, size_t nkeys,
-                             const uint8_t *flip, const double *normals,
+                             const int32_t *nbr, const uint8_t *flip, const double *normals,
                              const double *xyz, size_t nv);
 
 /* Step 6 (loops.c): boundary loops of a sheet, from the half-edges of its
