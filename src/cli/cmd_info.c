@@ -61,6 +61,27 @@ oom:
     return NULL;
 }
 
+/* Distinct input vertices the sheets use: a vertex on a junction or a pinch
+ * is one vertex of the object although several sheets carry a copy. */
+static size_t distinct_vertices(const fm_surface *s, size_t ninput)
+{
+    unsigned char *seen = calloc(ninput ? ninput : 1, 1);
+    if (!seen)
+        return 0;
+    size_t n = 0;
+    for (size_t i = 0; i < fm_surface_nsheets(s); i++) {
+        const int32_t *org = fm_surface_sheet_vertex_origin(s, i);
+        size_t nv = fm_mesh_nvertices(fm_surface_sheet_mesh(s, i));
+        for (size_t v = 0; v < nv; v++)
+            if (!seen[org[v]]) {
+                seen[org[v]] = 1;
+                n++;
+            }
+    }
+    free(seen);
+    return n;
+}
+
 static size_t sheet_holes(const fm_surface *s, size_t i)
 {
     size_t n = fm_surface_sheet_nloops(s, i);
@@ -115,8 +136,12 @@ static void json_object(fm_json *j, const fm_tsurf *ts, const fm_surface *s,
     fm_json_kv_int(j, "parts", (int64_t)fm_tsurf_nparts(ts));
     fm_json_kv_int(j, "file_vertices", (int64_t)fm_mesh_nvertices(raw));
     fm_json_kv_int(j, "file_triangles", (int64_t)fm_mesh_ntriangles(raw));
-    /* After repair: */
-    json_stats(j, all);
+    /* After repair; "vertices" counts each welded vertex once, however many
+     * sheets share it ("sheet_vertices" counts the copies). */
+    fm_mesh_stats whole = *all;
+    whole.vertices = distinct_vertices(s, fm_mesh_nvertices(raw));
+    json_stats(j, &whole);
+    fm_json_kv_int(j, "sheet_vertices", (int64_t)all->vertices);
     fm_json_kv_int(j, "components", (int64_t)r->components);
     fm_json_kv_int(j, "sheets", (int64_t)r->sheets);
     fm_json_kv_int(j, "boundary_loops", (int64_t)r->boundary_loops);
