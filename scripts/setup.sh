@@ -4,6 +4,8 @@
 set -euo pipefail
 packages=(
   build-essential cmake      # C17 compiler, CMake
+  libsuitesparse-dev         # CHOLMOD: sparse least squares of the surface fit
+  liblapacke-dev             # LAPACKE: banded least squares of the trimming curves
   python3                    # Debian's interpreter for the independent test checks
 )
 SUDO=""

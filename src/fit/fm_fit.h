@@ -1,0 +1,214 @@
+/* faultmesh fit: the smooth surface model of one sheet.
+ *
+ * A sheet (a manifold, consistently oriented, connected triangle mesh, as
+ * the repair stage makes them) becomes a height field over a reference
+ * plane: a tensor-product B-spline h(u, v) in a right-handed frame
+ * (u, v, w) whose w axis is the reference direction. In 3D the surface is
+ *     S(u, v) = origin + u U + v V + h(u, v) W,
+ * with (u, v) metres in the plane. This is one-to-one only where every
+ * triangle normal n of the sheet has n.W > 0; fm_fit_frame tells how far
+ * from that the sheet is (min_dot), and a sheet with min_dot <= 0 is fitted
+ * anyway but flagged, for the fallback (splitting the sheet) to act on.
+ *
+ * Reference direction W: the unit direction that maximises the smallest
+ * n.W over the triangle normals. That optimum is the normalised
+ * minimum-norm point of the convex hull of the normals (min over the hull
+ * of |p| equals max over unit d of min n.d when the hull misses the
+ * origin), found exactly with Wolfe's algorithm. Among the directions that
+ * lose at most `slack_degrees` of that optimum, the one closest to the
+ * area-weighted mean normal is taken, so that a few stray triangles do not
+ * tilt the plane away from where most of the area is.
+ *
+ * In-plane axes: V points down dip (the steepest descent in the plane) and
+ * U = V x W is horizontal. With W the upward sheet normal this makes U point
+ * opposite to the Aki-Richards strike (a right-handed frame with V down dip
+ * and W up cannot have U along it). When the plane dips less than 10
+ * degrees, down dip means little: U is then the long axis of the projected
+ * sheet (area second moment) and V = W x U.
+ *
+ * Spline: degree p (default cubic) with uniform, unclamped knots of
+ * spacing s over a rectangle [u0, u1] x [v0, v1] covering the projected
+ * sheet plus `extend` metres on every side, (spans_u + p) x (spans_v + p)
+ * coefficients. Unclamped because every span is then alike (no end spans
+ * that bend differently), the energy matrix is one element matrix repeated,
+ * and a consumer that wants clamped knots (IGES readers accept both) gets
+ * them exactly by knot insertion.
+ *
+ * Fit: minimise
+ *     sum_k a_k (h(u_k, v_k) - h_k)^2
+ *         + lambda * sum over spans of omega_span * integral over the span
+ *           of (h_uu^2 + 2 h_uv^2 + h_vv^2) du dv
+ * where the samples k are 3 quadrature points per triangle (triangles
+ * longer than a knot span are split first) weighted by their share a_k of
+ * the triangle's projected area, so the data term approximates the integral
+ * of the squared height misfit over the projected sheet. The thin-plate
+ * energy is integrated exactly (Gauss per span). The normal equations are
+ * sparse SPD and are factored once with CHOLMOD (simplicial, so no BLAS).
+ *  - Chord correction: a facet lies inside the smooth surface through its
+ *    corners by up to h^2 kappa / 8 (10 m for 500 m triangles on a 200 m, 5 km
+ *    corrugation), and fitting facets would bake that in. After the first
+ *    solve each sample height is moved by the second-order chord term
+ *    computed from the fit's own curvature, and the system is solved again
+ *    with the same factor (chord_passes, default 1).
+ *  - omega_span is the area mean over the span of (1 + |grad h|^2)^(-5/2)
+ *    of the facets in it: the height-field energy overstates the bending of
+ *    a surface that is steep in the plane by that factor (squared curvature
+ *    h'' / (1 + h'^2)^(3/2) times the area element), which would otherwise
+ *    flatten the steep flanks of a near-vertical sheet. Where no facet lies
+ *    (the margin, holes) omega is 0.01: there the energy only has to pick
+ *    the smoothest continuation, whose shape does not depend on the weight,
+ *    and a full weight would make the sheet's border compete with the
+ *    margin's bending. Past the data the energy is the only term, so the
+ *    surface continues the sheet smoothly and, having zero energy for
+ *    planes, reproduces a plane exactly.
+ *
+ * Automatic choices (options override both):
+ *  - knot spacing s = knot_factor (2.0) x the median edge length of the
+ *    sheet, raised until the coefficients number at most
+ *    max_control_points (40000). A factor of 1 follows real CFM sheets
+ *    about three times closer (their 500 m meshes carry kinks at the
+ *    scale of the coarse originals) at about five times the solve time;
+ *    2 meets the accuracy goal on smooth surfaces and fits the whole CFM
+ *    in seconds.
+ *  - lambda = (beta e / (2 pi))^4 with e the median edge length and
+ *    beta = smoothing_wavelength (2.0). For dense data this smoothing
+ *    spline passes a height wave of wavelength L with gain
+ *    1 / (1 + (beta e / L)^4): waves of two edge lengths, which the
+ *    triangles cannot show anyway, are halved; a 5 km wave of a 500 m sheet
+ *    keeps 99.8 % of its amplitude. Tied to the data, not to the knots, so
+ *    a coarser grid does not smooth more.
+ *
+ * Everything is deterministic: no threads, fixed summation order, CHOLMOD
+ * with its fixed ordering. */
+#ifndef FM_FIT_H
+#define FM_FIT_H
+
+#include <stddef.h>
+
+#include "fm_core.h"
+#include "fm_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The reference frame of a sheet. */
+typedef struct fm_fit_frame {
+    double origin[3];   /* area-weighted centroid of the sheet */
+    double u[3], v[3], w[3]; /* orthonormal, right-handed, w = reference direction */
+    double min_dot;     /* smallest n.w over triangle normals (cos of the steepest slope) */
+    double optimum_dot; /* the largest min_dot any direction achieves */
+    double mean_dot;    /* area-weighted mean of n.w */
+    double folded_area; /* area (m^2) of triangles with n.w <= 0 */
+    double area;        /* total area (m^2) */
+    double dip_degrees; /* angle between w and vertical */
+    int projectable;    /* min_dot > 0: the projection onto the plane is one-to-one
+                           for every triangle (the sheet may still overlap itself
+                           across the plane; later checks tell) */
+    int strike_axes;    /* 1: v is down dip; 0: u is the long axis (plane dips < 10 deg) */
+} fm_fit_frame;
+
+typedef struct fm_fit_frame_options {
+    /* If not all zero: use this direction (normalised) as w instead of the
+     * optimum, e.g. for a fallback that chose its own. Default zero. */
+    double direction[3];
+    /* Angle (degrees) by which the worst triangle may be steeper than in the
+     * optimum when moving w towards the area-weighted mean normal.
+     * Default 5. 0 = the pure max-min direction. */
+    double slack_degrees;
+} fm_fit_frame_options;
+
+void fm_fit_frame_options_default(fm_fit_frame_options *opt);
+
+/* Reference frame of a sheet (triangles with zero area are ignored).
+ * opt may be NULL for defaults. Fails on a sheet without area or with
+ * non-finite coordinates. */
+fm_status fm_fit_reference_frame(const fm_mesh *sheet, const fm_fit_frame_options *opt,
+                                 fm_fit_frame *out, fm_error *err);
+
+/* Frame conversions: uvw[2] is the height along w. */
+void fm_fit_frame_to_local(const fm_fit_frame *f, const double xyz[3], double uvw[3]);
+void fm_fit_frame_to_world(const fm_fit_frame *f, const double uvw[3], double xyz[3]);
+
+typedef struct fm_fit_options {
+    const char *name;       /* used as FILE in error messages; may be NULL */
+    fm_fit_frame_options frame;
+    int degree;             /* 2..5, default 3 */
+    double extend;          /* metres beyond the projected sheet, default 2000 */
+    double knot_spacing;    /* metres; 0 = automatic (default) */
+    double knot_factor;     /* automatic spacing / median edge length, default 2.0 */
+    size_t max_control_points; /* bound for the automatic spacing, default 40000 */
+    double smoothing;       /* lambda (m^4); 0 = automatic (default) */
+    double smoothing_wavelength; /* beta of the automatic rule, default 2.0 */
+    int chord_passes;       /* refits with chord-corrected sample heights, 0..10; default 1 */
+    int closest_point_stats; /* 1: also true distances (one projection per vertex); default 1 */
+} fm_fit_options;
+
+void fm_fit_options_default(fm_fit_options *opt);
+
+/* What a fit did and how well it fits. Distances in metres, times in
+ * seconds (wall clock; the only non-deterministic fields). */
+typedef struct fm_fit_stats {
+    size_t vertices, triangles, samples;
+    int degree;
+    size_t spans_u, spans_v;     /* knot spans over the rectangle */
+    size_t control_u, control_v; /* coefficients: spans + degree */
+    double knot_spacing;
+    double edge_median;          /* of the sheet, base of the automatic spacing and lambda */
+    double smoothing;            /* lambda used */
+    double rms_w, max_w;         /* vertices: |height - h(u, v)| along w */
+    double rms_samples_w;        /* samples, projected-area weighted, along w, against
+                                    the chord-corrected heights when chord_passes > 0 */
+    double rms_dist, max_dist;   /* vertices: distance to the closest surface point
+                                    (0 when closest_point_stats is off) */
+    size_t projection_failures;  /* vertices whose projection did not converge */
+    double time_frame, time_assemble, time_solve, time_stats, time_total;
+} fm_fit_stats;
+
+/* The fitted surface of one sheet. */
+typedef struct fm_fit_surface fm_fit_surface;
+
+/* Fits the sheet. opt may be NULL for defaults. A sheet that is not
+ * projectable (frame min_dot <= 0) is fitted all the same; check
+ * fm_fit_surface_frame(s)->projectable. */
+fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_surface **out,
+                       fm_error *err);
+void fm_fit_surface_destroy(fm_fit_surface *s);
+
+const fm_fit_frame *fm_fit_surface_frame(const fm_fit_surface *s);
+const fm_fit_stats *fm_fit_surface_stats(const fm_fit_surface *s);
+
+/* The rectangle the spline is defined on: u0, u1, v0, v1 (metres in the
+ * plane). Evaluation outside it continues the polynomials of the border
+ * spans (fine for a Newton step, not meant as surface). */
+void fm_fit_surface_domain(const fm_fit_surface *s, double dom[4]);
+int fm_fit_surface_degree(const fm_fit_surface *s);
+/* Knot vector along u (dir 0) or v (dir 1): spans + 2 degree + 1 values,
+ * the first `degree` and last `degree` lying outside the rectangle. */
+const double *fm_fit_surface_knots(const fm_fit_surface *s, int dir, size_t *n);
+/* Coefficients: nu x nv heights, u index fastest. */
+const double *fm_fit_surface_heights(const fm_fit_surface *s, size_t *nu, size_t *nv);
+/* The same surface as an ordinary 3D tensor-product B-spline (same knots,
+ * control point (i, j) at xyz[3 (j nu + i)]): u and v are reproduced by
+ * their Greville abscissae, so this is exact, ready for IGES entity 128. */
+void fm_fit_surface_control_points(const fm_fit_surface *s, double *xyz);
+
+/* Height h(u, v); dh (may be NULL) gets h_u, h_v, h_uu, h_uv, h_vv. */
+double fm_fit_surface_height(const fm_fit_surface *s, double u, double v, double dh[5]);
+/* Point S(u, v) and its first derivatives (du, dv may be NULL). */
+void fm_fit_surface_eval(const fm_fit_surface *s, double u, double v, double xyz[3],
+                         double du[3], double dv[3]);
+
+/* Closest point of the surface to p, by Newton iteration on the squared
+ * distance starting from the projection of p onto the plane. uv receives
+ * the parameters, foot (may be NULL) the surface point, dist (may be NULL)
+ * the signed distance (positive on the w side). Returns FM_OK, or
+ * FM_ERR_NUMERIC when the iteration did not converge (the outputs then
+ * hold the best point found). */
+fm_status fm_fit_project(const fm_fit_surface *s, const double p[3], double uv[2],
+                         double foot[3], double *dist);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,107 @@
+/* The one place that talks to CHOLMOD: factor a sparse SPD matrix once,
+ * solve with it as often as needed. */
+#include "fit_internal.h"
+
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cholmod.h>
+
+struct fm_fit_spd {
+    cholmod_common c;
+    cholmod_factor *L;
+    size_t n;
+};
+
+void fm_fit_spd_destroy(fm_fit_spd *f)
+{
+    if (!f)
+        return;
+    cholmod_free_factor(&f->L, &f->c);
+    cholmod_finish(&f->c);
+    free(f);
+}
+
+static fm_status cholmod_failure(const cholmod_common *c, const char *what, const char *name,
+                                 fm_error *err)
+{
+    return fm_error_set(err, c->status == CHOLMOD_OUT_OF_MEMORY ? FM_ERR_NOMEM : FM_ERR_NUMERIC,
+                        name, 0, "fit: CHOLMOD %s failed (status %d)", what, c->status);
+}
+
+fm_status fm_fit_spd_factor(size_t n, const size_t *colptr, const size_t *rowind,
+                            const double *values, fm_fit_spd **out, const char *name,
+                            fm_error *err)
+{
+    *out = NULL;
+    size_t nnz = colptr[n];
+    if (n == 0 || n > INT_MAX || nnz > INT_MAX)
+        return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                            "fit: system of %zu unknowns and %zu entries is out of range", n, nnz);
+    fm_fit_spd *f = calloc(1, sizeof *f);
+    if (!f)
+        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory (solver)");
+    f->n = n;
+    cholmod_start(&f->c);
+    /* Library code never prints: CHOLMOD reports through c.status only. */
+    f->c.print = 0;
+    /* Simplicial LDL': no BLAS calls, so results do not depend on which BLAS
+     * (or how many of its threads) the machine has; with the reference BLAS
+     * it is also the faster choice for these 2D stencil matrices. */
+    f->c.supernodal = CHOLMOD_SIMPLICIAL;
+    fm_status st = FM_OK;
+    cholmod_sparse *A = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &f->c);
+    if (!A) {
+        st = fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory (sparse matrix)");
+        goto done;
+    }
+    int *Ap = A->p, *Ai = A->i;
+    double *Ax = A->x;
+    for (size_t j = 0; j <= n; j++)
+        Ap[j] = (int)colptr[j];
+    for (size_t k = 0; k < nnz; k++) {
+        Ai[k] = (int)rowind[k];
+        Ax[k] = values[k];
+    }
+    f->L = cholmod_analyze(A, &f->c);
+    if (!f->L || f->c.status < CHOLMOD_OK) {
+        st = cholmod_failure(&f->c, "analysis", name, err);
+        goto done;
+    }
+    cholmod_factorize(A, f->L, &f->c);
+    if (f->c.status == CHOLMOD_NOT_POSDEF || f->L->minor < n) {
+        st = fm_error_set(err, FM_ERR_NUMERIC, name, 0,
+                          "fit: normal equations not positive definite (column %zu of %zu); "
+                          "is the sheet degenerate in the plane?",
+                          (size_t)f->L->minor, n);
+        goto done;
+    }
+    if (f->c.status < CHOLMOD_OK)
+        st = cholmod_failure(&f->c, "factorization", name, err);
+done:
+    cholmod_free_sparse(&A, &f->c);
+    if (st != FM_OK)
+        fm_fit_spd_destroy(f);
+    else
+        *out = f;
+    return st;
+}
+
+fm_status fm_fit_spd_solve(fm_fit_spd *f, const double *b, double *x, const char *name,
+                           fm_error *err)
+{
+    cholmod_dense *B = cholmod_allocate_dense(f->n, 1, f->n, CHOLMOD_REAL, &f->c);
+    if (!B)
+        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory (solve)");
+    memcpy(B->x, b, f->n * sizeof(double));
+    cholmod_dense *X = cholmod_solve(CHOLMOD_A, f->L, B, &f->c);
+    fm_status st = FM_OK;
+    if (!X || f->c.status < CHOLMOD_OK)
+        st = cholmod_failure(&f->c, "solve", name, err);
+    else
+        memcpy(x, X->x, f->n * sizeof(double));
+    cholmod_free_dense(&X, &f->c);
+    cholmod_free_dense(&B, &f->c);
+    return st;
+}
