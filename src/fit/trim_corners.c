@@ -1,0 +1,114 @@
+/* Corner detection: turning between the principal directions of the loop
+ * on either side of a vertex, over a window of arc length (see fm_trim.h). */
+#include "trim_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* Direction of travel along the `window` metres of the loop before
+ * (dir < 0) or after (dir > 0) vertex i: the major axis of the segments'
+ * second moments, each segment a uniform line. Moments are taken about
+ * vertex i, which keeps them small in UTM coordinates. */
+static void side_direction(const trim_input *in, size_t i, double window, int dir, double e[2])
+{
+    size_t n = in->n;
+    const double *o = in->xy + 2 * i;
+    double m = 0, m1[2] = {0, 0}, mxx = 0, mxy = 0, myy = 0;
+    double far[2] = {0, 0};
+    double rem = window;
+    size_t j = i;
+    for (size_t step = 0; step < n && rem > 0; step++) {
+        size_t k = dir < 0 ? (j + n - 1) % n : (j + 1) % n;
+        double b[2] = {in->xy[2 * j] - o[0], in->xy[2 * j + 1] - o[1]};
+        double a[2] = {in->xy[2 * k] - o[0], in->xy[2 * k + 1] - o[1]};
+        double l = hypot(a[0] - b[0], a[1] - b[1]);
+        if (l > rem) {
+            double f = rem / l;
+            a[0] = b[0] + f * (a[0] - b[0]);
+            a[1] = b[1] + f * (a[1] - b[1]);
+            l = rem;
+        }
+        m += l;
+        m1[0] += l * 0.5 * (a[0] + b[0]);
+        m1[1] += l * 0.5 * (a[1] + b[1]);
+        mxx += l * (a[0] * a[0] + a[0] * b[0] + b[0] * b[0]) / 3;
+        myy += l * (a[1] * a[1] + a[1] * b[1] + b[1] * b[1]) / 3;
+        mxy += l * (2 * a[0] * a[1] + a[0] * b[1] + b[0] * a[1] + 2 * b[0] * b[1]) / 6;
+        far[0] = a[0];
+        far[1] = a[1];
+        rem -= l;
+        j = k;
+    }
+    double cx = m1[0] / m, cy = m1[1] / m;
+    double sxx = mxx / m - cx * cx, syy = myy / m - cy * cy, sxy = mxy / m - cx * cy;
+    double phi = 0.5 * atan2(2 * sxy, sxx - syy);
+    e[0] = cos(phi);
+    e[1] = sin(phi);
+    /* The axis has no sign: take the one along the travel over the window. */
+    double chord[2] = {dir < 0 ? -far[0] : far[0], dir < 0 ? -far[1] : far[1]};
+    if (e[0] * chord[0] + e[1] * chord[1] < 0) {
+        e[0] = -e[0];
+        e[1] = -e[1];
+    }
+}
+
+typedef struct candidate {
+    double turn;
+    size_t index;
+} candidate;
+
+static int cmp_candidate(const void *pa, const void *pb)
+{
+    const candidate *a = pa, *b = pb;
+    if (a->turn != b->turn)
+        return a->turn < b->turn ? 1 : -1;
+    return (a->index > b->index) - (a->index < b->index);
+}
+
+static int cmp_size(const void *pa, const void *pb)
+{
+    size_t a = *(const size_t *)pa, b = *(const size_t *)pb;
+    return (a > b) - (a < b);
+}
+
+fm_status trim_find_corners(const trim_input *in, double window, double angle,
+                            size_t **corners, size_t *ncorners)
+{
+    size_t n = in->n;
+    double L = in->s[n];
+    *corners = NULL;
+    *ncorners = 0;
+    candidate *cand = malloc(n * sizeof *cand);
+    size_t *out = malloc(n * sizeof *out);
+    if (!cand || !out) {
+        free(cand);
+        free(out);
+        return FM_ERR_NOMEM;
+    }
+    size_t nc = 0;
+    for (size_t i = 0; i < n; i++) {
+        double el[2], er[2];
+        side_direction(in, i, window, -1, el);
+        side_direction(in, i, window, +1, er);
+        double turn = fabs(atan2(el[0] * er[1] - el[1] * er[0], el[0] * er[0] + el[1] * er[1]));
+        if (turn >= angle)
+            cand[nc++] = (candidate){turn, i};
+    }
+    qsort(cand, nc, sizeof *cand, cmp_candidate);
+    size_t k = 0;
+    for (size_t c = 0; c < nc; c++) {
+        int keep = 1;
+        for (size_t a = 0; a < k && keep; a++) {
+            double d = fabs(in->s[cand[c].index] - in->s[out[a]]);
+            if (fmin(d, L - d) < window)
+                keep = 0;
+        }
+        if (keep)
+            out[k++] = cand[c].index;
+    }
+    free(cand);
+    qsort(out, k, sizeof *out, cmp_size);
+    *corners = out;
+    *ncorners = k;
+    return FM_OK;
+}

@@ -1,0 +1,105 @@
+/* Checking and cleaning the input loop: repeated points go, arc lengths
+ * and the median spacing that scales every automatic choice. */
+#include "trim_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+void trim_input_free(trim_input *in)
+{
+    free(in->xy);
+    free(in->orig);
+    free(in->s);
+    memset(in, 0, sizeof *in);
+}
+
+fm_status trim_input_make(const double *uv, size_t n, trim_input *in, const char *name,
+                          fm_error *err)
+{
+    memset(in, 0, sizeof *in);
+    if (!uv && n > 0)
+        return fm_error_set(err, FM_ERR_INVALID, name, 0, "trim: no points");
+    if (n < 3)
+        return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                            "trim: a loop needs at least 3 points, not %zu", n);
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 2; k++) {
+            double x = uv[2 * i + k];
+            if (!isfinite(x))
+                return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                                    "trim: point %zu has a non-finite coordinate", i);
+            lo[k] = fmin(lo[k], x);
+            hi[k] = fmax(hi[k], x);
+        }
+    /* Points closer than this are the same point written twice (rounding of
+     * a projection), not a segment. */
+    double eps = 1e-9 * hypot(hi[0] - lo[0], hi[1] - lo[1]);
+
+    in->xy = malloc(2 * n * sizeof *in->xy);
+    in->orig = malloc(n * sizeof *in->orig);
+    in->s = malloc((n + 1) * sizeof *in->s);
+    double *len = malloc(n * sizeof *len);
+    if (!in->xy || !in->orig || !in->s || !len) {
+        free(len);
+        trim_input_free(in);
+        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "trim: out of memory (%zu points)", n);
+    }
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++) {
+        const double *p = uv + 2 * i;
+        if (m > 0 && hypot(p[0] - in->xy[2 * m - 2], p[1] - in->xy[2 * m - 1]) <= eps)
+            continue;
+        in->xy[2 * m] = p[0];
+        in->xy[2 * m + 1] = p[1];
+        in->orig[m++] = i;
+    }
+    while (m > 1 && hypot(in->xy[2 * m - 2] - in->xy[0], in->xy[2 * m - 1] - in->xy[1]) <= eps)
+        m--;
+    in->n = m;
+    if (m < 3) {
+        free(len);
+        trim_input_free(in);
+        return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                            "trim: a loop needs at least 3 distinct points, not %zu", m);
+    }
+    in->s[0] = 0;
+    for (size_t i = 0; i < m; i++) {
+        const double *a = in->xy + 2 * i, *b = in->xy + 2 * ((i + 1) % m);
+        len[i] = hypot(b[0] - a[0], b[1] - a[1]);
+        in->s[i + 1] = in->s[i] + len[i];
+    }
+    qsort(len, m, sizeof *len, cmp_double);
+    in->spacing = m % 2 ? len[m / 2] : 0.5 * (len[m / 2 - 1] + len[m / 2]);
+    free(len);
+    return FM_OK;
+}
+
+void trim_input_at(const trim_input *in, double s, double p[2])
+{
+    double L = in->s[in->n];
+    s = fmod(s, L);
+    if (s < 0)
+        s += L;
+    /* Last segment start <= s. */
+    size_t lo = 0, hi = in->n;
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (in->s[mid] <= s)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    const double *a = in->xy + 2 * lo, *b = in->xy + 2 * ((lo + 1) % in->n);
+    double l = in->s[lo + 1] - in->s[lo];
+    double f = l > 0 ? (s - in->s[lo]) / l : 0;
+    p[0] = a[0] + f * (b[0] - a[0]);
+    p[1] = a[1] + f * (b[1] - a[1]);
+}

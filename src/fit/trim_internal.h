@@ -1,0 +1,104 @@
+/* Private to the trimming curves (trim_*.c): the cleaned loop, the pieces
+ * and the steps fm_trim_fit is built from. */
+#ifndef FM_TRIM_INTERNAL_H
+#define FM_TRIM_INTERNAL_H
+
+#include <stddef.h>
+
+#include "fm_trim.h"
+
+#define TRIM_P 3 /* degree */
+
+/* The input loop without consecutive repeats. */
+typedef struct trim_input {
+    size_t n;
+    double *xy;     /* 2 n */
+    size_t *orig;   /* input index of each point */
+    double *s;      /* n + 1 cumulative arc lengths, s[n] = perimeter */
+    double spacing; /* median segment length */
+} trim_input;
+
+/* One curve: a clamped piece between two corners or the periodic loop. */
+typedef struct trim_piece {
+    int periodic;
+    size_t first;   /* cleaned index of the start point */
+    size_t in_first, in_last; /* input indices of the end points */
+    size_t npts;    /* data points: clamped both ends included; periodic n */
+    double *t;      /* their chord-length parameters, t[0] = 0 */
+    double len;     /* parameter length */
+    size_t nspans;
+    double *brk;    /* nspans + 1 break points, 0 .. len */
+    double mu;      /* smoothing multiplier, lowered by refinement */
+    size_t nknots, nctrl;
+    double *knots;  /* nctrl + TRIM_P + 1 */
+    double *ctrl;   /* 2 nctrl */
+    int rounds;     /* refinement rounds used */
+    /* Measured by trim_measure_piece. */
+    double max_dev, sum_dev2, max_curve_dev, max_sys;
+} trim_piece;
+
+struct fm_trim_loop {
+    fm_trim_stats stats;
+    size_t npieces;
+    trim_piece *pieces;
+    size_t ncorners;
+    size_t *corners; /* input indices */
+};
+
+/* Data point j of a piece. */
+static inline const double *trim_point(const trim_input *in, const trim_piece *pc, size_t j)
+{
+    return in->xy + 2 * ((pc->first + j) % in->n);
+}
+
+/* --- trim_input.c --- */
+
+/* Validates and cleans uv; fills in (freed with trim_input_free). */
+fm_status trim_input_make(const double *uv, size_t n, trim_input *in, const char *name,
+                          fm_error *err);
+void trim_input_free(trim_input *in);
+/* Point at arc length s (any real, wrapped) along the closed polyline. */
+void trim_input_at(const trim_input *in, double s, double p[2]);
+
+/* --- trim_corners.c --- */
+
+/* Corners (cleaned indices, ascending) into *corners (allocated, n at most
+ * in->n); window in metres, angle in radians. */
+fm_status trim_find_corners(const trim_input *in, double window, double angle,
+                            size_t **corners, size_t *ncorners);
+
+/* --- trim_basis.c --- */
+
+/* Span (0 .. nspans - 1) of the piece that holds t (clamped into range). */
+size_t trim_span(const trim_piece *pc, double t);
+/* Maps t into the parameter range: clamps, or wraps a periodic piece. */
+double trim_wrap(const trim_piece *pc, double t);
+/* Values (ders[0]) and derivatives up to nd (<= 2) of the TRIM_P + 1
+ * B-splines alive on span k at t; they belong to control points k .. k + p. */
+void trim_basis(const trim_piece *pc, size_t k, double t, int nd, double ders[3][TRIM_P + 1]);
+/* C(t) and derivatives: out[0] point, out[1] C', out[2] C'' (up to nd). */
+void trim_eval(const trim_piece *pc, double t, int nd, double out[3][2]);
+/* Knot vector of the piece from its break points (allocates knots, ctrl). */
+fm_status trim_make_knots(trim_piece *pc);
+
+/* --- trim_fit.c --- */
+
+/* Least-squares fit of the piece's control points for its current breaks. */
+fm_status trim_fit_piece(const trim_input *in, trim_piece *pc, double beta, const char *name,
+                         fm_error *err);
+
+/* --- trim_measure.c --- */
+
+/* Deviations of the fitted piece; flag[s] = 1 for spans holding a point
+ * whose tent-averaged signed deviation (half-width H) exceeds tol. */
+fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, double tol,
+                             unsigned char *flag);
+/* Distance from p to the segment a-b. */
+double trim_segment_distance(const double p[2], const double a[2], const double b[2]);
+
+/* --- trim_sample.c --- */
+
+/* Arc length of the piece between parameters a <= b (Gauss per span). */
+double trim_arc_length(const trim_piece *pc, double a, double b);
+
+#endif

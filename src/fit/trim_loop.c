@@ -1,0 +1,321 @@
+/* fm_trim_fit: corners, pieces, fit-measure-refine per piece, and the
+ * accessors of the result. */
+#include "trim_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void fm_trim_options_default(fm_trim_options *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->tolerance = 50;
+    opt->corner_angle = 35;
+    opt->corner_window = 0;
+    opt->knot_spacing = 0;
+    opt->knot_factor = 3.0;
+    opt->smoothing_wavelength = 2.0;
+    opt->max_refinements = 8;
+}
+
+static void piece_free(trim_piece *pc)
+{
+    free(pc->t);
+    free(pc->brk);
+    free(pc->knots);
+    free(pc->ctrl);
+}
+
+void fm_trim_loop_destroy(fm_trim_loop *loop)
+{
+    if (!loop)
+        return;
+    if (loop->pieces)
+        for (size_t i = 0; i < loop->npieces; i++)
+            piece_free(&loop->pieces[i]);
+    free(loop->pieces);
+    free(loop->corners);
+    free(loop);
+}
+
+static fm_status check_options(const fm_trim_options *o, const char *name, fm_error *err)
+{
+    if (!(o->tolerance > 0) || !isfinite(o->tolerance))
+        return fm_error_set(err, FM_ERR_INVALID, name, 0, "trim: bad tolerance %g", o->tolerance);
+    if (!(o->corner_angle > 0 && o->corner_angle <= 180))
+        return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                            "trim: corner angle must be in (0, 180] degrees, not %g",
+                            o->corner_angle);
+    if (!(o->corner_window >= 0) || !isfinite(o->corner_window))
+        return fm_error_set(err, FM_ERR_INVALID, name, 0, "trim: bad corner window %g",
+                            o->corner_window);
+    if (!(o->knot_spacing >= 0) || !isfinite(o->knot_spacing))
+        return fm_error_set(err, FM_ERR_INVALID, name, 0, "trim: bad knot spacing %g",
+                            o->knot_spacing);
+    if (!(o->knot_factor > 0) || !isfinite(o->knot_factor))
+        return fm_error_set(err, FM_ERR_INVALID, name, 0, "trim: bad knot factor %g",
+                            o->knot_factor);
+    if (!(o->smoothing_wavelength >= 0) || !isfinite(o->smoothing_wavelength))
+        return fm_error_set(err, FM_ERR_INVALID, name, 0, "trim: bad smoothing wavelength %g",
+                            o->smoothing_wavelength);
+    if (o->max_refinements < 0 || o->max_refinements > 30)
+        return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                            "trim: max_refinements must be 0..30, not %d", o->max_refinements);
+    return FM_OK;
+}
+
+/* Data points and parameters of the piece from cleaned point `first` over
+ * `npts` points, with nspans uniform spans of about h0. */
+static fm_status piece_init(const trim_input *in, trim_piece *pc, int periodic, size_t first,
+                            size_t npts, double h0)
+{
+    enum { p = TRIM_P };
+    pc->periodic = periodic;
+    pc->first = first;
+    pc->npts = npts;
+    pc->t = malloc(npts * sizeof *pc->t);
+    if (!pc->t)
+        return FM_ERR_NOMEM;
+    pc->t[0] = 0;
+    for (size_t j = 1; j < npts; j++) {
+        size_t a = (first + j - 1) % in->n;
+        pc->t[j] = pc->t[j - 1] + (in->s[a + 1] - in->s[a]);
+    }
+    pc->len = periodic ? in->s[in->n] : pc->t[npts - 1];
+    double spans = round(pc->len / h0);
+    size_t N = spans < 1 ? 1 : spans > 1e7 ? 10000000 : (size_t)spans;
+    /* Fewer periodic spans would let a basis function meet itself round
+     * the loop. */
+    if (periodic && N < 2 * p + 2)
+        N = 2 * p + 2;
+    pc->nspans = N;
+    pc->brk = malloc((N + 1) * sizeof *pc->brk);
+    if (!pc->brk)
+        return FM_ERR_NOMEM;
+    for (size_t s = 0; s <= N; s++)
+        pc->brk[s] = pc->len * (double)s / (double)N;
+    pc->brk[N] = pc->len;
+    pc->mu = 1;
+    return FM_OK;
+}
+
+/* Halves flagged spans of two point spacings or more (shorter spans would
+ * let the curve follow single stair-steps). When a flagged span is already
+ * that short, the piece's smoothing goes down to a quarter instead: for the
+ * whole piece, as smoothing that varies from span to span shrinks curves
+ * unevenly and puts point-to-point wiggles into the fit. Returns -1 when
+ * out of memory, else whether anything changed. */
+/* One step down: below it the curve starts to pass stair-steps through. */
+#define TRIM_MU_MIN 0.25
+static int refine(trim_piece *pc, const unsigned char *flag, double spacing)
+{
+    size_t N = pc->nspans, M = N;
+    int stuck = 0;
+    for (size_t s = 0; s < N; s++) {
+        if (!flag[s])
+            continue;
+        if (pc->brk[s + 1] - pc->brk[s] >= 2 * spacing)
+            M++;
+        else
+            stuck = 1;
+    }
+    int changed = 0;
+    if (stuck && pc->mu > TRIM_MU_MIN) {
+        pc->mu *= 0.25;
+        changed = 1;
+    }
+    if (M == N)
+        return changed;
+    double *brk = malloc((M + 1) * sizeof *brk);
+    if (!brk)
+        return -1;
+    size_t k = 0;
+    for (size_t s = 0; s < N; s++) {
+        double a = pc->brk[s], b = pc->brk[s + 1];
+        brk[k++] = a;
+        if (flag[s] && b - a >= 2 * spacing)
+            brk[k++] = 0.5 * (a + b);
+    }
+    brk[M] = pc->len;
+    free(pc->brk);
+    pc->brk = brk;
+    pc->nspans = M;
+    return 1;
+}
+
+static fm_status fit_piece(const trim_input *in, trim_piece *pc, double beta,
+                           const fm_trim_options *o, fm_error *err)
+{
+    unsigned char *flag = NULL;
+    fm_status st = FM_OK;
+    for (int round = 0;; round++) {
+        st = trim_fit_piece(in, pc, beta, o->name, err);
+        if (st != FM_OK)
+            break;
+        unsigned char *f = realloc(flag, pc->nspans);
+        if (!f || trim_measure_piece(in, pc, 2 * in->spacing, o->tolerance, f) != FM_OK) {
+            free(f ? f : flag);
+            return fm_error_set(err, FM_ERR_NOMEM, o->name, 0, "trim: out of memory (measure)");
+        }
+        flag = f;
+        if (pc->max_sys <= o->tolerance || round >= o->max_refinements)
+            break;
+        int changed = refine(pc, flag, in->spacing);
+        if (changed < 0) {
+            st = fm_error_set(err, FM_ERR_NOMEM, o->name, 0, "trim: out of memory (refine)");
+            break;
+        }
+        if (!changed)
+            break;
+        pc->rounds = round + 1;
+    }
+    free(flag);
+    return st;
+}
+
+static double polygon_area(const trim_input *in)
+{
+    const double *o = in->xy;
+    double a = 0;
+    for (size_t i = 0; i < in->n; i++) {
+        const double *p = in->xy + 2 * i, *q = in->xy + 2 * ((i + 1) % in->n);
+        a += (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0]);
+    }
+    return 0.5 * a;
+}
+
+fm_status fm_trim_fit(const double *uv, size_t n, const fm_trim_options *opt,
+                      fm_trim_loop **out, fm_error *err)
+{
+    fm_trim_options o;
+    if (opt)
+        o = *opt;
+    else
+        fm_trim_options_default(&o);
+    if (!out)
+        return fm_error_set(err, FM_ERR_INVALID, o.name, 0, "trim: no output");
+    *out = NULL;
+    fm_status st = check_options(&o, o.name, err);
+    if (st != FM_OK)
+        return st;
+    trim_input in;
+    st = trim_input_make(uv, n, &in, o.name, err);
+    if (st != FM_OK)
+        return st;
+
+    double L = in.s[in.n];
+    double window = o.corner_window > 0 ? o.corner_window : 2 * in.spacing;
+    /* Both sides of a vertex must fit in the loop with room to spare. */
+    window = fmin(window, 0.25 * L);
+    double h0 = o.knot_spacing > 0 ? o.knot_spacing : o.knot_factor * in.spacing;
+    double beta = fmax(o.smoothing_wavelength, 0.05);
+
+    size_t *corners = NULL, nc = 0;
+    fm_trim_loop *loop = calloc(1, sizeof *loop);
+    if (!loop || trim_find_corners(&in, window, o.corner_angle * 3.14159265358979323846 / 180,
+                                   &corners, &nc) != FM_OK) {
+        st = fm_error_set(err, FM_ERR_NOMEM, o.name, 0, "trim: out of memory (corners)");
+        goto fail;
+    }
+    loop->npieces = nc ? nc : 1;
+    loop->pieces = calloc(loop->npieces, sizeof *loop->pieces);
+    loop->corners = malloc((nc ? nc : 1) * sizeof *loop->corners);
+    if (!loop->pieces || !loop->corners) {
+        st = fm_error_set(err, FM_ERR_NOMEM, o.name, 0, "trim: out of memory (pieces)");
+        goto fail;
+    }
+    loop->ncorners = nc;
+    for (size_t i = 0; i < nc; i++)
+        loop->corners[i] = in.orig[corners[i]];
+
+    fm_trim_stats *S = &loop->stats;
+    S->points = n;
+    S->distinct_points = in.n;
+    S->spacing = in.spacing;
+    S->corner_window = window;
+    S->knot_spacing = h0;
+    S->corners = nc;
+    S->pieces = loop->npieces;
+    double sum2 = 0;
+    for (size_t i = 0; i < loop->npieces; i++) {
+        trim_piece *pc = &loop->pieces[i];
+        size_t first = nc ? corners[i] : 0, npts = in.n;
+        if (nc == 1)
+            npts = in.n + 1; /* round the loop, back to the one corner */
+        else if (nc > 1)
+            npts = (corners[(i + 1) % nc] + in.n - first) % in.n + 1;
+        if (piece_init(&in, pc, nc == 0, first, npts, h0) != FM_OK) {
+            st = fm_error_set(err, FM_ERR_NOMEM, o.name, 0, "trim: out of memory (piece)");
+            goto fail;
+        }
+        st = fit_piece(&in, pc, beta, &o, err);
+        if (st != FM_OK)
+            goto fail;
+        S->spans += pc->nspans;
+        S->control_points += pc->nctrl;
+        S->refinements = pc->rounds > S->refinements ? pc->rounds : S->refinements;
+        S->max_dev = fmax(S->max_dev, pc->max_dev);
+        S->max_curve_dev = fmax(S->max_curve_dev, pc->max_curve_dev);
+        S->max_systematic = fmax(S->max_systematic, pc->max_sys);
+        sum2 += pc->sum_dev2;
+        pc->in_first = in.orig[first];
+        pc->in_last = in.orig[(first + npts - 1) % in.n];
+    }
+    S->rms_dev = sqrt(sum2 / (double)in.n);
+    S->within_tolerance = S->max_systematic <= o.tolerance;
+    S->area = fm_trim_loop_area(loop);
+    S->polygon_area = polygon_area(&in);
+    free(corners);
+    trim_input_free(&in);
+    *out = loop;
+    return FM_OK;
+fail:
+    free(corners);
+    trim_input_free(&in);
+    fm_trim_loop_destroy(loop);
+    return st;
+}
+
+const fm_trim_stats *fm_trim_loop_stats(const fm_trim_loop *loop)
+{
+    return &loop->stats;
+}
+
+const size_t *fm_trim_loop_corners(const fm_trim_loop *loop, size_t *n)
+{
+    *n = loop->ncorners;
+    return loop->corners;
+}
+
+size_t fm_trim_loop_npieces(const fm_trim_loop *loop)
+{
+    return loop->npieces;
+}
+
+void fm_trim_loop_piece(const fm_trim_loop *loop, size_t i, fm_trim_piece *out)
+{
+    const trim_piece *pc = &loop->pieces[i];
+    out->degree = TRIM_P;
+    out->periodic = pc->periodic;
+    out->nknots = pc->nknots;
+    out->knots = pc->knots;
+    out->ncontrol = pc->nctrl;
+    out->control = pc->ctrl;
+    out->t0 = 0;
+    out->t1 = pc->len;
+    out->first = pc->in_first;
+    out->last = pc->in_last;
+}
+
+void fm_trim_loop_eval(const fm_trim_loop *loop, size_t piece, double t, double p[2],
+                       double d[2])
+{
+    double c[3][2];
+    trim_eval(&loop->pieces[piece], t, d ? 1 : 0, c);
+    p[0] = c[0][0];
+    p[1] = c[0][1];
+    if (d) {
+        d[0] = c[1][0];
+        d[1] = c[1][1];
+    }
+}

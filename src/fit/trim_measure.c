@@ -1,0 +1,195 @@
+/* How far a fitted piece is from its points: raw distances both ways, and
+ * the stair-step-free systematic deviation that decides refinement. */
+#include "trim_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+double trim_segment_distance(const double p[2], const double a[2], const double b[2])
+{
+    double ex = b[0] - a[0], ey = b[1] - a[1];
+    double l2 = ex * ex + ey * ey;
+    double f = l2 > 0 ? ((p[0] - a[0]) * ex + (p[1] - a[1]) * ey) / l2 : 0;
+    f = f < 0 ? 0 : f > 1 ? 1 : f;
+    return hypot(p[0] - a[0] - f * ex, p[1] - a[1] - f * ey);
+}
+
+static double dist2_at(const trim_piece *pc, double t, const double P[2])
+{
+    double c[3][2];
+    trim_eval(pc, t, 0, c);
+    double dx = c[0][0] - P[0], dy = c[0][1] - P[1];
+    return dx * dx + dy * dy;
+}
+
+/* Closest parameter to P near t0: a coarse scan (the fit's parameter can be
+ * off by a fraction of a span) and then Newton on the squared distance,
+ * steps halved until they improve it. */
+static double project(const trim_piece *pc, const double P[2], double t0, double step)
+{
+    double best = trim_wrap(pc, t0), bestd = dist2_at(pc, best, P);
+    for (int k = -4; k <= 4; k++) {
+        double t = trim_wrap(pc, t0 + k * step), d = dist2_at(pc, t, P);
+        if (d < bestd) {
+            bestd = d;
+            best = t;
+        }
+    }
+    for (int it = 0; it < 30; it++) {
+        double c[3][2];
+        trim_eval(pc, best, 2, c);
+        double rx = c[0][0] - P[0], ry = c[0][1] - P[1];
+        double f = rx * c[1][0] + ry * c[1][1];
+        double g = c[1][0] * c[1][0] + c[1][1] * c[1][1];
+        double fp = g + rx * c[2][0] + ry * c[2][1];
+        if (!(fp > 0))
+            fp = g;
+        if (!(fp > 0))
+            break;
+        double dt = -f / fp;
+        if (fabs(dt) > 4 * step)
+            dt = dt > 0 ? 4 * step : -4 * step;
+        int moved = 0;
+        for (int h = 0; h < 30 && !moved; h++, dt *= 0.5) {
+            double t = trim_wrap(pc, best + dt), d = dist2_at(pc, t, P);
+            if (d < bestd) {
+                bestd = d;
+                best = t;
+                moved = 1;
+            }
+        }
+        if (!moved || fabs(dt) < 1e-9 * (1 + pc->len))
+            break;
+    }
+    return best;
+}
+
+/* Share of the piece's polyline length that point j stands for. */
+static double point_length(const trim_piece *pc, size_t j)
+{
+    size_t m = pc->npts;
+    double tj = pc->t[j];
+    double prev = j > 0 ? tj - pc->t[j - 1] : pc->periodic ? pc->len - pc->t[m - 1] : 0;
+    double next = j + 1 < m ? pc->t[j + 1] - tj : pc->periodic ? pc->len - tj : 0;
+    return 0.5 * (prev + next);
+}
+
+/* Tent average (half-width H along the parameter) of r about point j. */
+static double tent_average(const trim_piece *pc, const double *r, size_t j, double H)
+{
+    size_t m = pc->npts;
+    double sw = point_length(pc, j), sr = sw * r[j];
+    for (int dir = -1; dir <= 1; dir += 2) {
+        for (size_t step = 1; step < m; step++) {
+            size_t k;
+            double dt;
+            if (dir > 0) {
+                if (!pc->periodic && j + step >= m)
+                    break;
+                k = (j + step) % m;
+                dt = pc->t[k] - pc->t[j] + (k < j ? pc->len : 0);
+            } else {
+                if (!pc->periodic && step > j)
+                    break;
+                k = (j + m - step) % m;
+                dt = pc->t[j] - pc->t[k] + (k > j ? pc->len : 0);
+            }
+            /* Half the loop: further points are reached from the other side. */
+            if (dt >= H || (pc->periodic && 2 * step > m))
+                break;
+            double w = (1 - dt / H) * point_length(pc, k);
+            sw += w;
+            sr += w * r[k];
+        }
+    }
+    return sw > 0 ? sr / sw : r[j];
+}
+
+/* Largest distance from C(t) to the piece's polyline, searching segments
+ * whose parameters lie within R of t (the curve follows the polyline's
+ * parameterisation, so the nearest segment is among them). */
+static double curve_to_polyline(const trim_input *in, const trim_piece *pc, double t,
+                                const double C[2], double R)
+{
+    size_t m = pc->npts, nseg = pc->periodic ? m : m - 1;
+    double best = INFINITY;
+    for (int shift = -1; shift <= 1; shift++) {
+        if (shift != 0 && !pc->periodic)
+            continue;
+        double lo = t + shift * pc->len - R, hi = t + shift * pc->len + R;
+        if (hi < 0 || lo > pc->len)
+            continue;
+        /* First segment whose end is at or beyond lo. */
+        size_t a = 0, b = nseg;
+        while (a < b) {
+            size_t mid = a + (b - a) / 2;
+            double te = mid + 1 < m ? pc->t[mid + 1] : pc->len;
+            if (te < lo)
+                a = mid + 1;
+            else
+                b = mid;
+        }
+        for (size_t j = a; j < nseg && pc->t[j] <= hi; j++) {
+            double d = trim_segment_distance(C, trim_point(in, pc, j), trim_point(in, pc, j + 1));
+            if (d < best)
+                best = d;
+        }
+    }
+    return best;
+}
+
+fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, double tol,
+                             unsigned char *flag)
+{
+    size_t m = pc->npts;
+    double *r = malloc(m * sizeof *r);
+    if (!r)
+        return FM_ERR_NOMEM;
+    double hmin = INFINITY, hmax = 0;
+    for (size_t s = 0; s < pc->nspans; s++) {
+        double h = pc->brk[s + 1] - pc->brk[s];
+        hmin = fmin(hmin, h);
+        hmax = fmax(hmax, h);
+    }
+    pc->max_dev = pc->sum_dev2 = pc->max_curve_dev = pc->max_sys = 0;
+    for (size_t j = 0; j < m; j++) {
+        r[j] = 0;
+        /* A clamped piece passes through its end points by construction. */
+        if (!pc->periodic && (j == 0 || j == m - 1))
+            continue;
+        const double *P = trim_point(in, pc, j);
+        double t = project(pc, P, pc->t[j], 0.25 * hmin);
+        double c[3][2];
+        trim_eval(pc, t, 1, c);
+        double dx = P[0] - c[0][0], dy = P[1] - c[0][1];
+        double d = hypot(dx, dy);
+        r[j] = c[1][0] * dy - c[1][1] * dx >= 0 ? d : -d;
+        pc->max_dev = fmax(pc->max_dev, d);
+        pc->sum_dev2 += d * d;
+    }
+    for (size_t s = 0; s < pc->nspans; s++)
+        flag[s] = 0;
+    for (size_t j = 0; j < m; j++) {
+        /* Near a corner the tent would hold the corner, which carries no
+         * stair-step, and one step without its partner: the average would
+         * show half a step that is not there. The curve is pinned to the
+         * corner there anyway. */
+        if (!pc->periodic && (pc->t[j] < H || pc->t[j] > pc->len - H))
+            continue;
+        double f = fabs(tent_average(pc, r, j, H));
+        pc->max_sys = fmax(pc->max_sys, f);
+        if (f > tol)
+            flag[trim_span(pc, pc->t[j])] = 1;
+    }
+    free(r);
+    double R = 2 * H + hmax;
+    for (size_t s = 0; s < pc->nspans; s++) {
+        double h = pc->brk[s + 1] - pc->brk[s];
+        for (int i = 0; i < 8; i++) {
+            double t = pc->brk[s] + (i + 0.5) / 8 * h, c[3][2];
+            trim_eval(pc, t, 0, c);
+            pc->max_curve_dev = fmax(pc->max_curve_dev, curve_to_polyline(in, pc, t, c[0], R));
+        }
+    }
+    return FM_OK;
+}
