@@ -7,6 +7,7 @@ packages=(
   libsuitesparse-dev         # CHOLMOD: sparse least squares of the surface fit
   liblapacke-dev             # LAPACKE: banded least squares of the trimming curves
   python3                    # Debian's interpreter for the independent test checks
+  python3-meshio python3-gmsh  # real readers of our outputs (VTU, MSH, IGES) in the tests
 )
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi

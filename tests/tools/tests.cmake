@@ -18,3 +18,12 @@ if(FM_SYSTEM_PYTHON)
     set_tests_properties(cfm_info_independent_${res} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
   endforeach()
 endif()
+
+# IGES writer: Gmsh (OpenCASCADE) reads the sample files of test_iges back;
+# skipped (77) without Debian's python3-gmsh.
+if(FM_SYSTEM_PYTHON)
+  add_test(NAME iges_gmsh_independent
+    COMMAND ${FM_SYSTEM_PYTHON} ${FM_TOOLS}/check_iges.py $<TARGET_FILE:test_iges>
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/iges_gmsh)
+  set_tests_properties(iges_gmsh_independent PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+endif()

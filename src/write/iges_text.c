@@ -1,0 +1,165 @@
+/* IGES free-format parameters packed into fixed 80-column lines. */
+#include "iges_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void iges_put_line(FILE *fp, const char *data, char letter, long seq)
+{
+    fprintf(fp, "%-72.72s%c%7ld\n", data, letter, seq);
+}
+
+void iges_lines_init(iges_lines *l, FILE *fp, char letter, long first_seq)
+{
+    memset(l, 0, sizeof *l);
+    l->fp = fp;
+    l->letter = letter;
+    l->width = letter == 'P' ? 64 : 72;
+    l->seq = first_seq - 1;
+}
+
+static void flush(iges_lines *l)
+{
+    l->seq++;
+    if (l->fp) {
+        l->buf[l->len] = '\0';
+        if (l->letter == 'P')
+            fprintf(l->fp, "%-64s%8ld%c%7ld\n", l->buf, l->de, 'P', l->seq);
+        else
+            iges_put_line(l->fp, l->buf, l->letter, l->seq);
+    }
+    l->len = 0;
+}
+
+static void append(iges_lines *l, const char *s, size_t n)
+{
+    memcpy(l->buf + l->len, s, n);
+    l->len += n;
+}
+
+/* Characters [from, from + n) of the token a || b. */
+static void append_part(iges_lines *l, const char *a, size_t na, const char *b, size_t from,
+                        size_t n)
+{
+    for (size_t i = from; i < from + n; i++)
+        l->buf[l->len++] = i < na ? a[i] : b[i - na];
+}
+
+/* Places the token a || b. Every placement leaves one column free, so the
+ * delimiter that follows a parameter always lands on the parameter's own
+ * line: readers split records at line ends and a line starting with a
+ * delimiter would read as an extra defaulted parameter. Numbers never
+ * break across lines; a string longer than a line continues on the next
+ * ones, as IGES allows. */
+static void place(iges_lines *l, const char *a, size_t na, const char *b, size_t nb,
+                  int splittable)
+{
+    size_t w = (size_t)l->width, n = na + nb, done = 0;
+    if (l->need_delim)
+        append(l, ",", 1);
+    l->need_delim = 1;
+    if (l->len + n + 1 > w && (!splittable || n + 1 <= w))
+        flush(l);
+    if (l->len + n + 1 <= w) {
+        append_part(l, a, na, b, 0, n);
+        return;
+    }
+    while (done < n) {
+        size_t left = n - done, space = w - l->len, take = left < space ? left : space;
+        if (take == left && take + 1 > space)
+            take--;
+        append_part(l, a, na, b, done, take);
+        done += take;
+        if (done < n)
+            flush(l);
+    }
+}
+
+void iges_int(iges_lines *l, long long v)
+{
+    char t[32];
+    int n = snprintf(t, sizeof t, "%lld", v);
+    place(l, t, (size_t)n, "", 0, 0);
+}
+
+void iges_real(iges_lines *l, double v)
+{
+    char t[32];
+    iges_format_real(v, t);
+    place(l, t, strlen(t), "", 0, 0);
+}
+
+void iges_str(iges_lines *l, const char *s)
+{
+    size_t n = s ? strlen(s) : 0;
+    char h[32] = "";
+    int k = 0;
+    if (n > 0)
+        k = snprintf(h, sizeof h, "%zuH", n);
+    place(l, h, (size_t)k, s ? s : "", n, 1);
+}
+
+void iges_end(iges_lines *l)
+{
+    append(l, ";", 1);
+    l->need_delim = 0;
+    flush(l);
+}
+
+/* The C library writes the locale's decimal point; IGES wants '.', an E
+ * exponent without '+' or leading zeros, and a point in every real. */
+static void normalise(const char *raw, char *out)
+{
+    size_t k = 0;
+    int in_exp = 0, exp_digits = 0, has_point = 0, in_point = 0;
+    for (const char *p = raw; *p; p++) {
+        char c = *p;
+        if (c >= '0' && c <= '9') {
+            in_point = 0;
+            if (in_exp && exp_digits == 0 && c == '0' && p[1] != '\0')
+                continue;
+            if (in_exp)
+                exp_digits++;
+            out[k++] = c;
+        } else if (c == '-') {
+            out[k++] = c;
+        } else if (c == '+') {
+            continue;
+        } else if (c == 'e' || c == 'E') {
+            if (!has_point)
+                out[k++] = '.';
+            has_point = 1;
+            in_exp = 1;
+            out[k++] = 'E';
+        } else if (!in_point) {
+            out[k++] = '.';
+            has_point = in_point = 1;
+        }
+    }
+    if (!has_point)
+        out[k++] = '.';
+    out[k] = '\0';
+}
+
+void iges_format_real(double x, char *buf)
+{
+    if (x == 0) {
+        strcpy(buf, "0.");
+        return;
+    }
+    char raw[40];
+    for (int prec = 15; prec <= 17; prec++) {
+        snprintf(raw, sizeof raw, "%.*g", prec, x);
+        if (prec == 17 || strtod(raw, NULL) == x)
+            break;
+    }
+    normalise(raw, buf);
+}
+
+int iges_printable(const char *s)
+{
+    for (; s && *s; s++)
+        if ((unsigned char)*s < 0x20 || (unsigned char)*s > 0x7e)
+            return 0;
+    return 1;
+}
