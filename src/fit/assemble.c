@@ -20,7 +20,9 @@
 typedef struct normal_eq {
     const fm_fit_surface *s;
     double *A;    /* ncoef x W^2: A[i][(dv + p) W + du + p] = entry (i, i + du + dv nu) */
-    double *rhs;
+    double *rhs;  /* ncomp blocks of ncoef */
+    size_t ncoef;
+    int ncomp;
     int W;
     double *span_area, *span_bend; /* per span: sum of weights, of weight x bending weight */
     int nb;                        /* coefficients alive on a span, (p + 1)^2 */
@@ -30,7 +32,7 @@ typedef struct normal_eq {
      * small dense block first and added to A when the span changes. */
     int open;
     size_t ju, jv;
-    double blk[NB_MAX * NB_MAX], brhs[NB_MAX];
+    double blk[NB_MAX * NB_MAX], brhs[3][NB_MAX];
 } normal_eq;
 
 double fm_fit_bending_weight(double g2)
@@ -73,10 +75,11 @@ static void flush(normal_eq *q)
         return;
     scatter(q, q->ju, q->jv, q->blk, 1.0);
     size_t base = q->jv * q->s->nu + q->ju;
-    for (int k = 0; k < q->nb; k++)
-        q->rhs[base + q->coef_off[k]] += q->brhs[k];
+    for (int c = 0; c < q->ncomp; c++)
+        for (int k = 0; k < q->nb; k++)
+            q->rhs[(size_t)c * q->ncoef + base + q->coef_off[k]] += q->brhs[c][k];
     memset(q->blk, 0, (size_t)(q->nb * q->nb) * sizeof q->blk[0]);
-    memset(q->brhs, 0, (size_t)q->nb * sizeof q->brhs[0]);
+    memset(q->brhs, 0, sizeof q->brhs);
     q->open = 0;
 }
 
@@ -104,7 +107,8 @@ static void add_sample(void *ctx, const fm_fit_sample *smp)
             phi[b * (p + 1) + a] = Nu[0][a] * Nv[0][b];
     for (int k1 = 0; k1 < nb; k1++) {
         double wp = smp->weight * phi[k1];
-        q->brhs[k1] += wp * smp->h;
+        for (int c = 0; c < q->ncomp; c++)
+            q->brhs[c][k1] += wp * smp->val[c];
         double *br = q->blk + k1 * nb;
         for (int k2 = k1; k2 < nb; k2++)
             br[k2] += wp * phi[k2];
@@ -143,34 +147,47 @@ static void add_energy(normal_eq *q, double lambda)
 typedef struct chord_rhs {
     const fm_fit_surface *s;
     double *rhs;
+    size_t ncoef;
 } chord_rhs;
 
-/* Right-hand side only, with each facet height moved onto the smooth
+/* Right-hand side only, with each facet value moved onto the smooth
  * surface through the triangle's corners as the current fit bends it. */
 static void add_sample_rhs(void *ctx, const fm_fit_sample *smp)
 {
     chord_rhs *q = ctx;
-    double u = smp->u, v = smp->v, h = smp->h, weight = smp->weight;
+    double u = smp->u, v = smp->v, weight = smp->weight;
     const double *chord = smp->chord;
     const fm_fit_surface *s = q->s;
     int p = s->p;
-    double dh[5];
-    fm_fit_surface_height(s, u, v, dh);
-    double hc = h - (chord[0] * dh[2] + 2 * chord[1] * dh[3] + chord[2] * dh[4]);
     double tu, tv, Nu[3][FM_FIT_MAX_DEGREE + 1], Nv[3][FM_FIT_MAX_DEGREE + 1];
     size_t ju = fm_fit_locate(u, s->u0, s->s, s->nsu, &tu);
     size_t jv = fm_fit_locate(v, s->v0, s->s, s->nsv, &tv);
     fm_fit_basis_values(p, tu, Nu);
     fm_fit_basis_values(p, tv, Nv);
-    for (int b = 0; b <= p; b++) {
-        double *r = q->rhs + (jv + (size_t)b) * s->nu + ju;
-        double wb = weight * hc * Nv[0][b];
-        for (int a = 0; a <= p; a++)
-            r[a] += wb * Nu[0][a];
+    for (int c = 0; c < s->ncomp; c++) {
+        double d[5];
+        fm_fit_component(s, c, u, v, d);
+        double fc = smp->val[c] - (chord[0] * d[2] + 2 * chord[1] * d[3] + chord[2] * d[4]);
+        for (int b = 0; b <= p; b++) {
+            double *r = q->rhs + (size_t)c * q->ncoef + (jv + (size_t)b) * s->nu + ju;
+            double wb = weight * fc * Nv[0][b];
+            for (int a = 0; a <= p; a++)
+                r[a] += wb * Nu[0][a];
+        }
     }
 }
 
-fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_mesh *sheet, double lambda,
+/* Solves every component with the one factor. */
+static fm_status solve_all(fm_fit_spd *spd, fm_fit_surface *s, const double *rhs, size_t n,
+                           const char *name, fm_error *err)
+{
+    fm_status st = FM_OK;
+    for (int c = 0; c < s->ncomp && st == FM_OK; c++)
+        st = fm_fit_spd_solve(spd, rhs + (size_t)c * n, s->coef + (size_t)c * n, name, err);
+    return st;
+}
+
+fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_fit_pmesh *pm, double lambda,
                                     int chord_passes, const char *name, fm_error *err)
 {
     double t0 = fm_fit_now();
@@ -181,8 +198,10 @@ fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_mesh *sheet, dou
     memset(&q, 0, sizeof q);
     q.s = s;
     q.W = W;
+    q.ncoef = n;
+    q.ncomp = s->ncomp;
     q.A = calloc(n * WW, sizeof(double));
-    q.rhs = calloc(n, sizeof(double));
+    q.rhs = calloc((size_t)s->ncomp * n, sizeof(double));
     q.span_area = calloc(nspans, sizeof(double));
     q.span_bend = calloc(nspans, sizeof(double));
     /* Upper triangle in compressed columns: at most (W^2 + 1) / 2 per column. */
@@ -198,7 +217,7 @@ fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_mesh *sheet, dou
         goto done;
     }
     init_tables(&q);
-    s->stats.samples = fm_fit_sample_sheet(sheet, &s->frame, max_side, add_sample, &q);
+    s->stats.samples = fm_fit_sample_sheet(pm, max_side, add_sample, &q);
     flush(&q);
     add_energy(&q, lambda);
 
@@ -223,21 +242,21 @@ fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_mesh *sheet, dou
     free(q.A);
     q.A = NULL;
     double t1 = fm_fit_now();
-    s->stats.time_assemble = t1 - t0;
+    s->stats.time_assemble += t1 - t0;
     st = fm_fit_spd_factor(n, colptr, rowind, val, &spd, name, err);
     if (st == FM_OK)
-        st = fm_fit_spd_solve(spd, q.rhs, s->coef, name, err);
+        st = solve_all(spd, s, q.rhs, n, name, err);
     double t2 = fm_fit_now();
-    s->stats.time_solve = t2 - t1;
+    s->stats.time_solve += t2 - t1;
     /* The matrix does not change with the heights: each chord pass is one
      * more right-hand side for the same factor. */
     for (int pass = 0; pass < chord_passes && st == FM_OK; pass++) {
         double ta = fm_fit_now();
-        memset(q.rhs, 0, n * sizeof *q.rhs);
-        chord_rhs cr = {s, q.rhs};
-        fm_fit_sample_sheet(sheet, &s->frame, max_side, add_sample_rhs, &cr);
+        memset(q.rhs, 0, (size_t)s->ncomp * n * sizeof *q.rhs);
+        chord_rhs cr = {s, q.rhs, n};
+        fm_fit_sample_sheet(pm, max_side, add_sample_rhs, &cr);
         double tb = fm_fit_now();
-        st = fm_fit_spd_solve(spd, q.rhs, s->coef, name, err);
+        st = solve_all(spd, s, q.rhs, n, name, err);
         s->stats.time_assemble += tb - ta;
         s->stats.time_solve += fm_fit_now() - tb;
     }

@@ -18,10 +18,13 @@ void fm_fit_options_default(fm_fit_options *opt)
     opt->degree = 3;
     opt->extend = 2000.0;
     opt->knot_spacing = 0.0;
-    opt->knot_factor = 2.0;
+    opt->knot_factor = 1.0;
     opt->max_control_points = 40000;
+    opt->target_rms = 8.0;
+    opt->target_max = 80.0;
+    opt->max_refinements = 1;
     opt->smoothing = 0.0;
-    opt->smoothing_wavelength = 2.0;
+    opt->smoothing_wavelength = 1.0;
     opt->chord_passes = 1;
     opt->closest_point_stats = 1;
 }
@@ -100,40 +103,76 @@ typedef struct sample_err {
 static void add_sample_error(void *ctx, const fm_fit_sample *smp)
 {
     sample_err *e = ctx;
-    double dh[5];
-    double d = smp->h - fm_fit_surface_height(e->s, smp->u, smp->v, dh);
-    if (e->chord)
-        d -= smp->chord[0] * dh[2] + 2 * smp->chord[1] * dh[3] + smp->chord[2] * dh[4];
+    double e2 = 0;
+    for (int c = 0; c < e->s->ncomp; c++) {
+        double d5[5];
+        double d = smp->val[c] - fm_fit_component(e->s, c, smp->u, smp->v, d5);
+        if (e->chord)
+            d -= smp->chord[0] * d5[2] + 2 * smp->chord[1] * d5[3] + smp->chord[2] * d5[4];
+        e2 += d * d;
+    }
     e->sum_w += smp->weight;
-    e->sum_we2 += smp->weight * d * d;
+    e->sum_we2 += smp->weight * e2;
 }
 
-static fm_status compute_stats(fm_fit_surface *s, const fm_mesh *sheet, int closest, int chord,
-                               const char *name, fm_error *err)
+/* Distance from the vertex with frame coordinates q and parameters uv to
+ * the tangent plane of the surface point at uv: first order in the fit
+ * error, and cheap (no projection); *offset gets the distance to the point
+ * itself. */
+static double tangent_distance(const fm_fit_surface *s, const double q[3], const double uv[2],
+                               double *offset)
 {
-    fm_fit_stats *st = &s->stats;
-    size_t nv = fm_mesh_nvertices(sheet), nt = fm_mesh_ntriangles(sheet);
-    const double *X = fm_mesh_vertices(sheet);
-    const int32_t *T = fm_mesh_triangles(sheet);
-    unsigned char *used = calloc(nv ? nv : 1, 1);
-    if (!used)
-        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory (stats)");
-    for (size_t i = 0; i < 3 * nt; i++)
-        used[T[i]] = 1;
-    double sw2 = 0, sd2 = 0;
-    size_t count = 0;
-    for (size_t i = 0; i < nv; i++) {
+    double P[3], D[5][3];
+    fm_fit_local_eval(s, uv[0], uv[1], P, D);
+    double r[3] = {P[0] - q[0], P[1] - q[1], P[2] - q[2]};
+    double n[3] = {D[0][1] * D[1][2] - D[0][2] * D[1][1], D[0][2] * D[1][0] - D[0][0] * D[1][2],
+                   D[0][0] * D[1][1] - D[0][1] * D[1][0]};
+    double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    *offset = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    return nn > 0 ? fabs(r[0] * n[0] + r[1] * n[1] + r[2] * n[2]) / nn : *offset;
+}
+
+/* Quick vertex errors of the current coefficients (for the refinement). */
+static void quick_errors(const fm_fit_surface *s, const fm_fit_pmesh *pm, const double *local,
+                         const unsigned char *used, double *rms, double *max)
+{
+    double s2 = 0, mx = 0;
+    size_t n = 0;
+    for (size_t i = 0; i < pm->nv; i++) {
         if (!used[i])
             continue;
-        double q[3];
-        fm_fit_frame_to_local(&s->frame, X + 3 * i, q);
-        double ew = fabs(q[2] - fm_fit_surface_height(s, q[0], q[1], NULL));
+        double off, d = tangent_distance(s, local + 3 * i, pm->uv + 2 * i, &off);
+        s2 += d * d;
+        mx = fmax(mx, d);
+        n++;
+    }
+    *rms = n ? sqrt(s2 / (double)n) : 0;
+    *max = mx;
+}
+
+static fm_status compute_stats(fm_fit_surface *s, const fm_fit_pmesh *pm, const double *local,
+                               const unsigned char *used, int closest, int chord)
+{
+    fm_fit_stats *st = &s->stats;
+    double sw2 = 0, sd2 = 0;
+    size_t count = 0;
+    for (size_t i = 0; i < pm->nv; i++) {
+        if (!used[i])
+            continue;
+        const double *q = local + 3 * i;
+        double ew;
+        if (s->ncomp == 1)
+            ew = fabs(q[2] - fm_fit_surface_height(s, q[0], q[1], NULL));
+        else
+            tangent_distance(s, q, pm->uv + 2 * i, &ew);
         sw2 += ew * ew;
         if (ew > st->max_w)
             st->max_w = ew;
         if (closest) {
-            double uv[2], d;
-            if (fm_fit_project(s, X + 3 * i, uv, NULL, &d) != FM_OK)
+            /* Start at the vertex's own parameters: on a parametric sheet
+             * that passes near itself, the right branch. */
+            double uv[2] = {pm->uv[2 * i], pm->uv[2 * i + 1]}, P[3], d;
+            if (fm_fit_project_from(s, q, uv, P, &d) != FM_OK)
                 st->projection_failures++;
             d = fabs(d);
             sd2 += d * d;
@@ -142,13 +181,159 @@ static fm_status compute_stats(fm_fit_surface *s, const fm_mesh *sheet, int clos
         }
         count++;
     }
-    free(used);
     st->vertices = count;
     st->rms_w = count ? sqrt(sw2 / (double)count) : 0;
     st->rms_dist = count ? sqrt(sd2 / (double)count) : 0;
     sample_err e = {s, chord, 0, 0};
-    fm_fit_sample_sheet(sheet, &s->frame, s->s, add_sample_error, &e);
+    fm_fit_sample_sheet(pm, s->s, add_sample_error, &e);
     st->rms_samples_w = e.sum_w > 0 ? sqrt(e.sum_we2 / e.sum_w) : 0;
+    return FM_OK;
+}
+
+/* Knots and coefficient storage for spacing sp over [umin, umax] x
+ * [vmin, vmax] plus the margin. */
+static fm_status make_grid(fm_fit_surface *s, double sp, const double ext[4], double extend,
+                           const char *name, fm_error *err)
+{
+    int p = s->p;
+    double width = ext[1] - ext[0] + 2 * extend, height = ext[3] - ext[2] + 2 * extend;
+    size_t nsu = spans_for(width, sp), nsv = spans_for(height, sp);
+    if ((nsu + (size_t)p) > HARD_MAX_COEF / (nsv + (size_t)p))
+        return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                            "fit: knot spacing %g m gives %zu x %zu spans, too many", sp, nsu, nsv);
+    free(s->coef);
+    free(s->knots_u);
+    free(s->knots_v);
+    s->s = sp;
+    s->nsu = nsu;
+    s->nsv = nsv;
+    s->nu = nsu + (size_t)p;
+    s->nv = nsv + (size_t)p;
+    /* Centre the whole number of spans on the extent. */
+    s->u0 = 0.5 * (ext[0] + ext[1]) - 0.5 * (double)nsu * sp;
+    s->v0 = 0.5 * (ext[2] + ext[3]) - 0.5 * (double)nsv * sp;
+    s->coef = calloc((size_t)s->ncomp * s->nu * s->nv, sizeof *s->coef);
+    s->knots_u = malloc((nsu + 2 * (size_t)p + 1) * sizeof *s->knots_u);
+    s->knots_v = malloc((nsv + 2 * (size_t)p + 1) * sizeof *s->knots_v);
+    if (!s->coef || !s->knots_u || !s->knots_v)
+        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory (coefficients)");
+    for (size_t k = 0; k < nsu + 2 * (size_t)p + 1; k++)
+        s->knots_u[k] = s->u0 + ((double)k - p) * sp;
+    for (size_t k = 0; k < nsv + 2 * (size_t)p + 1; k++)
+        s->knots_v[k] = s->v0 + ((double)k - p) * sp;
+    fm_fit_stats *fs = &s->stats;
+    fs->knot_spacing = sp;
+    fs->spans_u = nsu;
+    fs->spans_v = nsv;
+    fs->control_u = s->nu;
+    fs->control_v = s->nv;
+    return FM_OK;
+}
+
+static size_t grid_size(double sp, const double ext[4], double extend, int p)
+{
+    size_t a = spans_for(ext[1] - ext[0] + 2 * extend, sp) + (size_t)p;
+    size_t b = spans_for(ext[3] - ext[2] + 2 * extend, sp) + (size_t)p;
+    return a > HARD_MAX_COEF / b ? HARD_MAX_COEF + 1 : a * b;
+}
+
+/* Everything fm_fit_sheet allocates besides the surface. */
+typedef struct work {
+    fm_fit_pmesh pm;
+    double *local;         /* 3 per vertex: frame coordinates */
+    unsigned char *used;
+} work;
+
+static void work_free(work *w)
+{
+    free(w->pm.uv);
+    free(w->pm.val);
+    free(w->local);
+    free(w->used);
+}
+
+static fm_status fail(fm_fit_surface *s, work *w, fm_status st)
+{
+    fm_fit_surface_destroy(s);
+    work_free(w);
+    return st;
+}
+
+/* Parameters and values of the chosen kind; vertices the triangles do not
+ * use keep their plane projection (they take no part). */
+static fm_status parameterize(fm_fit_surface *s, const fm_mesh *sheet, work *w,
+                              const fm_fit_options *opt, fm_error *err)
+{
+    fm_fit_pmesh *pm = &w->pm;
+    size_t nv = pm->nv;
+    const char *name = opt->name;
+    double t0 = fm_fit_now();
+    for (size_t i = 0; i < nv; i++) {
+        pm->uv[2 * i] = w->local[3 * i];
+        pm->uv[2 * i + 1] = w->local[3 * i + 1];
+    }
+    fm_fit_kind kind = opt->kind;
+    if (kind == FM_FIT_AUTO) {
+        kind = FM_FIT_HEIGHT_FIELD;
+        if (!s->frame.projectable) {
+            kind = FM_FIT_PARAMETRIC;
+        } else {
+            pm->ncomp = 1;
+            double proj = s->frame.mean_dot * s->frame.area;
+            s->stats.overlap = proj > 0 ? fm_fit_overlap_area(pm) / proj : 0;
+            if (s->stats.overlap > 0)
+                kind = FM_FIT_PARAMETRIC;
+        }
+    }
+    s->kind = kind;
+    s->stats.kind = kind;
+    s->ncomp = kind == FM_FIT_PARAMETRIC ? 3 : 1;
+    pm->ncomp = s->ncomp;
+    if (kind == FM_FIT_PARAMETRIC) {
+        fm_status st = fm_fit_lscm(sheet, pm->uv, &s->stats.lscm_flipped, name, err);
+        if (st != FM_OK)
+            return st;
+        /* The conformal map is one-to-one in practice but not by proof: an
+         * unrolled sheet can lap over itself. Then the convex-boundary map,
+         * one-to-one by construction, at the price of more distortion. */
+        if (s->stats.lscm_flipped > 0 || fm_fit_overlap_area(pm) > 0) {
+            st = fm_fit_convex_map(sheet, pm->uv, name, err);
+            if (st != FM_OK)
+                return st;
+            s->stats.convex_map = 1;
+        }
+        pm->val = malloc(3 * nv * sizeof *pm->val);
+        s->vparams = malloc(2 * nv * sizeof *s->vparams);
+        if (!pm->val || !s->vparams)
+            return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory");
+        for (size_t i = 0; i < 3 * nv; i++)
+            pm->val[i] = w->local[i];
+        for (size_t i = 0; i < 2 * nv; i++)
+            s->vparams[i] = pm->uv[i];
+        s->nvparams = nv;
+    } else {
+        pm->val = malloc(nv * sizeof *pm->val);
+        if (!pm->val)
+            return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory");
+        for (size_t i = 0; i < nv; i++)
+            pm->val[i] = w->local[3 * i + 2];
+    }
+    s->stats.time_param = fm_fit_now() - t0;
+    return FM_OK;
+}
+
+/* S at every span centre, where fm_fit_project starts on a parametric
+ * surface. */
+static fm_status make_starts(fm_fit_surface *s)
+{
+    free(s->starts);
+    s->starts = malloc(3 * s->nsu * s->nsv * sizeof *s->starts);
+    if (!s->starts)
+        return FM_ERR_NOMEM;
+    for (size_t j = 0; j < s->nsv; j++)
+        for (size_t i = 0; i < s->nsu; i++)
+            fm_fit_local_eval(s, s->u0 + ((double)i + 0.5) * s->s, s->v0 + ((double)j + 0.5) * s->s,
+                              s->starts + 3 * (j * s->nsu + i), NULL);
     return FM_OK;
 }
 
@@ -177,11 +362,19 @@ fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_s
         return fm_error_set(err, FM_ERR_INVALID, name, 0, "fit: smoothing_wavelength must be > 0");
     if (opt->chord_passes < 0 || opt->chord_passes > 10)
         return fm_error_set(err, FM_ERR_INVALID, name, 0, "fit: chord_passes must be 0..10");
+    if (opt->kind < FM_FIT_AUTO || opt->kind > FM_FIT_PARAMETRIC)
+        return fm_error_set(err, FM_ERR_INVALID, name, 0, "fit: unknown kind %d", (int)opt->kind);
+    if (opt->max_refinements < 0 || opt->max_refinements > 4 || !(opt->target_rms > 0) ||
+        !(opt->target_max > 0))
+        return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                            "fit: max_refinements must be 0..4, target_rms and target_max > 0");
     int p = opt->degree;
     if (opt->knot_spacing == 0 && opt->max_control_points < (size_t)(p + 1) * (size_t)(p + 1))
         return fm_error_set(err, FM_ERR_INVALID, name, 0, "fit: max_control_points too small");
 
     double t_start = fm_fit_now();
+    work w;
+    memset(&w, 0, sizeof w);
     fm_fit_surface *s = calloc(1, sizeof *s);
     if (!s)
         return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory");
@@ -191,105 +384,96 @@ fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_s
             fm_error tmp = *err;
             fm_error_set(err, st, name, 0, "%s", tmp.message);
         }
-        fm_fit_surface_destroy(s);
-        return st;
+        return fail(s, &w, st);
     }
     s->p = p;
     s->stats.degree = p;
     s->stats.triangles = fm_mesh_ntriangles(sheet);
     double t_frame = fm_fit_now();
 
-    /* Extent of the projected sheet. */
     const double *X = fm_mesh_vertices(sheet);
     const int32_t *T = fm_mesh_triangles(sheet);
-    size_t nt = fm_mesh_ntriangles(sheet);
-    double umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
-    for (size_t i = 0; i < 3 * nt; i++) {
-        double q[3];
-        fm_fit_frame_to_local(&s->frame, X + 3 * (size_t)T[i], q);
-        umin = fmin(umin, q[0]);
-        umax = fmax(umax, q[0]);
-        vmin = fmin(vmin, q[1]);
-        vmax = fmax(vmax, q[1]);
-    }
-    double width = umax - umin + 2 * opt->extend, height = vmax - vmin + 2 * opt->extend;
+    size_t nt = fm_mesh_ntriangles(sheet), nv = fm_mesh_nvertices(sheet);
+    w.pm.nv = nv;
+    w.pm.nt = nt;
+    w.pm.tri = T;
+    w.local = malloc((nv ? nv : 1) * 3 * sizeof *w.local);
+    w.pm.uv = malloc((nv ? nv : 1) * 2 * sizeof *w.pm.uv);
+    w.used = calloc(nv ? nv : 1, 1);
+    if (!w.local || !w.pm.uv || !w.used || median_edge(sheet, &s->stats.edge_median) != FM_OK)
+        return fail(s, &w, fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory"));
+    for (size_t i = 0; i < nv; i++)
+        fm_fit_frame_to_local(&s->frame, X + 3 * i, w.local + 3 * i);
+    for (size_t i = 0; i < 3 * nt; i++)
+        w.used[T[i]] = 1;
+    st = parameterize(s, sheet, &w, opt, err);
+    if (st != FM_OK)
+        return fail(s, &w, st);
 
-    if (median_edge(sheet, &s->stats.edge_median) != FM_OK) {
-        fm_fit_surface_destroy(s);
-        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory (edges)");
-    }
+    /* Extent of the sheet in the parameter plane. */
+    double ext[4] = {INFINITY, -INFINITY, INFINITY, -INFINITY};
+    for (size_t i = 0; i < nv; i++)
+        if (w.used[i]) {
+            ext[0] = fmin(ext[0], w.pm.uv[2 * i]);
+            ext[1] = fmax(ext[1], w.pm.uv[2 * i]);
+            ext[2] = fmin(ext[2], w.pm.uv[2 * i + 1]);
+            ext[3] = fmax(ext[3], w.pm.uv[2 * i + 1]);
+        }
+
+    double e = s->stats.edge_median;
     double sp = opt->knot_spacing;
+    int refine = sp == 0 ? opt->max_refinements : 0;
     if (sp == 0) {
-        sp = opt->knot_factor * s->stats.edge_median;
+        sp = opt->knot_factor * e;
         if (!(sp > 0)) /* unreachable for a sheet with area; keeps the loop finite */
-            sp = fmax(width, height);
+            sp = fmax(ext[1] - ext[0], ext[3] - ext[2]) + 2 * opt->extend + 1;
         /* Coarse enough for the coefficient budget; growing by 1 % keeps the
          * spacing within 1 % of the finest grid that fits. */
-        while ((spans_for(width, sp) + (size_t)p) * (spans_for(height, sp) + (size_t)p) >
-               opt->max_control_points)
+        while (grid_size(sp, ext, opt->extend, p) > opt->max_control_points)
             sp *= 1.01;
     }
-    size_t nsu = spans_for(width, sp), nsv = spans_for(height, sp);
-    if ((nsu + (size_t)p) > HARD_MAX_COEF / (nsv + (size_t)p)) {
-        fm_fit_surface_destroy(s);
-        return fm_error_set(err, FM_ERR_INVALID, name, 0,
-                            "fit: knot spacing %g m gives %zu x %zu spans, too many", sp, nsu, nsv);
-    }
-    s->s = sp;
-    s->nsu = nsu;
-    s->nsv = nsv;
-    s->nu = nsu + (size_t)p;
-    s->nv = nsv + (size_t)p;
-    /* Centre the whole number of spans on the extent. */
-    s->u0 = 0.5 * (umin + umax) - 0.5 * (double)nsu * sp;
-    s->v0 = 0.5 * (vmin + vmax) - 0.5 * (double)nsv * sp;
-    s->coef = calloc(s->nu * s->nv, sizeof *s->coef);
-    s->knots_u = malloc((nsu + 2 * (size_t)p + 1) * sizeof *s->knots_u);
-    s->knots_v = malloc((nsv + 2 * (size_t)p + 1) * sizeof *s->knots_v);
-    if (!s->coef || !s->knots_u || !s->knots_v) {
-        fm_fit_surface_destroy(s);
-        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory (coefficients)");
-    }
-    for (size_t k = 0; k < nsu + 2 * (size_t)p + 1; k++)
-        s->knots_u[k] = s->u0 + ((double)k - p) * sp;
-    for (size_t k = 0; k < nsv + 2 * (size_t)p + 1; k++)
-        s->knots_v[k] = s->v0 + ((double)k - p) * sp;
-
     double lambda = opt->smoothing;
     if (lambda == 0) {
         /* Tied to the data's spacing, not the knots': the triangles cannot
          * show waves shorter than about two edges, so smoothing those away
          * loses nothing, whatever grid carries the result. */
-        double c = opt->smoothing_wavelength * s->stats.edge_median / (2 * FM_PI);
+        double c = opt->smoothing_wavelength * e / (2 * FM_PI);
         lambda = c * c * c * c;
     }
-    fm_fit_stats *fs = &s->stats;
-    fs->knot_spacing = sp;
-    fs->smoothing = lambda;
-    fs->spans_u = nsu;
-    fs->spans_v = nsv;
-    fs->control_u = s->nu;
-    fs->control_v = s->nv;
-    st = fm_fit_solve_coefficients(s, sheet, lambda, opt->chord_passes, name, err);
-    if (st != FM_OK) {
-        fm_fit_surface_destroy(s);
-        return st;
+    s->stats.smoothing = lambda;
+    for (int pass = 0;; pass++) {
+        st = make_grid(s, sp, ext, opt->extend, name, err);
+        if (st == FM_OK)
+            st = fm_fit_solve_coefficients(s, &w.pm, lambda, opt->chord_passes, name, err);
+        if (st != FM_OK)
+            return fail(s, &w, st);
+        for (size_t i = 0; i < (size_t)s->ncomp * s->nu * s->nv; i++)
+            if (!isfinite(s->coef[i]))
+                return fail(s, &w, fm_error_set(err, FM_ERR_NUMERIC, name, 0,
+                                                "fit: solution is not finite"));
+        s->stats.passes = pass;
+        if (pass >= refine)
+            break;
+        /* Refine while the vertices miss the target: half the spacing, as
+         * long as the grid stays in the budget. */
+        double rms, max;
+        quick_errors(s, &w.pm, w.local, w.used, &rms, &max);
+        if (rms <= opt->target_rms && max <= opt->target_max)
+            break;
+        if (grid_size(0.5 * sp, ext, opt->extend, p) > opt->max_control_points)
+            break;
+        sp *= 0.5;
     }
-    for (size_t i = 0; i < s->nu * s->nv; i++)
-        if (!isfinite(s->coef[i])) {
-            fm_fit_surface_destroy(s);
-            return fm_error_set(err, FM_ERR_NUMERIC, name, 0, "fit: solution is not finite");
-        }
+    if (s->kind == FM_FIT_PARAMETRIC && make_starts(s) != FM_OK)
+        return fail(s, &w, fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory"));
     double t_solved = fm_fit_now();
-    st = compute_stats(s, sheet, opt->closest_point_stats, opt->chord_passes > 0, name, err);
-    if (st != FM_OK) {
-        fm_fit_surface_destroy(s);
-        return st;
-    }
+    compute_stats(s, &w.pm, w.local, w.used, opt->closest_point_stats, opt->chord_passes > 0);
     double t_end = fm_fit_now();
+    fm_fit_stats *fs = &s->stats;
     fs->time_frame = t_frame - t_start;
     fs->time_stats = t_end - t_solved;
     fs->time_total = t_end - t_start;
+    work_free(&w);
     *out = s;
     return FM_OK;
 }

@@ -5,6 +5,8 @@
 
 #include <stddef.h>
 
+#include <stdint.h>
+
 #include "fm_fit.h"
 
 #define FM_FIT_MAX_DEGREE 5
@@ -12,14 +14,35 @@
 struct fm_fit_surface {
     fm_fit_frame frame;
     fm_fit_stats stats;
+    fm_fit_kind kind;
+    int ncomp;            /* 1: heights; 3: frame coordinates (a, b, c) of S */
     int p;                /* degree */
     double s;             /* knot spacing */
     double u0, v0;        /* lower corner of the rectangle */
     size_t nsu, nsv;      /* spans */
     size_t nu, nv;        /* coefficients: spans + p */
-    double *coef;         /* nu * nv heights, u fastest */
+    double *coef;         /* ncomp blocks of nu * nv, u fastest */
     double *knots_u, *knots_v;
+    /* Parametric kind: the parameters of each sheet vertex (2 per vertex),
+     * and S at the centre of every span, where a projection starts. */
+    size_t nvparams;
+    double *vparams;
+    double *starts;       /* 3 nsu nsv, frame coordinates */
 };
+
+/* Local surface point P = (a, b, c) in frame coordinates and, when D is not
+ * NULL, its derivatives D = {P_u, P_v, P_uu, P_uv, P_vv}. */
+void fm_fit_local_eval(const fm_fit_surface *s, double u, double v, double P[3],
+                       double D[5][3]);
+
+/* One component of the spline (comp < ncomp): value and, when d is not
+ * NULL, d = {f_u, f_v, f_uu, f_uv, f_vv}. */
+double fm_fit_component(const fm_fit_surface *s, int comp, double u, double v, double d[5]);
+
+/* Closest point by Newton iteration from the start parameters uv (updated
+ * in place); q in frame coordinates. */
+fm_status fm_fit_project_from(const fm_fit_surface *s, const double q[3], double uv[2],
+                              double P[3], double *dist);
 
 /* Weight of the thin-plate energy of a facet with squared slope g2 over the
  * plane: (1 + g2)^(-5/2), see fm_fit.h. */
@@ -45,32 +68,87 @@ size_t fm_fit_locate(double x, double x0, double s, size_t n, double *t);
 
 /* --- sample.c --- */
 
+/* The sheet as the fit sees it: every vertex with its parameters (u, v)
+ * and the ncomp values the spline is fitted to (the height along w, or the
+ * three frame coordinates). */
+typedef struct fm_fit_pmesh {
+    size_t nv, nt;
+    const int32_t *tri;
+    double *uv;    /* 2 nv */
+    double *val;   /* ncomp nv */
+    int ncomp;
+} fm_fit_pmesh;
+
 /* One quadrature point of the data term. */
 typedef struct fm_fit_sample {
-    double u, v, h;   /* plane coordinates and height of the facet */
-    double weight;    /* share of the projected area */
+    double u, v;      /* parameters */
+    double val[3];    /* the facet's values there (ncomp of them) */
+    double weight;    /* share of the parameter area */
     /* Chord matrix (C_uu, C_uv, C_vv) of the point in its triangle: a smooth
-     * surface through the triangle's corners lies at
-     * h - (C_uu h_uu + 2 C_uv h_uv + C_vv h_vv) there, to second order. */
+     * f through the triangle's corners lies at
+     * f - (C_uu f_uu + 2 C_uv f_uv + C_vv f_vv) there, to second order. */
     double chord[3];
-    double slope2;    /* |grad h|^2 of the facet */
+    double slope2;    /* |grad h|^2 of the facet (heights only, else 0) */
 } fm_fit_sample;
 
 typedef void (*fm_fit_sample_fn)(void *ctx, const fm_fit_sample *smp);
 
-/* Calls fn for every quadrature point of every triangle of the sheet, in
- * triangle order. Triangles whose projected sides are longer than
- * max_side are split regularly first. Returns the number of samples. */
-size_t fm_fit_sample_sheet(const fm_mesh *sheet, const fm_fit_frame *frame, double max_side,
-                           fm_fit_sample_fn fn, void *ctx);
+/* Calls fn for every quadrature point of every triangle, in triangle order.
+ * Triangles whose sides in the parameter plane are longer than max_side
+ * are split regularly first. Returns the number of samples. */
+size_t fm_fit_sample_sheet(const fm_fit_pmesh *pm, double max_side, fm_fit_sample_fn fn,
+                           void *ctx);
+
+/* --- sparse.c --- */
+
+/* Contributions to a symmetric sparse matrix (upper triangle kept). */
+typedef struct fm_fit_triplet {
+    size_t row, col;
+    double val;
+} fm_fit_triplet;
+typedef struct fm_fit_triplets {
+    fm_fit_triplet *e;
+    size_t n, cap;
+} fm_fit_triplets;
+/* Adds v at (r, c) if r <= c (the lower half is implied); -1 on no memory. */
+int fm_fit_triplets_add(fm_fit_triplets *q, size_t r, size_t c, double v);
+void fm_fit_triplets_free(fm_fit_triplets *q);
+/* Sums the contributions into compressed upper columns of an n x n matrix
+ * (arrays malloc'ed here), in an order fixed by the input alone. */
+fm_status fm_fit_triplets_compress(const fm_fit_triplets *q, size_t n, size_t **colptr,
+                                   size_t **rowind, double **val);
+
+/* --- lscm.c --- */
+
+/* Least-squares conformal map of a sheet (any manifold, oriented sheet
+ * with a boundary): uv gets 2 values per vertex, in metres (the parameter
+ * area equals the sheet's area), v along the steepest descent of z. Sets
+ * *flipped to the number of triangles whose orientation the map reverses. */
+fm_status fm_fit_lscm(const fm_mesh *sheet, double *uv, size_t *flipped, const char *name,
+                      fm_error *err);
+
+/* --- convex_map.c --- */
+
+/* One-to-one parameters for a sheet whose conformal map overlaps itself:
+ * the outer boundary on an ellipse shaped after the conformal layout uv
+ * (input), every other vertex a convex combination of its neighbours
+ * (Tutte/Floater). Result in uv, area equal to the sheet's. */
+fm_status fm_fit_convex_map(const fm_mesh *sheet, double *uv, const char *name, fm_error *err);
+
+/* --- overlap.c --- */
+
+/* Area (parameter units) of the triangles whose centroid lies inside
+ * another, non-adjacent triangle in the parameter plane: the part of the
+ * sheet the map folds over another part. */
+double fm_fit_overlap_area(const fm_fit_pmesh *pm);
 
 /* --- assemble.c / solve.c --- */
 
-/* Fills s->coef by least squares on the sheet's samples with the
- * thin-plate smoothing weight lambda; chord_passes more solves with the
- * sample heights corrected by the chord term of the previous solution.
- * Fills the samples count and the assemble and solve times of s->stats. */
-fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_mesh *sheet, double lambda,
+/* Fills s->coef by least squares on the samples with the thin-plate
+ * smoothing weight lambda; chord_passes more solves with the sample values
+ * corrected by the chord term of the previous solution. Adds to the
+ * samples count and the assemble and solve times of s->stats. */
+fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_fit_pmesh *pm, double lambda,
                                     int chord_passes, const char *name, fm_error *err);
 
 /* A factored symmetric positive definite matrix (CHOLMOD). */

@@ -1,14 +1,37 @@
 /* faultmesh fit: the smooth surface model of one sheet.
  *
  * A sheet (a manifold, consistently oriented, connected triangle mesh, as
- * the repair stage makes them) becomes a height field over a reference
- * plane: a tensor-product B-spline h(u, v) in a right-handed frame
- * (u, v, w) whose w axis is the reference direction. In 3D the surface is
+ * the repair stage makes them) becomes, when a plane sees it one-to-one, a
+ * height field over that reference plane: a tensor-product B-spline
+ * h(u, v) in a right-handed frame (u, v, w) whose w axis is the reference
+ * direction. In 3D the surface is
  *     S(u, v) = origin + u U + v V + h(u, v) W,
- * with (u, v) metres in the plane. This is one-to-one only where every
- * triangle normal n of the sheet has n.W > 0; fm_fit_frame tells how far
- * from that the sheet is (min_dot), and a sheet with min_dot <= 0 is fitted
- * anyway but flagged, for the fallback (splitting the sheet) to act on.
+ * with (u, v) metres in the plane. Otherwise it is a parametric surface
+ *     S(u, v) = origin + a(u, v) U + b(u, v) V + c(u, v) W,
+ * three B-splines on the same knots over parameters (u, v) of its own
+ * (FM_FIT_PARAMETRIC); the height field is the special case a = u, b = v.
+ *
+ * Which kind (FM_FIT_AUTO): the height field when every triangle normal n
+ * has n.W > 0 (fm_fit_frame projectable) and the projection does not fold
+ * the sheet over itself (stats.overlap: the share of the projected area
+ * whose triangles' centroids fall inside another triangle, found with a
+ * bucket grid; a sheet can face w everywhere and still lap over itself).
+ * Else the parametric kind, with parameters from
+ *  - the least-squares conformal map (LSCM, Levy et al. 2002) of the sheet,
+ *    two far-apart vertices pinned, solved with CHOLMOD, turned so that v
+ *    runs down dip (u along the long axis when the sheet dips < 10 deg)
+ *    and scaled to the sheet's area (metres, nearly isometric on the
+ *    near-developable surfaces faults are); or, when that map reverses a
+ *    triangle or laps over itself (same overlap test),
+ *  - a convex-boundary map (Tutte/Floater: outer boundary on an ellipse of
+ *    the conformal layout's shape, by arc length; inner vertices convex
+ *    combinations of their neighbours with symmetrized mean-value weights;
+ *    holes closed by a virtual centre), one-to-one by construction.
+ * A sheet with a few folded triangles (data defects) and no overlap of the
+ * conformal map fits as well either way (measured on CFM 5.3); the rule
+ * still sends it to the parametric kind, whose parameters stay one-to-one
+ * for the trimming curves. fm_fit_sheet_vertex_params gives every sheet
+ * vertex's (u, v) in either kind.
  *
  * Reference direction W: the unit direction that maximises the smallest
  * n.W over the triangle normals. That optimum is the normalised
@@ -62,21 +85,33 @@
  *    surface continues the sheet smoothly and, having zero energy for
  *    planes, reproduces a plane exactly.
  *
- * Automatic choices (options override both):
- *  - knot spacing s = knot_factor (2.0) x the median edge length of the
- *    sheet, raised until the coefficients number at most
- *    max_control_points (40000). A factor of 1 follows real CFM sheets
- *    about three times closer (their 500 m meshes carry kinks at the
- *    scale of the coarse originals) at about five times the solve time;
- *    2 meets the accuracy goal on smooth surfaces and fits the whole CFM
- *    in seconds.
- *  - lambda = (beta e / (2 pi))^4 with e the median edge length and
- *    beta = smoothing_wavelength (2.0). For dense data this smoothing
- *    spline passes a height wave of wavelength L with gain
- *    1 / (1 + (beta e / L)^4): waves of two edge lengths, which the
- *    triangles cannot show anyway, are halved; a 5 km wave of a 500 m sheet
- *    keeps 99.8 % of its amplitude. Tied to the data, not to the knots, so
- *    a coarser grid does not smooth more.
+ * The parametric kind fits a, b, c as above with the same samples (weighted
+ * by parameter area), energy and chord correction per coordinate, sharing
+ * one factorisation (three right-hand sides), with omega_span = 1 where
+ * facets lie (the parameters are near-isometric: no slope to correct).
+ *
+ * Automatic choices (options override them):
+ *  - knot spacing: starts at s = knot_factor (1.0) x the median edge length
+ *    e of the sheet, raised until the coefficients number at most
+ *    max_control_points (40000). After the fit the vertices' distances to
+ *    the surface are estimated (to its tangent plane at their parameters,
+ *    first order, no projection); while their RMS exceeds target_rms
+ *    (8 m) or their maximum target_max (80 m), the spacing is halved and
+ *    the sheet refitted, at most max_refinements (1) times and only while
+ *    the grid stays within max_control_points. Measured on CFM 5.3 at
+ *    500 m (bench/bench_fit): knots at 2e leave a median per-fault RMS of
+ *    9.6 m (the 500 m meshes carry kinks at the scale of their coarse
+ *    originals, which a cubic on 1 km knots cannot follow); at e it is
+ *    3.0 m with 91 % of faults within 10 m RMS / 100 m max, and the one
+ *    refinement to e/2 of the ~12 % of sheets that miss the targets brings
+ *    that to 98 %. An explicit knot_spacing turns the refinement off.
+ *  - lambda = (beta e / (2 pi))^4 with beta = smoothing_wavelength (1.0).
+ *    For dense data this smoothing spline passes a height wave of
+ *    wavelength L with gain 1 / (1 + (beta e / L)^4): waves of one edge
+ *    length, which the triangles cannot show, are halved; a 5 km wave of a
+ *    500 m sheet keeps all but 1e-4 of its amplitude. Tied to the data,
+ *    not to the knots, so a finer grid does not smooth less: the thin-plate
+ *    term keeps a refined fit from oscillating and the extension smooth.
  *
  * Everything is deterministic: no threads, fixed summation order, CHOLMOD
  * with its fixed ordering. */
@@ -130,16 +165,27 @@ fm_status fm_fit_reference_frame(const fm_mesh *sheet, const fm_fit_frame_option
 void fm_fit_frame_to_local(const fm_fit_frame *f, const double xyz[3], double uvw[3]);
 void fm_fit_frame_to_world(const fm_fit_frame *f, const double uvw[3], double xyz[3]);
 
+/* How the surface is parameterized. */
+typedef enum fm_fit_kind {
+    FM_FIT_AUTO = 0,         /* options only: the rule above */
+    FM_FIT_HEIGHT_FIELD = 1, /* S = origin + u U + v V + h(u, v) W */
+    FM_FIT_PARAMETRIC = 2    /* S = origin + a(u, v) U + b(u, v) V + c(u, v) W, (u, v) LSCM */
+} fm_fit_kind;
+
 typedef struct fm_fit_options {
     const char *name;       /* used as FILE in error messages; may be NULL */
+    fm_fit_kind kind;       /* default FM_FIT_AUTO */
     fm_fit_frame_options frame;
     int degree;             /* 2..5, default 3 */
     double extend;          /* metres beyond the projected sheet, default 2000 */
     double knot_spacing;    /* metres; 0 = automatic (default) */
-    double knot_factor;     /* automatic spacing / median edge length, default 2.0 */
+    double knot_factor;     /* first automatic spacing / median edge length, default 1.0 */
     size_t max_control_points; /* bound for the automatic spacing, default 40000 */
+    double target_rms;      /* refinement goal for the vertex RMS distance (m), default 8 */
+    double target_max;      /* ... and for the largest one (m), default 80 */
+    int max_refinements;    /* halvings of the automatic spacing, 0..4, default 1 */
     double smoothing;       /* lambda (m^4); 0 = automatic (default) */
-    double smoothing_wavelength; /* beta of the automatic rule, default 2.0 */
+    double smoothing_wavelength; /* beta of the automatic rule, default 1.0 */
     int chord_passes;       /* refits with chord-corrected sample heights, 0..10; default 1 */
     int closest_point_stats; /* 1: also true distances (one projection per vertex); default 1 */
 } fm_fit_options;
@@ -149,6 +195,13 @@ void fm_fit_options_default(fm_fit_options *opt);
 /* What a fit did and how well it fits. Distances in metres, times in
  * seconds (wall clock; the only non-deterministic fields). */
 typedef struct fm_fit_stats {
+    fm_fit_kind kind;            /* height field or parametric */
+    int passes;                  /* refinement passes after the first fit */
+    double overlap;              /* fraction of the area the plane projection folds
+                                    over another part of the sheet (see above) */
+    size_t lscm_flipped;         /* parametric: triangles the conformal map turns over */
+    int convex_map;              /* parametric: 1 when the conformal map overlapped itself
+                                    and the convex-boundary map replaced it */
     size_t vertices, triangles, samples;
     int degree;
     size_t spans_u, spans_v;     /* knot spans over the rectangle */
@@ -156,24 +209,34 @@ typedef struct fm_fit_stats {
     double knot_spacing;
     double edge_median;          /* of the sheet, base of the automatic spacing and lambda */
     double smoothing;            /* lambda used */
-    double rms_w, max_w;         /* vertices: |height - h(u, v)| along w */
+    double rms_w, max_w;         /* vertices: |height - h(u, v)| along w; parametric:
+                                    distance to the surface point at their parameters */
     double rms_samples_w;        /* samples, projected-area weighted, along w, against
                                     the chord-corrected heights when chord_passes > 0 */
     double rms_dist, max_dist;   /* vertices: distance to the closest surface point
                                     (0 when closest_point_stats is off) */
     size_t projection_failures;  /* vertices whose projection did not converge */
-    double time_frame, time_assemble, time_solve, time_stats, time_total;
+    double time_frame, time_param, time_assemble, time_solve, time_stats, time_total;
 } fm_fit_stats;
 
 /* The fitted surface of one sheet. */
 typedef struct fm_fit_surface fm_fit_surface;
 
-/* Fits the sheet. opt may be NULL for defaults. A sheet that is not
- * projectable (frame min_dot <= 0) is fitted all the same; check
- * fm_fit_surface_frame(s)->projectable. */
+/* Fits the sheet. opt may be NULL for defaults. */
 fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_surface **out,
                        fm_error *err);
 void fm_fit_surface_destroy(fm_fit_surface *s);
+
+/* FM_FIT_HEIGHT_FIELD or FM_FIT_PARAMETRIC. */
+fm_fit_kind fm_fit_surface_kind(const fm_fit_surface *s);
+
+/* The parameters (u, v) of every vertex of the sheet the surface was
+ * fitted to (2 per vertex into uv): its projection onto the plane for a
+ * height field, its LSCM coordinates for a parametric surface (kept at fit
+ * time; fails with FM_ERR_INVALID if the vertex count differs). Both are
+ * one-to-one on the sheet, so boundary loops map to simple polygons. */
+fm_status fm_fit_sheet_vertex_params(const fm_fit_surface *s, const fm_mesh *sheet, double *uv,
+                                     fm_error *err);
 
 const fm_fit_frame *fm_fit_surface_frame(const fm_fit_surface *s);
 const fm_fit_stats *fm_fit_surface_stats(const fm_fit_surface *s);
@@ -186,25 +249,31 @@ int fm_fit_surface_degree(const fm_fit_surface *s);
 /* Knot vector along u (dir 0) or v (dir 1): spans + 2 degree + 1 values,
  * the first `degree` and last `degree` lying outside the rectangle. */
 const double *fm_fit_surface_knots(const fm_fit_surface *s, int dir, size_t *n);
-/* Coefficients: nu x nv heights, u index fastest. */
+/* Coefficients: nu x nv heights, u index fastest. For the parametric kind
+ * the coefficients of c, the coordinate along w. */
 const double *fm_fit_surface_heights(const fm_fit_surface *s, size_t *nu, size_t *nv);
 /* The same surface as an ordinary 3D tensor-product B-spline (same knots,
- * control point (i, j) at xyz[3 (j nu + i)]): u and v are reproduced by
- * their Greville abscissae, so this is exact, ready for IGES entity 128. */
+ * control point (i, j) at xyz[3 (j nu + i)]): for a height field u and v
+ * are reproduced by their Greville abscissae, so this is exact, ready for
+ * IGES entity 128; for the parametric kind it is its own control net. */
 void fm_fit_surface_control_points(const fm_fit_surface *s, double *xyz);
 
-/* Height h(u, v); dh (may be NULL) gets h_u, h_v, h_uu, h_uv, h_vv. */
+/* Height h(u, v); dh (may be NULL) gets h_u, h_v, h_uu, h_uv, h_vv. For the
+ * parametric kind: c(u, v), the w coordinate of S(u, v), and its
+ * derivatives. */
 double fm_fit_surface_height(const fm_fit_surface *s, double u, double v, double dh[5]);
 /* Point S(u, v) and its first derivatives (du, dv may be NULL). */
 void fm_fit_surface_eval(const fm_fit_surface *s, double u, double v, double xyz[3],
                          double du[3], double dv[3]);
 
 /* Closest point of the surface to p, by Newton iteration on the squared
- * distance starting from the projection of p onto the plane. uv receives
+ * distance starting from the projection of p onto the plane (height field)
+ * or from the nearest span centre of the surface (parametric). uv receives
  * the parameters, foot (may be NULL) the surface point, dist (may be NULL)
- * the signed distance (positive on the w side). Returns FM_OK, or
- * FM_ERR_NUMERIC when the iteration did not converge (the outputs then
- * hold the best point found). */
+ * the signed distance (positive on the side of S_u x S_v: the w side of a
+ * height field, the sheet's normal side). Returns FM_OK, or FM_ERR_NUMERIC
+ * when the iteration did not converge (the outputs then hold the best
+ * point found). */
 fm_status fm_fit_project(const fm_fit_surface *s, const double p[3], double uv[2],
                          double foot[3], double *dist);
 

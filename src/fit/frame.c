@@ -358,8 +358,8 @@ fm_status fm_fit_reference_frame(const fm_mesh *sheet, const fm_fit_frame_option
             memcpy(w, d, sizeof w);
         }
     } else if (have_mean) {
-        /* No direction works: the mean normal is the least bad start for the
-         * fallback, which will split the sheet. */
+        /* No direction works: the mean normal is the least bad frame for
+         * the parametric fit that such a sheet gets. */
         memcpy(w, m, sizeof w);
     } else {
         w[0] = 0, w[1] = 0, w[2] = 1;

@@ -403,25 +403,189 @@ static void test_gentle_plane_axes(void)
     fm_mesh_destroy(m);
 }
 
+/* Two planes meeting along strike at a kink: dip a degrees above t = D/2,
+ * b degrees below. */
+static void kink_f(const surf *sf, double s, double t, double out[3])
+{
+    double d1 = sf->a * DEG, d2 = sf->b * DEG, h = 0.5 * sf->D;
+    double t1 = fmin(t, h), t2 = t - t1;
+    out[0] = X0 + t1 * cos(d1) + t2 * cos(d2);
+    out[1] = Y0 + s;
+    out[2] = -t1 * sin(d1) - t2 * sin(d2);
+}
+
+/* An overturned S-fold: along strike y, the cross-section's tangent turns
+ * by a sin(2 pi t / D) about straight down, so it doubles back over itself
+ * both ways and no direction sees it one-to-one. Arc length t, by Simpson. */
+static void sfold_f(const surf *sf, double s, double t, double out[3])
+{
+    int n = 64;
+    double h = t / n, x = 0, z = 0;
+    for (int i = 0; i <= n; i++) {
+        double phi = -0.5 * PI + sf->a * sin(2 * PI * (h * i) / sf->D);
+        double w = (i == 0 || i == n) ? 1 : (i % 2 ? 4 : 2);
+        x += w * cos(phi);
+        z += w * sin(phi);
+    }
+    out[0] = X0 + x * h / 3;
+    out[1] = Y0 + s;
+    out[2] = z * h / 3;
+}
+
+/* Checks a parametric fit: kind, fidelity, one-to-one vertex parameters
+ * that reproduce the vertices, projections from off the surface. */
+static void check_parametric(const surf *sf, double rms_limit)
+{
+    fm_mesh *m = triangulate(sf, 500);
+    fm_fit_surface *fs = fit(m, NULL);
+    if (!fs) {
+        fm_mesh_destroy(m);
+        return;
+    }
+    const fm_fit_frame *f = fm_fit_surface_frame(fs);
+    const fm_fit_stats *st = fm_fit_surface_stats(fs);
+    double arms, amax;
+    analytic_error(sf, fs, 500, &arms, &amax);
+    print_stats(sf->name, fs, arms, amax);
+    printf("%s: kind %d, overlap %.3f, lscm flipped %zu, convex map %d, passes %d\n", sf->name,
+           (int)st->kind, st->overlap, st->lscm_flipped, st->convex_map, st->passes);
+    check_frame_axes(f);
+    CHECK(fm_fit_surface_kind(fs) == FM_FIT_PARAMETRIC);
+    CHECK(st->kind == FM_FIT_PARAMETRIC);
+    CHECK(st->rms_dist <= rms_limit);
+    CHECK(arms <= rms_limit);
+    CHECK(st->max_dist <= 10 * rms_limit);
+    CHECK_EQ(st->projection_failures, 0);
+    /* The vertex parameters: every triangle keeps its orientation (the map
+     * is one-to-one on the sheet) and S(uv) is back at the vertex. */
+    size_t nv = fm_mesh_nvertices(m), nt = fm_mesh_ntriangles(m);
+    double *uv = malloc(2 * nv * sizeof *uv);
+    fm_error err;
+    CHECK(fm_fit_sheet_vertex_params(fs, m, uv, &err) == FM_OK);
+    const int32_t *T = fm_mesh_triangles(m);
+    size_t flipped = 0;
+    for (size_t t = 0; t < nt; t++) {
+        const double *a = uv + 2 * T[3 * t], *b = uv + 2 * T[3 * t + 1], *c = uv + 2 * T[3 * t + 2];
+        if (!((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]) > 0))
+            flipped++;
+    }
+    CHECK_EQ(flipped, 0);
+    const double *X = fm_mesh_vertices(m);
+    double worst = 0;
+    for (size_t i = 0; i < nv; i++) {
+        double p[3];
+        fm_fit_surface_eval(fs, uv[2 * i], uv[2 * i + 1], p, NULL, NULL);
+        worst = fmax(worst, sqrt(pow(p[0] - X[3 * i], 2) + pow(p[1] - X[3 * i + 1], 2) +
+                                 pow(p[2] - X[3 * i + 2], 2)));
+    }
+    CHECK(worst <= 10 * rms_limit);
+    /* A point 100 m off the surface along its normal projects back. */
+    size_t mid = nv / 2 + 7;
+    double xyz[3], du[3], dv[3];
+    fm_fit_surface_eval(fs, uv[2 * mid], uv[2 * mid + 1], xyz, du, dv);
+    double N[3] = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2],
+                   du[0] * dv[1] - du[1] * dv[0]};
+    double nn = sqrt(dot3(N, N)), off[3], puv[2], foot[3], dist;
+    for (int k = 0; k < 3; k++)
+        off[k] = xyz[k] + 100.0 * N[k] / nn;
+    CHECK(fm_fit_project(fs, off, puv, foot, &dist) == FM_OK);
+    CHECK_NEAR(dist, 100.0, 1e-3);
+    for (int k = 0; k < 3; k++)
+        CHECK_NEAR(foot[k], xyz[k], 1e-3);
+    /* Derivatives against central differences. */
+    double a[3], b[3], e = 0.01;
+    fm_fit_surface_eval(fs, uv[2 * mid] + e, uv[2 * mid + 1], a, NULL, NULL);
+    fm_fit_surface_eval(fs, uv[2 * mid] - e, uv[2 * mid + 1], b, NULL, NULL);
+    for (int k = 0; k < 3; k++)
+        CHECK_NEAR((a[k] - b[k]) / (2 * e), du[k], 1e-5);
+    /* The control net is the surface's own: finite. */
+    size_t nu, nvc;
+    fm_fit_surface_heights(fs, &nu, &nvc);
+    double *cp = malloc(3 * nu * nvc * sizeof *cp);
+    fm_fit_surface_control_points(fs, cp);
+    for (size_t i = 0; i < 3 * nu * nvc; i++)
+        CHECK(isfinite(cp[i]));
+    free(cp);
+    free(uv);
+    fm_fit_surface_destroy(fs);
+    fm_mesh_destroy(m);
+}
+
 /* A sheet that wraps more than half way round cannot be seen from one
- * direction: flagged, and still fitted. */
+ * direction: flagged in the frame, and fitted as a parametric surface. */
 static void test_not_projectable(void)
 {
     surf wrap = {"wrap", 30000, 8000, arc_f, 240.0, 0, 90.0};
     fm_mesh *m = triangulate(&wrap, 500);
+    fm_fit_frame f;
+    fm_error err;
+    CHECK(fm_fit_reference_frame(m, NULL, &f, &err) == FM_OK);
+    CHECK(!f.projectable);
+    CHECK(f.min_dot <= 0);
+    CHECK(f.optimum_dot <= 1e-9);
+    CHECK(f.folded_area > 0);
+    check_frame_axes(&f);
+    fm_mesh_destroy(m);
+    check_parametric(&wrap, 5.0);
+}
+
+static void test_sfold(void)
+{
+    surf sfold = {"s-fold", 20000, 16000, sfold_f, 1.9, 0, 0};
+    check_parametric(&sfold, 5.0);
+}
+
+/* Forcing the parametric kind on a plane reproduces it (linear precision
+ * of the map and the spline). */
+static void test_parametric_plane(void)
+{
+    fm_mesh *m = triangulate(&PLANE, 500);
     fm_fit_options opt;
     fm_fit_options_default(&opt);
-    opt.closest_point_stats = 0;
+    opt.kind = FM_FIT_PARAMETRIC;
     fm_fit_surface *fs = fit(m, &opt);
     if (fs) {
-        const fm_fit_frame *f = fm_fit_surface_frame(fs);
-        CHECK(!f->projectable);
-        CHECK(f->min_dot <= 0);
-        CHECK(f->optimum_dot <= 1e-9);
-        CHECK(f->folded_area > 0);
-        check_frame_axes(f);
+        CHECK(fm_fit_surface_kind(fs) == FM_FIT_PARAMETRIC);
+        CHECK(fm_fit_surface_stats(fs)->max_dist < 1e-3);
         fm_fit_surface_destroy(fs);
     }
+    fm_mesh_destroy(m);
+}
+
+/* A 20 degree kink at 500 m triangles: the first, coarse grid misses the
+ * targets and the refinement passes bring the fit within them. */
+static void test_kink_refinement(void)
+{
+    surf kink = {"kink", 30000, 16000, kink_f, 40.0, 60.0, 0};
+    fm_mesh *m = triangulate(&kink, 500);
+    fm_fit_options opt;
+    fm_fit_options_default(&opt);
+    opt.knot_factor = 2.0;
+    opt.target_rms = 2.0;
+    opt.target_max = 50.0;
+    opt.max_refinements = 0;
+    fm_fit_surface *coarse = fit(m, &opt);
+    opt.max_refinements = 2;
+    fm_fit_surface *fine = fit(m, &opt);
+    if (coarse && fine) {
+        const fm_fit_stats *a = fm_fit_surface_stats(coarse), *b = fm_fit_surface_stats(fine);
+        double arms, amax;
+        analytic_error(&kink, fine, 500, &arms, &amax);
+        print_stats("kink", fine, arms, amax);
+        printf("kink: coarse s=%.0f m rms %.2f max %.2f -> %d passes s=%.0f m rms %.2f max %.2f "
+               "(targets %.0f / %.0f m)\n",
+               a->knot_spacing, a->rms_dist, a->max_dist, b->passes, b->knot_spacing, b->rms_dist,
+               b->max_dist, opt.target_rms, opt.target_max);
+        CHECK(a->rms_dist > opt.target_rms || a->max_dist > opt.target_max);
+        CHECK(b->passes >= 1);
+        CHECK(b->knot_spacing < a->knot_spacing);
+        CHECK(b->rms_dist <= opt.target_rms);
+        CHECK(b->max_dist <= opt.target_max);
+        CHECK(b->rms_dist < a->rms_dist);
+        CHECK(fm_fit_surface_kind(fine) == FM_FIT_HEIGHT_FIELD);
+    }
+    fm_fit_surface_destroy(coarse);
+    fm_fit_surface_destroy(fine);
     fm_mesh_destroy(m);
 }
 
@@ -573,6 +737,7 @@ static void test_long_fault(void)
 
 FM_TEST_MAIN(FM_CASE(test_plane_exact), FM_CASE(test_listric), FM_CASE(test_corrugated),
              FM_CASE(test_arc), FM_CASE(test_arc_frame_beats_pca), FM_CASE(test_gentle_plane_axes),
-             FM_CASE(test_not_projectable),
+             FM_CASE(test_not_projectable), FM_CASE(test_sfold), FM_CASE(test_parametric_plane),
+             FM_CASE(test_kink_refinement),
              FM_CASE(test_extrapolation_listric), FM_CASE(test_determinism),
              FM_CASE(test_negative_control), FM_CASE(test_options), FM_CASE(test_long_fault))

@@ -1,0 +1,116 @@
+/* Does the plane projection fold the sheet over itself? With every
+ * triangle facing w (min n.w > 0) the projection is locally one-to-one,
+ * but a sheet that turns far enough (a spiral ramp, a fault curling back
+ * under itself) still covers some of the plane twice, and no height field
+ * can follow it there. Sums of projected areas cannot tell (for such a map
+ * the signed and unsigned sums agree); a point test can: a triangle whose
+ * centroid lies inside another one overlaps it. A bucket grid of about one
+ * triangle per cell keeps that linear in the sheet's size. */
+#include "fit_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+static double orient(const double *a, const double *b, const double *c)
+{
+    return (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+}
+
+double fm_fit_overlap_area(const fm_fit_pmesh *pm)
+{
+    size_t nt = pm->nt;
+    const int32_t *T = pm->tri;
+    const double *uv = pm->uv;
+    if (nt < 2)
+        return 0;
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY}, area = 0;
+    for (size_t t = 0; t < nt; t++) {
+        for (int c = 0; c < 3; c++)
+            for (int k = 0; k < 2; k++) {
+                double x = uv[2 * (size_t)T[3 * t + c] + (size_t)k];
+                lo[k] = fmin(lo[k], x);
+                hi[k] = fmax(hi[k], x);
+            }
+        area += fabs(orient(uv + 2 * (size_t)T[3 * t], uv + 2 * (size_t)T[3 * t + 1],
+                            uv + 2 * (size_t)T[3 * t + 2])) * 0.5;
+    }
+    if (!(area > 0))
+        return 0;
+    double cell = sqrt(2 * area / (double)nt);
+    size_t gx = (size_t)fmin(ceil((hi[0] - lo[0]) / cell), 4096.0) + 1;
+    size_t gy = (size_t)fmin(ceil((hi[1] - lo[1]) / cell), 4096.0) + 1;
+    while (gx * gy > 4 * nt + 16) { /* a long thin sheet: coarser cells, bounded memory */
+        cell *= 1.5;
+        gx = (size_t)ceil((hi[0] - lo[0]) / cell) + 1;
+        gy = (size_t)ceil((hi[1] - lo[1]) / cell) + 1;
+    }
+    size_t ncell = gx * gy;
+    size_t *start = calloc(ncell + 1, sizeof *start);
+    size_t *box = malloc(4 * nt * sizeof *box);
+    if (!start || !box) {
+        free(start);
+        free(box);
+        return 0; /* no memory to look: no overlap found */
+    }
+    for (size_t t = 0; t < nt; t++) {
+        double bl[2] = {INFINITY, INFINITY}, bh[2] = {-INFINITY, -INFINITY};
+        for (int c = 0; c < 3; c++)
+            for (int k = 0; k < 2; k++) {
+                double x = uv[2 * (size_t)T[3 * t + c] + (size_t)k];
+                bl[k] = fmin(bl[k], x);
+                bh[k] = fmax(bh[k], x);
+            }
+        box[4 * t] = (size_t)((bl[0] - lo[0]) / cell);
+        box[4 * t + 1] = (size_t)((bh[0] - lo[0]) / cell);
+        box[4 * t + 2] = (size_t)((bl[1] - lo[1]) / cell);
+        box[4 * t + 3] = (size_t)((bh[1] - lo[1]) / cell);
+        for (size_t y = box[4 * t + 2]; y <= box[4 * t + 3]; y++)
+            for (size_t x = box[4 * t]; x <= box[4 * t + 1]; x++)
+                start[y * gx + x + 1]++;
+    }
+    for (size_t c = 0; c < ncell; c++)
+        start[c + 1] += start[c];
+    size_t *items = malloc((start[ncell] ? start[ncell] : 1) * sizeof *items);
+    size_t *fill = malloc(ncell * sizeof *fill);
+    double overlap = 0;
+    if (!items || !fill)
+        goto done;
+    for (size_t c = 0; c < ncell; c++)
+        fill[c] = start[c];
+    for (size_t t = 0; t < nt; t++)
+        for (size_t y = box[4 * t + 2]; y <= box[4 * t + 3]; y++)
+            for (size_t x = box[4 * t]; x <= box[4 * t + 1]; x++)
+                items[fill[y * gx + x]++] = t;
+    for (size_t t = 0; t < nt; t++) {
+        const double *a = uv + 2 * (size_t)T[3 * t], *b = uv + 2 * (size_t)T[3 * t + 1];
+        const double *c = uv + 2 * (size_t)T[3 * t + 2];
+        double at = 0.5 * fabs(orient(a, b, c));
+        if (!(at > 0))
+            continue;
+        double g[2] = {(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3};
+        size_t cx = (size_t)((g[0] - lo[0]) / cell), cy = (size_t)((g[1] - lo[1]) / cell);
+        size_t ci = cy * gx + cx;
+        for (size_t k = start[ci]; k < start[ci + 1]; k++) {
+            size_t o = items[k];
+            if (o == t)
+                continue;
+            const double *p = uv + 2 * (size_t)T[3 * o], *q = uv + 2 * (size_t)T[3 * o + 1];
+            const double *r = uv + 2 * (size_t)T[3 * o + 2];
+            double ao = orient(p, q, r);
+            /* Well inside (a margin of 1e-6 of the other's doubled area on
+             * each barycentric), so that rounding on shared edges of
+             * neighbours never counts. */
+            double s = ao > 0 ? 1 : -1, m = 1e-6 * fabs(ao);
+            if (s * orient(p, q, g) > m && s * orient(q, r, g) > m && s * orient(r, p, g) > m) {
+                overlap += at;
+                break;
+            }
+        }
+    }
+done:
+    free(start);
+    free(box);
+    free(items);
+    free(fill);
+    return overlap;
+}
