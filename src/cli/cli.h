@@ -7,12 +7,21 @@
 
 #include <stddef.h>
 
+#include "fm_repair.h"
+
 #define FM_EXIT_OK 0
 #define FM_EXIT_FAILURES 1
 #define FM_EXIT_USAGE 2
 
 int fm_cmd_info(int argc, char **argv);
 int fm_cmd_synth(int argc, char **argv);
+int fm_cmd_fit(int argc, char **argv);
+
+/* Consumes argv[*i] (and its value, advancing *i) if it is a repair
+ * option: returns 1 if consumed, 0 if not a repair option, -1 on a bad
+ * value (already reported). */
+int fm_cli_repair_option(int argc, char **argv, int *i, fm_repair_options *opt);
+extern const char *fm_cli_repair_help;
 
 /* Paths of the .ts files named by args: files as given, folders searched
  * recursively, each folder's entries in byte order so runs are

@@ -27,13 +27,8 @@ static void info_usage(FILE *fp)
             "components, boundary loops and holes, non-manifold edges, welded\n"
             "duplicates, z range, edge lengths and minimum angles.\n\n"
             "options:\n"
-            "  --json                     machine-readable output on stdout\n"
-            "  --weld-tol M               also weld vertices closer than M metres (default 0)\n"
-            "  --min-fragment-triangles N fragments with fewer triangles ... (default 10)\n"
-            "  --min-fragment-fraction F  ... and less than F of the largest area are dropped\n"
-            "                             (default 0.001)\n"
-            "  --keep-fragments           drop no fragments\n"
-            "  --no-split                 keep non-manifold edges (no sheets split)\n");
+            "  --json                     machine-readable output on stdout\n");
+    fputs(fm_cli_repair_help, fp);
 }
 
 /* Geometry of a repaired object as one mesh: its sheets side by side. */
@@ -344,29 +339,16 @@ int fm_cmd_info(int argc, char **argv)
     int rc = FM_EXIT_OK;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        int consumed;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             info_usage(stdout);
             free(paths);
             return FM_EXIT_OK;
         } else if (!strcmp(a, "--json")) {
             opt.json = 1;
-        } else if (!strcmp(a, "--weld-tol")) {
-            if (fm_parse_double(a, val, &opt.repair.weld_tolerance))
+        } else if ((consumed = fm_cli_repair_option(argc, argv, &i, &opt.repair)) != 0) {
+            if (consumed < 0)
                 rc = FM_EXIT_USAGE;
-            i++;
-        } else if (!strcmp(a, "--min-fragment-triangles")) {
-            if (fm_parse_size(a, val, &opt.repair.min_fragment_triangles))
-                rc = FM_EXIT_USAGE;
-            i++;
-        } else if (!strcmp(a, "--min-fragment-fraction")) {
-            if (fm_parse_double(a, val, &opt.repair.min_fragment_area_fraction))
-                rc = FM_EXIT_USAGE;
-            i++;
-        } else if (!strcmp(a, "--keep-fragments")) {
-            opt.repair.drop_fragments = 0;
-        } else if (!strcmp(a, "--no-split")) {
-            opt.repair.split_nonmanifold = 0;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "faultmesh info: unknown option '%s'\n", a);
             rc = FM_EXIT_USAGE;

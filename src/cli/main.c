@@ -11,6 +11,7 @@ static const struct {
     const char *summary;
 } commands[] = {
     {"info", fm_cmd_info, "read, repair and describe TSurf files"},
+    {"fit", fm_cmd_fit, "fit trimmed B-spline models (JSON, IGES, VTU)"},
     {"synth", fm_cmd_synth, "generate the synthetic fault system (TSurf)"},
 };
 

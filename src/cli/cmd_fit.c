@@ -1,0 +1,328 @@
+/* `faultmesh fit`: a trimmed B-spline model of every fault, with its JSON
+ * model, IGES and VTU files and a fit report. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "fm_atomic.h"
+#include "fm_json.h"
+#include "fm_model.h"
+#include "fm_model_write.h"
+#include "fm_tsurf.h"
+
+static void fit_usage(FILE *fp)
+{
+    fprintf(fp,
+            "usage: faultmesh fit [options] -o DIR FILE|DIR...\n"
+            "Fits every sheet of every fault with a smooth B-spline surface trimmed by\n"
+            "its fitted outline and holes, and writes per fault DIR/NAME.model.json,\n"
+            "DIR/NAME.igs (IGES 5.3) and DIR/NAME.vtu, and DIR/fit_report.json.\n\n"
+            "options:\n"
+            "  -o, --output DIR     output folder (created if missing)\n"
+            "  --extend D           valid surface beyond the outline, metres (default 2000)\n"
+            "  --knot-spacing M     surface knot spacing, metres (default: automatic)\n"
+            "  --smoothing L        thin-plate weight, m^4 (default: automatic)\n"
+            "  --degree N           surface degree 2..5 (default 3)\n"
+            "  --trim-tol M         outline tolerance, metres (default 50)\n"
+            "  --corner-angle DEG   outline corners turn at least this much (default 35)\n");
+    fputs(fm_cli_repair_help, fp);
+}
+
+typedef struct {
+    const char *dir;
+    fm_repair_options repair;
+    fm_model_options model;
+} fit_cli;
+
+/* Fault-level figures: sheets weighted by their point counts. */
+typedef struct {
+    double to_rms, to_max, from_rms, from_max, outline_max;
+} fault_figures;
+
+static fault_figures combine(const fm_model *m)
+{
+    fault_figures f = {0};
+    double n1 = 0, s1 = 0, n2 = 0, s2 = 0;
+    for (size_t i = 0; i < fm_model_nsheets(m); i++) {
+        const fm_sheet_report *r = fm_model_report(m, i);
+        n1 += (double)r->vertices;
+        s1 += (double)r->vertices * r->to_surface_rms * r->to_surface_rms;
+        n2 += (double)r->samples;
+        s2 += (double)r->samples * r->from_trimmed_rms * r->from_trimmed_rms;
+        f.to_max = fmax(f.to_max, r->to_surface_max);
+        f.from_max = fmax(f.from_max, r->from_trimmed_max);
+        f.outline_max = fmax(f.outline_max, r->outline_max);
+    }
+    f.to_rms = n1 > 0 ? sqrt(s1 / n1) : 0;
+    f.from_rms = n2 > 0 ? sqrt(s2 / n2) : 0;
+    return f;
+}
+
+static void json_sheet(fm_json *j, const fm_model *m, size_t i)
+{
+    const fm_sheet_report *r = fm_model_report(m, i);
+    const fm_fit_stats *fs = fm_fit_surface_stats(fm_model_surface(m, i));
+    const fm_fit_frame *fr = fm_fit_surface_frame(fm_model_surface(m, i));
+    fm_json_begin_object(j);
+    fm_json_kv_int(j, "index", (int64_t)i);
+    fm_json_kv_int(j, "vertices", (int64_t)r->vertices);
+    fm_json_kv_int(j, "triangles", (int64_t)r->triangles);
+    fm_json_kv_string(j, "kind", fs->kind == FM_FIT_PARAMETRIC ? "parametric" : "height_field");
+    fm_json_kv_number(j, "min_dot", fr->min_dot);
+    fm_json_kv_number(j, "to_surface_rms_m", r->to_surface_rms);
+    fm_json_kv_number(j, "to_surface_max_m", r->to_surface_max);
+    fm_json_kv_number(j, "from_trimmed_rms_m", r->from_trimmed_rms);
+    fm_json_kv_number(j, "from_trimmed_max_m", r->from_trimmed_max);
+    fm_json_kv_number(j, "outline_max_m", r->outline_max);
+    fm_json_kv_number(j, "outline_rms_m", r->outline_rms);
+    fm_json_kv_int(j, "loops", (int64_t)r->loops);
+    fm_json_kv_int(j, "holes", (int64_t)r->holes);
+    fm_json_kv_int(j, "corners", (int64_t)r->corners);
+    fm_json_kv_int(j, "knots_u", (int64_t)fs->spans_u);
+    fm_json_kv_int(j, "knots_v", (int64_t)fs->spans_v);
+    fm_json_kv_number(j, "knot_spacing_m", fs->knot_spacing);
+    fm_json_kv_number(j, "smoothing", fs->smoothing);
+    fm_json_kv_number(j, "time_s", r->time);
+    fm_json_end_object(j);
+}
+
+/* A file name from a fault name: path separators and oddities become '_'. */
+static void safe_name(const char *name, char *out, size_t n)
+{
+    size_t k = 0;
+    for (const char *p = name; *p && k + 1 < n; p++) {
+        char c = *p;
+        int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                 c == '-' || c == '_' || c == '.';
+        out[k++] = ok ? c : '_';
+    }
+    out[k] = '\0';
+    if (k == 0 || out[0] == '.')
+        snprintf(out, n, "fault");
+}
+
+static fm_status write_outputs(const fit_cli *cli, const char *base, const char *name,
+                               const fm_model *m, fm_error *err)
+{
+    size_t n = strlen(cli->dir) + strlen(base) + 32;
+    char *path = malloc(n);
+    if (!path)
+        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
+    snprintf(path, n, "%s/%s.model.json", cli->dir, base);
+    fm_status st = fm_model_write_json(path, name, m, err);
+    if (st == FM_OK) {
+        snprintf(path, n, "%s/%s.igs", cli->dir, base);
+        st = fm_model_write_iges(path, name, m, err);
+    }
+    if (st == FM_OK) {
+        snprintf(path, n, "%s/%s.vtu", cli->dir, base);
+        st = fm_model_write_vtu(path, name, m, err);
+    }
+    free(path);
+    return st;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Fits one file; appends its faults to the report. Returns the number of
+ * faults that failed (a file that cannot be read counts as one). */
+static int fit_file(const fit_cli *cli, const char *path, fm_json *j, double **rms,
+                    size_t *nrms, size_t *within)
+{
+    fm_tsurf **objs = NULL;
+    size_t nobj = 0;
+    fm_error err;
+    fm_error_clear(&err);
+    if (fm_tsurf_read_file(path, &objs, &nobj, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: %s\n", err.message);
+        fm_json_begin_object(j);
+        fm_json_kv_string(j, "file", path);
+        fm_json_kv_string(j, "status", "error");
+        fm_json_kv_string(j, "error", err.message);
+        fm_json_end_object(j);
+        return 1;
+    }
+    int failed = 0;
+    for (size_t o = 0; o < nobj; o++) {
+        const char *name = fm_tsurf_name(objs[o]);
+        char base[256];
+        safe_name(name[0] ? name : path, base, sizeof base);
+        if (nobj > 1) {
+            size_t l = strlen(base);
+            snprintf(base + l, sizeof base - l, "_%zu", o);
+        }
+        fm_surface *surf = NULL;
+        fm_model *model = NULL;
+        fm_status st = fm_repair(fm_tsurf_mesh(objs[o]), &cli->repair, &surf, &err);
+        if (st == FM_OK)
+            st = fm_model_build(path, surf, &cli->model, &model, &err);
+        if (st == FM_OK)
+            st = write_outputs(cli, base, name[0] ? name : base, model, &err);
+        fm_json_begin_object(j);
+        fm_json_kv_string(j, "file", path);
+        fm_json_kv_string(j, "name", name);
+        if (st != FM_OK) {
+            failed++;
+            fprintf(stderr, "faultmesh: %s\n", err.message);
+            fm_json_kv_string(j, "status", "error");
+            fm_json_kv_string(j, "error", err.message);
+        } else {
+            fault_figures f = combine(model);
+            double worst = fmax(f.to_rms, f.from_rms);
+            double *grown = realloc(*rms, (*nrms + 1) * sizeof **rms);
+            if (grown) {
+                *rms = grown;
+                (*rms)[(*nrms)++] = worst;
+            }
+            int ok = f.to_rms <= 10 && f.from_rms <= 10 && f.to_max <= 100 && f.from_max <= 100;
+            *within += ok;
+            printf("%-70s %zu sheet%s  rms %6.2f/%6.2f m  max %7.2f/%7.2f m  outline %6.1f m%s\n",
+                   base, fm_model_nsheets(model), fm_model_nsheets(model) == 1 ? " " : "s",
+                   f.to_rms, f.from_rms, f.to_max, f.from_max, f.outline_max,
+                   ok ? "" : "  (outside 10/100 m)");
+            fm_json_kv_string(j, "status", "ok");
+            fm_json_kv_string(j, "output", base);
+            fm_json_kv_number(j, "to_surface_rms_m", f.to_rms);
+            fm_json_kv_number(j, "to_surface_max_m", f.to_max);
+            fm_json_kv_number(j, "from_trimmed_rms_m", f.from_rms);
+            fm_json_kv_number(j, "from_trimmed_max_m", f.from_max);
+            fm_json_kv_number(j, "outline_max_m", f.outline_max);
+            fm_json_kv_bool(j, "within_10_100", ok);
+            fm_json_key(j, "sheets");
+            fm_json_begin_array(j);
+            for (size_t i = 0; i < fm_model_nsheets(model); i++)
+                json_sheet(j, model, i);
+            fm_json_end_array(j);
+        }
+        fm_json_end_object(j);
+        fm_model_destroy(model);
+        fm_surface_destroy(surf);
+    }
+    fm_tsurf_free_all(objs, nobj);
+    return failed;
+}
+
+int fm_cmd_fit(int argc, char **argv)
+{
+    fit_cli cli = {0};
+    fm_repair_options_default(&cli.repair);
+    fm_model_options_default(&cli.model);
+    char **paths = calloc((size_t)argc, sizeof *paths);
+    size_t npaths = 0;
+    if (!paths)
+        return FM_EXIT_FAILURES;
+    int rc = 0;
+    for (int i = 1; i < argc && !rc; i++) {
+        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+        int consumed;
+        double d;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            fit_usage(stdout);
+            free(paths);
+            return FM_EXIT_OK;
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+            cli.dir = val;
+            rc = val ? 0 : FM_EXIT_USAGE;
+            i++;
+        } else if (!strcmp(a, "--extend")) {
+            rc = fm_parse_double(a, val, &cli.model.fit.extend) ? FM_EXIT_USAGE : 0;
+            i++;
+        } else if (!strcmp(a, "--knot-spacing")) {
+            rc = fm_parse_double(a, val, &cli.model.fit.knot_spacing) ? FM_EXIT_USAGE : 0;
+            i++;
+        } else if (!strcmp(a, "--smoothing")) {
+            rc = fm_parse_double(a, val, &cli.model.fit.smoothing) ? FM_EXIT_USAGE : 0;
+            i++;
+        } else if (!strcmp(a, "--degree")) {
+            rc = fm_parse_double(a, val, &d) || d < 2 || d > 5 || d != floor(d) ? FM_EXIT_USAGE : 0;
+            if (rc)
+                fprintf(stderr, "faultmesh fit: --degree must be 2, 3, 4 or 5\n");
+            cli.model.fit.degree = (int)d;
+            i++;
+        } else if (!strcmp(a, "--trim-tol")) {
+            rc = fm_parse_double(a, val, &cli.model.trim.tolerance) ? FM_EXIT_USAGE : 0;
+            i++;
+        } else if (!strcmp(a, "--corner-angle")) {
+            rc = fm_parse_double(a, val, &cli.model.trim.corner_angle) ? FM_EXIT_USAGE : 0;
+            i++;
+        } else if ((consumed = fm_cli_repair_option(argc, argv, &i, &cli.repair)) != 0) {
+            rc = consumed < 0 ? FM_EXIT_USAGE : 0;
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "faultmesh fit: unknown option '%s'\n", a);
+            rc = FM_EXIT_USAGE;
+        } else {
+            paths[npaths++] = argv[i];
+        }
+    }
+    if (!rc && (!cli.dir || npaths == 0)) {
+        fit_usage(stderr);
+        rc = FM_EXIT_USAGE;
+    }
+    char **files = NULL;
+    long nfiles = rc ? -1 : fm_input_list(paths, npaths, &files);
+    free(paths);
+    if (rc || nfiles < 0)
+        return FM_EXIT_USAGE;
+    fm_error err;
+    fm_error_clear(&err);
+    if (fm_mkdir_p(cli.dir, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: %s\n", err.message);
+        fm_input_list_free(files, nfiles);
+        return FM_EXIT_FAILURES;
+    }
+
+    size_t n = strlen(cli.dir) + 32;
+    char *report = malloc(n);
+    fm_atomic_file *af = report ? (snprintf(report, n, "%s/fit_report.json", cli.dir),
+                                   fm_atomic_open(report, &err))
+                                : NULL;
+    free(report);
+    if (!af) {
+        fprintf(stderr, "faultmesh: %s\n", err.message);
+        fm_input_list_free(files, nfiles);
+        return FM_EXIT_FAILURES;
+    }
+    fm_json j;
+    fm_json_init(&j, fm_atomic_stream(af));
+    fm_json_begin_object(&j);
+    fm_json_kv_string(&j, "faultmesh_version", FM_VERSION_STRING);
+    fm_json_key(&j, "faults");
+    fm_json_begin_array(&j);
+    double *rms = NULL;
+    size_t nrms = 0, within = 0;
+    long failed = 0;
+    for (long i = 0; i < nfiles; i++)
+        failed += fit_file(&cli, files[i], &j, &rms, &nrms, &within);
+    fm_json_end_array(&j);
+    double median = 0;
+    if (nrms) {
+        qsort(rms, nrms, sizeof *rms, cmp_double);
+        median = nrms % 2 ? rms[nrms / 2] : 0.5 * (rms[nrms / 2 - 1] + rms[nrms / 2]);
+    }
+    fm_json_key(&j, "summary");
+    fm_json_begin_object(&j);
+    fm_json_kv_int(&j, "faults", (int64_t)(nrms + (size_t)failed));
+    fm_json_kv_int(&j, "failed", failed);
+    fm_json_kv_int(&j, "within_10_100", (int64_t)within);
+    fm_json_kv_number(&j, "median_rms_m", median);
+    fm_json_end_object(&j);
+    fm_json_end_object(&j);
+    free(rms);
+    if (fm_atomic_commit(af, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: %s\n", err.message);
+        failed++;
+    }
+    printf("faults %zu, failed %ld, within 10 m RMS / 100 m max both ways: %zu (%.1f%%), "
+           "median RMS %.2f m\n",
+           nrms + (size_t)failed, failed, within,
+           nrms + (size_t)failed ? 100.0 * (double)within / (double)(nrms + (size_t)failed) : 0.0,
+           median);
+    fm_input_list_free(files, nfiles);
+    return failed ? FM_EXIT_FAILURES : FM_EXIT_OK;
+}

@@ -1,0 +1,76 @@
+/* faultmesh fit: the trimmed surface model of a whole fault.
+ *
+ * For every sheet of a repaired fault (fm_repair.h) the model holds the
+ * fitted B-spline surface (fm_fit.h), its boundary loops fitted as trimming
+ * curves in the surface's (u, v) plane (fm_trim.h; loop 0 is the outer
+ * boundary, counter-clockwise in (u, v); holes follow, clockwise), a fine
+ * sampling of the trimmed surface (for viewing and measuring) and the fit
+ * report: distances both ways between the model and the original
+ * triangulation, and the deviation of the trimmed outline from the
+ * original one. */
+#ifndef FM_MODEL_H
+#define FM_MODEL_H
+
+#include <stddef.h>
+
+#include "fm_core.h"
+#include "fm_fit.h"
+#include "fm_mesh.h"
+#include "fm_repair.h"
+#include "fm_trim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fm_model_options {
+    fm_fit_options fit;
+    fm_trim_options trim;
+    /* Midpoint subdivisions of the sheet's triangles that sample the trimmed
+     * surface (each level quarters the triangles); default 2. */
+    int sample_levels;
+} fm_model_options;
+
+void fm_model_options_default(fm_model_options *opt);
+
+/* What the fit of one sheet achieved. Distances in metres. */
+typedef struct fm_sheet_report {
+    size_t vertices, triangles;   /* of the original sheet */
+    size_t loops, holes, corners, trim_pieces;
+    /* original vertices -> fitted surface (closest point) */
+    double to_surface_rms, to_surface_max;
+    /* samples of the trimmed fitted surface -> original triangulation
+     * (the samples on the trimming curves excepted: their offset from the
+     * original outline is the outline deviation below) */
+    double from_trimmed_rms, from_trimmed_max;
+    /* trimmed outline <-> original boundary, both ways, in 3D: the largest
+     * distance either way, and the RMS of original boundary vertices to
+     * the trimmed outline */
+    double outline_max, outline_rms;
+    size_t samples;               /* points of the sampled trimmed surface */
+    double time;                  /* seconds, whole sheet */
+} fm_sheet_report;
+
+typedef struct fm_model fm_model;
+
+/* Fits every sheet of s. name is used in messages (FILE: ...). A sheet
+ * that cannot be fitted fails the whole fault with a message naming it. */
+fm_status fm_model_build(const char *name, const fm_surface *s, const fm_model_options *opt,
+                         fm_model **out, fm_error *err);
+void fm_model_destroy(fm_model *m);
+
+size_t fm_model_nsheets(const fm_model *m);
+const fm_fit_surface *fm_model_surface(const fm_model *m, size_t sheet);
+size_t fm_model_nloops(const fm_model *m, size_t sheet);
+const fm_trim_loop *fm_model_loop(const fm_model *m, size_t sheet, size_t loop);
+const fm_sheet_report *fm_model_report(const fm_model *m, size_t sheet);
+
+/* The sampled trimmed surface in 3D (triangle tags: the sheet index) and,
+ * per sample point, its distance to the original triangulation. */
+const fm_mesh *fm_model_samples(const fm_model *m, size_t sheet);
+const double *fm_model_sample_distance(const fm_model *m, size_t sheet);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,40 @@
+/* Internal pieces of the fault model (fm_model.h). */
+#ifndef FM_MODEL_INTERNAL_H
+#define FM_MODEL_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fm_core.h"
+#include "fm_mesh.h"
+
+/* A bucket grid over 2D segments of closed polylines, for nearest-segment
+ * queries in the parameter plane. */
+typedef struct fm_seggrid fm_seggrid;
+
+/* Segments i -> i+1 (mod n) of the closed polyline uv[2n]. */
+fm_seggrid *fm_seggrid_create(const double *uv, size_t n, double cell);
+void fm_seggrid_destroy(fm_seggrid *g);
+/* Nearest segment to p: returns its index, writes the foot and the segment
+ * parameter in [0, 1]. */
+size_t fm_seggrid_nearest(const fm_seggrid *g, const double p[2], double foot[2], double *t);
+
+/* Midpoint subdivision of a planar triangulation: uv (2 per vertex),
+ * triangles, and per vertex the boundary loop it lies on (-1 inside).
+ * Each level quarters every triangle; midpoints of boundary edges inherit
+ * the loop of the edge. Outputs are malloc'ed. */
+typedef struct fm_submesh {
+    double *uv;
+    int32_t *loop;
+    size_t nv;
+    int32_t *tri;
+    size_t nt;
+} fm_submesh;
+
+fm_status fm_submesh_refine(fm_submesh *m, int levels);
+void fm_submesh_free(fm_submesh *m);
+
+/* Distance from p to the 3D segment a-b. */
+double fm_segment_distance3(const double p[3], const double a[3], const double b[3]);
+
+#endif

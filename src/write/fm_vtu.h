@@ -1,0 +1,54 @@
+/* faultmesh write: VTK XML UnstructuredGrid (.vtu) for ParaView.
+ *
+ * Triangles only (VTK cell type 5). Arrays are written inline as base64
+ * "binary" DataArrays with UInt64 headers, little-endian, which ParaView and
+ * meshio both read. Coordinates are Float64, in the input CRS's metres.
+ * Strings (fault names) have no portable VTU array type that every reader
+ * accepts, so a string list is stored as a UInt8 field-data array holding
+ * the UTF-8 names, each terminated by a NUL byte. */
+#ifndef FM_VTU_H
+#define FM_VTU_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fm_core.h"
+#include "fm_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum fm_vtu_type { FM_VTU_FLOAT64, FM_VTU_INT32 } fm_vtu_type;
+
+/* One data array: ncomp values per point or per cell. */
+typedef struct fm_vtu_array {
+    const char *name;
+    fm_vtu_type type;
+    int ncomp;
+    const void *values; /* double or int32_t, n * ncomp of them */
+} fm_vtu_array;
+
+typedef struct fm_vtu_strings {
+    const char *name;
+    const char *const *items;
+    size_t count;
+} fm_vtu_strings;
+
+typedef struct fm_vtu_content {
+    const fm_mesh *mesh;
+    const fm_vtu_array *point_data;
+    size_t npoint_data;
+    const fm_vtu_array *cell_data;
+    size_t ncell_data;
+    const fm_vtu_strings *field_strings;
+    size_t nfield_strings;
+} fm_vtu_content;
+
+/* Writes path atomically. */
+fm_status fm_vtu_write(const char *path, const fm_vtu_content *c, fm_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,48 @@
+/* The sampled trimmed surfaces of a fault model as one VTU. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "fm_model_write.h"
+#include "fm_vtu.h"
+
+fm_status fm_model_write_vtu(const char *path, const char *name, const fm_model *m,
+                             fm_error *err)
+{
+    fm_mesh *all = fm_mesh_create();
+    size_t total = 0;
+    for (size_t i = 0; i < fm_model_nsheets(m); i++)
+        total += fm_mesh_nvertices(fm_model_samples(m, i));
+    double *dist = malloc((total ? total : 1) * sizeof *dist);
+    int32_t *sheet = NULL;
+    fm_status rc = all && dist ? FM_OK : FM_ERR_NOMEM;
+    for (size_t i = 0; i < fm_model_nsheets(m) && rc == FM_OK; i++) {
+        const fm_mesh *s = fm_model_samples(m, i);
+        int32_t base = (int32_t)fm_mesh_nvertices(all);
+        const double *X = fm_mesh_vertices(s);
+        const int32_t *T = fm_mesh_triangles(s);
+        memcpy(dist + base, fm_model_sample_distance(m, i),
+               fm_mesh_nvertices(s) * sizeof *dist);
+        for (size_t v = 0; v < fm_mesh_nvertices(s) && rc == FM_OK; v++)
+            if (fm_mesh_add_vertex(all, X[3 * v], X[3 * v + 1], X[3 * v + 2]) < 0)
+                rc = FM_ERR_NOMEM;
+        for (size_t t = 0; t < fm_mesh_ntriangles(s) && rc == FM_OK; t++)
+            if (fm_mesh_add_triangle(all, base + T[3 * t], base + T[3 * t + 1],
+                                     base + T[3 * t + 2], (int32_t)i) < 0)
+                rc = FM_ERR_NOMEM;
+    }
+    if (rc != FM_OK) {
+        fm_mesh_destroy(all);
+        free(dist);
+        return fm_error_set(err, rc, path, 0, "out of memory");
+    }
+    sheet = (int32_t *)fm_mesh_tags(all);
+    fm_vtu_array pd = {"distance_to_original", FM_VTU_FLOAT64, 1, dist};
+    fm_vtu_array cd = {"sheet", FM_VTU_INT32, 1, sheet};
+    const char *names[1] = {name};
+    fm_vtu_strings fs = {"fault_names", names, 1};
+    fm_vtu_content c = {all, &pd, 1, &cd, 1, &fs, 1};
+    rc = fm_vtu_write(path, &c, err);
+    fm_mesh_destroy(all);
+    free(dist);
+    return rc;
+}
