@@ -60,34 +60,6 @@ static fault_figures combine(const fm_model *m)
     return f;
 }
 
-static void json_sheet(fm_json *j, const fm_model *m, size_t i)
-{
-    const fm_sheet_report *r = fm_model_report(m, i);
-    const fm_fit_stats *fs = fm_fit_surface_stats(fm_model_surface(m, i));
-    const fm_fit_frame *fr = fm_fit_surface_frame(fm_model_surface(m, i));
-    fm_json_begin_object(j);
-    fm_json_kv_int(j, "index", (int64_t)i);
-    fm_json_kv_int(j, "vertices", (int64_t)r->vertices);
-    fm_json_kv_int(j, "triangles", (int64_t)r->triangles);
-    fm_json_kv_string(j, "kind", fs->kind == FM_FIT_PARAMETRIC ? "parametric" : "height_field");
-    fm_json_kv_number(j, "min_dot", fr->min_dot);
-    fm_json_kv_number(j, "to_surface_rms_m", r->to_surface_rms);
-    fm_json_kv_number(j, "to_surface_max_m", r->to_surface_max);
-    fm_json_kv_number(j, "from_trimmed_rms_m", r->from_trimmed_rms);
-    fm_json_kv_number(j, "from_trimmed_max_m", r->from_trimmed_max);
-    fm_json_kv_number(j, "outline_max_m", r->outline_max);
-    fm_json_kv_number(j, "outline_rms_m", r->outline_rms);
-    fm_json_kv_int(j, "loops", (int64_t)r->loops);
-    fm_json_kv_int(j, "holes", (int64_t)r->holes);
-    fm_json_kv_int(j, "corners", (int64_t)r->corners);
-    fm_json_kv_int(j, "knots_u", (int64_t)fs->spans_u);
-    fm_json_kv_int(j, "knots_v", (int64_t)fs->spans_v);
-    fm_json_kv_number(j, "knot_spacing_m", fs->knot_spacing);
-    fm_json_kv_number(j, "smoothing", fs->smoothing);
-    fm_json_kv_number(j, "time_s", r->time);
-    fm_json_end_object(j);
-}
-
 /* A file name from a fault name: path separators and oddities become '_'. */
 static void safe_name(const char *name, char *out, size_t n)
 {
@@ -197,7 +169,7 @@ static int fit_file(const fit_cli *cli, const char *path, fm_json *j, double **r
             fm_json_key(j, "sheets");
             fm_json_begin_array(j);
             for (size_t i = 0; i < fm_model_nsheets(model); i++)
-                json_sheet(j, model, i);
+                fm_model_write_sheet_report(j, model, i, 1);
             fm_json_end_array(j);
         }
         fm_json_end_object(j);

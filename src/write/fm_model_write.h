@@ -10,7 +10,10 @@
 #ifndef FM_MODEL_WRITE_H
 #define FM_MODEL_WRITE_H
 
+#include <stddef.h>
+
 #include "fm_core.h"
+#include "fm_json.h"
 #include "fm_model.h"
 
 #ifdef __cplusplus
@@ -23,6 +26,11 @@ fm_status fm_model_write_iges(const char *path, const char *name, const fm_model
                               fm_error *err);
 fm_status fm_model_write_vtu(const char *path, const char *name, const fm_model *m,
                              fm_error *err);
+
+/* The fit report of sheet i as a JSON object (shared by the model file and
+ * fit_report.json). Times are not deterministic, so only the run report
+ * includes them (with_time). */
+void fm_model_write_sheet_report(fm_json *j, const fm_model *m, size_t i, int with_time);
 
 #ifdef __cplusplus
 }

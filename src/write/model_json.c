@@ -108,23 +108,33 @@ static void write_loop(fm_json *j, const fm_trim_loop *l, int outer)
     fm_json_end_object(j);
 }
 
-static void write_report(fm_json *j, const fm_sheet_report *r, const fm_fit_stats *fs)
+void fm_model_write_sheet_report(fm_json *j, const fm_model *m, size_t i, int with_time)
 {
-    fm_json_key(j, "report");
+    const fm_sheet_report *r = fm_model_report(m, i);
+    const fm_fit_stats *fs = fm_fit_surface_stats(fm_model_surface(m, i));
+    const fm_fit_frame *fr = fm_fit_surface_frame(fm_model_surface(m, i));
     fm_json_begin_object(j);
+    fm_json_kv_int(j, "index", (int64_t)i);
     fm_json_kv_int(j, "vertices", (int64_t)r->vertices);
     fm_json_kv_int(j, "triangles", (int64_t)r->triangles);
+    fm_json_kv_string(j, "kind", fs->kind == FM_FIT_PARAMETRIC ? "parametric" : "height_field");
+    fm_json_kv_number(j, "min_dot", fr->min_dot);
     fm_json_kv_number(j, "to_surface_rms_m", r->to_surface_rms);
     fm_json_kv_number(j, "to_surface_max_m", r->to_surface_max);
     fm_json_kv_number(j, "from_trimmed_rms_m", r->from_trimmed_rms);
     fm_json_kv_number(j, "from_trimmed_max_m", r->from_trimmed_max);
     fm_json_kv_number(j, "outline_max_m", r->outline_max);
     fm_json_kv_number(j, "outline_rms_m", r->outline_rms);
+    fm_json_kv_int(j, "loops", (int64_t)r->loops);
+    fm_json_kv_int(j, "holes", (int64_t)r->holes);
+    fm_json_kv_int(j, "corners", (int64_t)r->corners);
     fm_json_kv_int(j, "knots_u", (int64_t)fs->spans_u);
     fm_json_kv_int(j, "knots_v", (int64_t)fs->spans_v);
     fm_json_kv_number(j, "knot_spacing_m", fs->knot_spacing);
     fm_json_kv_number(j, "smoothing", fs->smoothing);
     fm_json_kv_int(j, "refinement_passes", fs->passes);
+    if (with_time)
+        fm_json_kv_number(j, "time_s", r->time);
     fm_json_end_object(j);
 }
 
@@ -155,7 +165,8 @@ fm_status fm_model_write_json(const char *path, const char *name, const fm_model
         for (size_t k = 0; k < fm_model_nloops(m, i); k++)
             write_loop(&j, fm_model_loop(m, i, k), k == 0);
         fm_json_end_array(&j);
-        write_report(&j, fm_model_report(m, i), fm_fit_surface_stats(s));
+        fm_json_key(&j, "report");
+        fm_model_write_sheet_report(&j, m, i, 0);
         fm_json_end_object(&j);
     }
     fm_json_end_array(&j);
