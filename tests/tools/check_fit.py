@@ -22,6 +22,7 @@ Exit 0 when all holds, 1 otherwise, 77 when an input is absent.
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 
@@ -180,6 +181,9 @@ def main():
     for p in problems:
         print("FAIL:", p)
     print(f"fit check: {len(problems)} problems")
+    if not problems:
+        # the whole CFM writes ~2 GB of models; keep them only to debug
+        shutil.rmtree(out, ignore_errors=True)
     return 1 if problems else 0
 
 
