@@ -48,6 +48,7 @@ typedef struct fm_sheet_report {
      * the trimmed outline */
     double outline_max, outline_rms;
     size_t samples;               /* points of the sampled trimmed surface */
+    size_t repair_sheet;          /* the repaired sheet this model sheet is (a part of) */
     double time;                  /* seconds, whole sheet */
 } fm_sheet_report;
 
@@ -69,6 +70,17 @@ const fm_sheet_report *fm_model_report(const fm_model *m, size_t sheet);
  * per sample point, its distance to the original triangulation. */
 const fm_mesh *fm_model_samples(const fm_model *m, size_t sheet);
 const double *fm_model_sample_distance(const fm_model *m, size_t sheet);
+
+/* Cuts: a repaired sheet that is a ring (strands that part and rejoin, so
+ * that two boundary loops are both outer and no map of it is usable) is
+ * cut into disks along polylines of its edges between the two rims, and
+ * each disk is a model sheet of its own (report.repair_sheet names the
+ * sheet it came from). Like junctions, the cuts are where the remeshed
+ * parts must meet again: each is a 3D polyline (n points, 3 doubles each,
+ * from the outer rim to the other) with the model sheets on its two sides
+ * (-1 if not found). */
+size_t fm_model_ncuts(const fm_model *m);
+const double *fm_model_cut(const fm_model *m, size_t cut, size_t *npoints, long sheets[2]);
 
 #ifdef __cplusplus
 }

@@ -86,11 +86,14 @@ typedef struct fm_trim_options {
     double knot_factor;      /* default 3.0 */
     double smoothing_wavelength; /* beta, in knot spacings; default 2.0, floor 0.05 */
     int max_refinements;     /* 0..30, default 8 */
+    double max_deviation;    /* metres; > 0: also refine where a single point is
+                                further than this from the curve; 0 = off (default) */
 } fm_trim_options;
 
 void fm_trim_options_default(fm_trim_options *opt);
 
-/* What a fit did and how well it fits; distances in metres. */
+/* What a fit did and how well it fits; distances in metres (in the metric
+ * of fm_trim_fit_metric when one is given). */
 typedef struct fm_trim_stats {
     size_t points;           /* input points */
     size_t distinct_points;  /* after dropping consecutive repeats */
@@ -116,6 +119,21 @@ typedef struct fm_trim_loop fm_trim_loop;
  * see stats->within_tolerance. */
 fm_status fm_trim_fit(const double *uv, size_t n, const fm_trim_options *opt,
                       fm_trim_loop **out, fm_error *err);
+/* The same with a metric: metric[3 i .. 3 i + 2] = E, F, G, the first
+ * fundamental form S_u.S_u, S_u.S_v, S_v.S_v of the surface S(u, v) at
+ * point i, so that a small step (du, dv) there is
+ * sqrt(E du^2 + 2 F du dv + G dv^2) long in 3D. Every length of the fit is
+ * then a 3D one: segment lengths (each segment with its end points' mean
+ * form), hence the chord-length parameters, the median spacing and with
+ * it the default knot spacing and corner window; the corner turning
+ * (measured in the tangent plane of the vertex: the loop mapped by the
+ * Cholesky factor of its form); and every deviation in the stats, so the
+ * tolerance bounds the 3D systematic deviation. The curves themselves
+ * stay in (u, v). metric NULL is the identity (fm_trim_fit). Fails
+ * (FM_ERR_INVALID) on a non-finite form or one with E < 0, G < 0 or
+ * E + G = 0; a (nearly) singular form is made slightly definite. */
+fm_status fm_trim_fit_metric(const double *uv, const double *metric, size_t n,
+                             const fm_trim_options *opt, fm_trim_loop **out, fm_error *err);
 void fm_trim_loop_destroy(fm_trim_loop *loop);
 
 const fm_trim_stats *fm_trim_loop_stats(const fm_trim_loop *loop);
@@ -136,7 +154,7 @@ typedef struct fm_trim_piece {
     const double *knots;
     size_t ncontrol;
     const double *control;   /* 2 ncontrol: u, v */
-    double t0, t1;           /* parameter range (metres of chord length) */
+    double t0, t1;           /* parameter range (metres of chord length, 3D with a metric) */
     size_t first, last;      /* input indices of the start and end vertices */
 } fm_trim_piece;
 

@@ -13,6 +13,7 @@
 typedef struct sheet_model {
     fm_fit_surface *surface;
     fm_trim_loop **loops; /* outer first */
+    double *loop_scale;   /* per loop: largest 3D length of a unit (u, v) step */
     size_t nloops;
     fm_mesh *samples;
     double *sample_dist;
@@ -22,12 +23,17 @@ typedef struct sheet_model {
 struct fm_model {
     sheet_model *sheets;
     size_t nsheets;
+    fm_split_cut *cuts; /* where rings were cut into disks */
+    size_t ncuts;
 };
 
 void fm_model_options_default(fm_model_options *opt)
 {
     fm_fit_options_default(&opt->fit);
     fm_trim_options_default(&opt->trim);
+    /* The outline target bounds the largest 3D distance, not only the
+     * systematic one: refine also where a single boundary vertex is off. */
+    opt->trim.max_deviation = 80;
     opt->sample_levels = 2;
 }
 
@@ -37,6 +43,7 @@ static void sheet_free(sheet_model *sm)
     for (size_t k = 0; k < sm->nloops; k++)
         fm_trim_loop_destroy(sm->loops[k]);
     free(sm->loops);
+    free(sm->loop_scale);
     fm_mesh_destroy(sm->samples);
     free(sm->sample_dist);
 }
@@ -48,6 +55,9 @@ void fm_model_destroy(fm_model *m)
     for (size_t i = 0; i < m->nsheets; i++)
         sheet_free(&m->sheets[i]);
     free(m->sheets);
+    for (size_t i = 0; i < m->ncuts; i++)
+        free(m->cuts[i].xyz);
+    free(m->cuts);
     free(m);
 }
 
@@ -63,6 +73,14 @@ const fm_mesh *fm_model_samples(const fm_model *m, size_t i) { return m->sheets[
 const double *fm_model_sample_distance(const fm_model *m, size_t i)
 {
     return m->sheets[i].sample_dist;
+}
+size_t fm_model_ncuts(const fm_model *m) { return m->ncuts; }
+const double *fm_model_cut(const fm_model *m, size_t c, size_t *npoints, long sheets[2])
+{
+    *npoints = m->cuts[c].n;
+    sheets[0] = m->cuts[c].sheets[0];
+    sheets[1] = m->cuts[c].sheets[1];
+    return m->cuts[c].xyz;
 }
 
 /* Loop order of the model: the outer loop first, then the holes in the
@@ -101,6 +119,32 @@ static double median_spacing(const double *uv, size_t n)
     return med;
 }
 
+/* First fundamental form E, F, G of the surface at each loop point, for
+ * fm_trim_fit_metric: the trimming curves are then fitted to a 3D
+ * tolerance, with knots and corner windows in 3D metres, whatever the
+ * slope of a height field or the scale of a flattening map. Returns the
+ * largest 3D length of a unit (u, v) step over the points. */
+static double loop_metric(const fm_fit_surface *surf, const double *luv, size_t np,
+                          double *metric)
+{
+    double smax = 0.0;
+    for (size_t q = 0; q < np; q++) {
+        double p[3], su[3], sv[3];
+        fm_fit_surface_eval(surf, luv[2 * q], luv[2 * q + 1], p, su, sv);
+        double E = su[0] * su[0] + su[1] * su[1] + su[2] * su[2];
+        double F = su[0] * sv[0] + su[1] * sv[1] + su[2] * sv[2];
+        double G = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2];
+        metric[3 * q] = E;
+        metric[3 * q + 1] = F;
+        metric[3 * q + 2] = G;
+        /* largest eigenvalue of the form */
+        double h = 0.5 * (E + G), r = sqrt(0.25 * (E - G) * (E - G) + F * F);
+        if (isfinite(h + r))
+            smax = fmax(smax, sqrt(h + r));
+    }
+    return smax;
+}
+
 /* Fits the trimming loops of one sheet. uv: parameters of the sheet's
  * vertices. */
 static fm_status fit_loops(const char *name, const fm_surface *s, size_t sheet,
@@ -109,22 +153,29 @@ static fm_status fit_loops(const char *name, const fm_surface *s, size_t sheet,
 {
     size_t n = fm_surface_sheet_nloops(s, sheet);
     sm->loops = calloc(n ? n : 1, sizeof *sm->loops);
-    if (!sm->loops)
+    sm->loop_scale = calloc(n ? n : 1, sizeof *sm->loop_scale);
+    if (!sm->loops || !sm->loop_scale)
         return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
     for (size_t k = 0; k < n; k++) {
         size_t np;
         const int32_t *lv = fm_surface_sheet_loop(s, sheet, repair_loop_index(s, sheet, k), &np);
         double *luv = malloc(2 * (np ? np : 1) * sizeof *luv);
-        if (!luv)
+        double *metric = malloc(3 * (np ? np : 1) * sizeof *metric);
+        if (!luv || !metric) {
+            free(luv);
+            free(metric);
             return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
+        }
         for (size_t q = 0; q < np; q++) {
             luv[2 * q] = uv[2 * lv[q]];
             luv[2 * q + 1] = uv[2 * lv[q] + 1];
         }
+        sm->loop_scale[k] = loop_metric(sm->surface, luv, np, metric);
         fm_trim_options o = *topt;
         o.name = name;
-        fm_status st = fm_trim_fit(luv, np, &o, &sm->loops[k], err);
+        fm_status st = fm_trim_fit_metric(luv, metric, np, &o, &sm->loops[k], err);
         free(luv);
+        free(metric);
         if (st != FM_OK)
             return st;
         sm->nloops = k + 1;
@@ -320,7 +371,13 @@ static fm_status build_loop_samples(const sheet_model *sm, double spacing, loop_
     if (!ls)
         return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
     for (size_t k = 0; k < sm->nloops; k++) {
-        fm_status st = fm_trim_loop_sample(sm->loops[k], spacing, &ls[k].uv, &ls[k].n, NULL, err);
+        /* spacing is meant in 3D: in (u, v) it shrinks by the loop's
+         * largest scale, so a flattening map that shrinks the plane does
+         * not coarsen the samples (and the outline measured on them). */
+        double sk = spacing;
+        if (sm->loop_scale && sm->loop_scale[k] > 1.0)
+            sk = spacing / fmin(sm->loop_scale[k], 8.0);
+        fm_status st = fm_trim_loop_sample(sm->loops[k], sk, &ls[k].uv, &ls[k].n, NULL, err);
         if (st == FM_OK) {
             ls[k].xyz = malloc(3 * ls[k].n * sizeof *ls[k].xyz);
             ls[k].grid = fm_seggrid_create(ls[k].uv, ls[k].n, 4.0 * spacing);
@@ -378,6 +435,41 @@ static fm_status build_sheet(const char *name, const fm_surface *s, size_t sheet
     return st;
 }
 
+/* Repaired sheet i as one model sheet, or as the disks a ring is cut
+ * into (model_split.c), appended to m. */
+static fm_status fm_model_build_split(fm_model *m, const char *name, const fm_surface *s,
+                                      size_t i, const fm_model_options *opt, fm_error *err)
+{
+    fm_model_split sp;
+    fm_status st = fm_model_split_sheet(name, s, i, &opt->fit, &sp, err);
+    size_t base = m->nsheets, add = sp.npieces ? sp.npieces : 1;
+    sheet_model *sh = st == FM_OK ? realloc(m->sheets, (base + add) * sizeof *sh) : NULL;
+    fm_split_cut *cu = st == FM_OK ? realloc(m->cuts, (m->ncuts + sp.ncuts + 1) * sizeof *cu) : NULL;
+    if (sh)
+        m->sheets = sh;
+    if (cu)
+        m->cuts = cu;
+    if (st == FM_OK && (!sh || !cu))
+        st = fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
+    for (size_t k = 0; st == FM_OK && k < add; k++) {
+        sheet_model *sm = &m->sheets[m->nsheets++];
+        memset(sm, 0, sizeof *sm);
+        st = sp.npieces ? build_sheet(name, sp.pieces[k], 0, opt, sm, err)
+                        : build_sheet(name, s, i, opt, sm, err);
+        sm->report.repair_sheet = i;
+    }
+    for (size_t c = 0; st == FM_OK && c < sp.ncuts; c++) {
+        m->cuts[m->ncuts] = sp.cuts[c];
+        for (int k = 0; k < 2; k++)
+            if (sp.cuts[c].sheets[k] >= 0)
+                m->cuts[m->ncuts].sheets[k] += (long)base;
+        m->ncuts++;
+        sp.cuts[c].xyz = NULL;
+    }
+    fm_model_split_free(&sp);
+    return st;
+}
+
 fm_status fm_model_build(const char *name, const fm_surface *s, const fm_model_options *opt,
                          fm_model **out, fm_error *err)
 {
@@ -395,9 +487,8 @@ fm_status fm_model_build(const char *name, const fm_surface *s, const fm_model_o
         free(m);
         return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
     }
-    m->nsheets = n;
     for (size_t i = 0; i < n; i++) {
-        fm_status st = build_sheet(name, s, i, opt, &m->sheets[i], err);
+        fm_status st = fm_model_build_split(m, name, s, i, opt, err);
         if (st != FM_OK) {
             fm_model_destroy(m);
             return st;

@@ -6,7 +6,9 @@
 #include <stdint.h>
 
 #include "fm_core.h"
+#include "fm_fit.h"
 #include "fm_mesh.h"
+#include "fm_repair.h"
 
 /* A bucket grid over 2D segments of closed polylines, for nearest-segment
  * queries in the parameter plane. */
@@ -36,5 +38,31 @@ void fm_submesh_free(fm_submesh *m);
 
 /* Distance from p to the 3D segment a-b. */
 double fm_segment_distance3(const double p[3], const double a[3], const double b[3]);
+
+/* --- model_split.c --- */
+
+/* A cut that splits a ring-shaped sheet: a polyline along sheet edges from
+ * one rim to the other, and the pieces on its two sides (indices into the
+ * split's pieces; -1 when unknown). */
+typedef struct fm_split_cut {
+    double *xyz;        /* 3 n */
+    size_t n;
+    long sheets[2];
+    size_t repair_sheet; /* the repaired sheet it cuts */
+} fm_split_cut;
+
+typedef struct fm_model_split {
+    fm_surface **pieces; /* one sheet each */
+    size_t npieces;
+    fm_split_cut *cuts;
+    size_t ncuts;
+} fm_model_split;
+
+/* When sheet `sheet` of s is a ring (two or more boundary loops, no
+ * one-to-one plane, and a parametric fit that misses the fit targets), cut
+ * it into disks; out->npieces = 0 when it stays whole. */
+fm_status fm_model_split_sheet(const char *name, const fm_surface *s, size_t sheet,
+                               const fm_fit_options *fit, fm_model_split *out, fm_error *err);
+void fm_model_split_free(fm_model_split *sp);
 
 #endif

@@ -8,19 +8,32 @@
 /* Direction of travel along the `window` metres of the loop before
  * (dir < 0) or after (dir > 0) vertex i: the major axis of the segments'
  * second moments, each segment a uniform line. Moments are taken about
- * vertex i, which keeps them small in UTM coordinates. */
+ * vertex i, which keeps them small in UTM coordinates. With a metric, the
+ * points are first mapped by R, the Cholesky factor of vertex i's form
+ * (M = R^T R, R upper with positive diagonal, so orientation is kept): in
+ * that frame lengths and angles are those of the surface's tangent plane
+ * at i, so the window and the turning are 3D ones. */
 static void side_direction(const trim_input *in, size_t i, double window, int dir, double e[2])
 {
     size_t n = in->n;
     const double *o = in->xy + 2 * i;
+    double R[3] = {1, 0, 1}; /* r11, r12, r22 */
+    if (in->M) {
+        const double *M = in->M + 3 * i;
+        R[0] = sqrt(M[0]);
+        R[1] = M[1] / R[0];
+        R[2] = sqrt(fmax(M[2] - R[1] * R[1], 1e-18 * M[2]));
+    }
     double m = 0, m1[2] = {0, 0}, mxx = 0, mxy = 0, myy = 0;
     double far[2] = {0, 0};
     double rem = window;
     size_t j = i;
     for (size_t step = 0; step < n && rem > 0; step++) {
         size_t k = dir < 0 ? (j + n - 1) % n : (j + 1) % n;
-        double b[2] = {in->xy[2 * j] - o[0], in->xy[2 * j + 1] - o[1]};
-        double a[2] = {in->xy[2 * k] - o[0], in->xy[2 * k + 1] - o[1]};
+        double bu = in->xy[2 * j] - o[0], bv = in->xy[2 * j + 1] - o[1];
+        double au = in->xy[2 * k] - o[0], av = in->xy[2 * k + 1] - o[1];
+        double b[2] = {R[0] * bu + R[1] * bv, R[2] * bv};
+        double a[2] = {R[0] * au + R[1] * av, R[2] * av};
         double l = hypot(a[0] - b[0], a[1] - b[1]);
         if (l > rem) {
             double f = rem / l;

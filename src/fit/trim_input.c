@@ -16,12 +16,29 @@ void trim_input_free(trim_input *in)
 {
     free(in->xy);
     free(in->orig);
+    free(in->M);
     free(in->s);
     memset(in, 0, sizeof *in);
 }
 
-fm_status trim_input_make(const double *uv, size_t n, trim_input *in, const char *name,
-                          fm_error *err)
+/* The form of point i, made safely positive definite: a form that is
+ * (nearly) singular would give zero lengths, and the corner frame needs
+ * its square root. */
+static void clean_form(const double *m, double out[3])
+{
+    double E = m[0], F = m[1], G = m[2];
+    double fl = 1e-9 * (E + G);
+    E = fmax(E, fl);
+    G = fmax(G, fl);
+    double lim = sqrt(E * G) * (1 - 1e-9);
+    F = fmax(-lim, fmin(F, lim));
+    out[0] = E;
+    out[1] = F;
+    out[2] = G;
+}
+
+fm_status trim_input_make(const double *uv, const double *metric, size_t n, trim_input *in,
+                          const char *name, fm_error *err)
 {
     memset(in, 0, sizeof *in);
     if (!uv && n > 0)
@@ -39,6 +56,15 @@ fm_status trim_input_make(const double *uv, size_t n, trim_input *in, const char
             lo[k] = fmin(lo[k], x);
             hi[k] = fmax(hi[k], x);
         }
+    if (metric)
+        for (size_t i = 0; i < n; i++) {
+            const double *m = metric + 3 * i;
+            if (!isfinite(m[0]) || !isfinite(m[1]) || !isfinite(m[2]) || m[0] < 0 || m[2] < 0 ||
+                !(m[0] + m[2] > 0))
+                return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                                    "trim: point %zu has a bad metric (%g, %g, %g)", i, m[0],
+                                    m[1], m[2]);
+        }
     /* Points closer than this are the same point written twice (rounding of
      * a projection), not a segment. */
     double eps = 1e-9 * hypot(hi[0] - lo[0], hi[1] - lo[1]);
@@ -46,8 +72,10 @@ fm_status trim_input_make(const double *uv, size_t n, trim_input *in, const char
     in->xy = malloc(2 * n * sizeof *in->xy);
     in->orig = malloc(n * sizeof *in->orig);
     in->s = malloc((n + 1) * sizeof *in->s);
+    if (metric)
+        in->M = malloc(3 * n * sizeof *in->M);
     double *len = malloc(n * sizeof *len);
-    if (!in->xy || !in->orig || !in->s || !len) {
+    if (!in->xy || !in->orig || !in->s || !len || (metric && !in->M)) {
         free(len);
         trim_input_free(in);
         return fm_error_set(err, FM_ERR_NOMEM, name, 0, "trim: out of memory (%zu points)", n);
@@ -59,6 +87,8 @@ fm_status trim_input_make(const double *uv, size_t n, trim_input *in, const char
             continue;
         in->xy[2 * m] = p[0];
         in->xy[2 * m + 1] = p[1];
+        if (metric)
+            clean_form(metric + 3 * i, in->M + 3 * m);
         in->orig[m++] = i;
     }
     while (m > 1 && hypot(in->xy[2 * m - 2] - in->xy[0], in->xy[2 * m - 1] - in->xy[1]) <= eps)
@@ -73,7 +103,15 @@ fm_status trim_input_make(const double *uv, size_t n, trim_input *in, const char
     in->s[0] = 0;
     for (size_t i = 0; i < m; i++) {
         const double *a = in->xy + 2 * i, *b = in->xy + 2 * ((i + 1) % m);
-        len[i] = hypot(b[0] - a[0], b[1] - a[1]);
+        double d[2] = {b[0] - a[0], b[1] - a[1]};
+        if (in->M) {
+            const double *ma = in->M + 3 * i, *mb = in->M + 3 * ((i + 1) % m);
+            double mm[3] = {0.5 * (ma[0] + mb[0]), 0.5 * (ma[1] + mb[1]),
+                            0.5 * (ma[2] + mb[2])};
+            len[i] = sqrt(trim_norm2(mm, d));
+        } else {
+            len[i] = hypot(d[0], d[1]);
+        }
         in->s[i + 1] = in->s[i] + len[i];
     }
     qsort(len, m, sizeof *len, cmp_double);

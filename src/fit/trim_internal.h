@@ -14,8 +14,11 @@ typedef struct trim_input {
     size_t n;
     double *xy;     /* 2 n */
     size_t *orig;   /* input index of each point */
-    double *s;      /* n + 1 cumulative arc lengths, s[n] = perimeter */
-    double spacing; /* median segment length */
+    double *M;      /* 3 n first fundamental forms E, F, G; NULL = identity */
+    double *s;      /* n + 1 cumulative arc lengths, s[n] = perimeter (in the
+                       metric: each segment measured with its end points'
+                       mean form) */
+    double spacing; /* median segment length (metric) */
 } trim_input;
 
 /* One curve: a clamped piece between two corners or the periodic loop. */
@@ -51,11 +54,26 @@ static inline const double *trim_point(const trim_input *in, const trim_piece *p
     return in->xy + 2 * ((pc->first + j) % in->n);
 }
 
+/* Metric of data point j of a piece (NULL without a metric). */
+static inline const double *trim_point_metric(const trim_input *in, const trim_piece *pc,
+                                              size_t j)
+{
+    return in->M ? in->M + 3 * ((pc->first + j) % in->n) : NULL;
+}
+
+/* Squared length of the (u, v) step d in the form M (NULL: identity). */
+static inline double trim_norm2(const double *M, const double d[2])
+{
+    return M ? M[0] * d[0] * d[0] + 2 * M[1] * d[0] * d[1] + M[2] * d[1] * d[1]
+             : d[0] * d[0] + d[1] * d[1];
+}
+
 /* --- trim_input.c --- */
 
-/* Validates and cleans uv; fills in (freed with trim_input_free). */
-fm_status trim_input_make(const double *uv, size_t n, trim_input *in, const char *name,
-                          fm_error *err);
+/* Validates and cleans uv (and the metric, 3 n values or NULL); fills in
+ * (freed with trim_input_free). */
+fm_status trim_input_make(const double *uv, const double *metric, size_t n, trim_input *in,
+                          const char *name, fm_error *err);
 void trim_input_free(trim_input *in);
 /* Point at arc length s (any real, wrapped) along the closed polyline. */
 void trim_input_at(const trim_input *in, double s, double p[2]);
@@ -90,11 +108,13 @@ fm_status trim_fit_piece(const trim_input *in, trim_piece *pc, double beta, cons
 /* --- trim_measure.c --- */
 
 /* Deviations of the fitted piece; flag[s] = 1 for spans holding a point
- * whose tent-averaged signed deviation (half-width H) exceeds tol. */
+ * whose tent-averaged signed deviation (half-width H) exceeds tol, or
+ * (raw_tol > 0) whose own distance exceeds raw_tol. */
 fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, double tol,
-                             unsigned char *flag);
-/* Distance from p to the segment a-b. */
-double trim_segment_distance(const double p[2], const double a[2], const double b[2]);
+                             double raw_tol, unsigned char *flag);
+/* Distance from p to the segment a-b, in the form M (NULL: identity). */
+double trim_segment_distance(const double p[2], const double a[2], const double b[2],
+                             const double *M);
 
 /* --- trim_sample.c --- */
 

@@ -58,6 +58,9 @@ static fm_status check_options(const fm_trim_options *o, const char *name, fm_er
     if (!(o->smoothing_wavelength >= 0) || !isfinite(o->smoothing_wavelength))
         return fm_error_set(err, FM_ERR_INVALID, name, 0, "trim: bad smoothing wavelength %g",
                             o->smoothing_wavelength);
+    if (!(o->max_deviation >= 0) || !isfinite(o->max_deviation))
+        return fm_error_set(err, FM_ERR_INVALID, name, 0, "trim: bad max deviation %g",
+                            o->max_deviation);
     if (o->max_refinements < 0 || o->max_refinements > 30)
         return fm_error_set(err, FM_ERR_INVALID, name, 0,
                             "trim: max_refinements must be 0..30, not %d", o->max_refinements);
@@ -153,12 +156,13 @@ static fm_status fit_piece(const trim_input *in, trim_piece *pc, double beta,
         if (st != FM_OK)
             break;
         unsigned char *f = realloc(flag, pc->nspans);
-        if (!f || trim_measure_piece(in, pc, 2 * in->spacing, o->tolerance, f) != FM_OK) {
+        if (!f || trim_measure_piece(in, pc, 2 * in->spacing, o->tolerance, o->max_deviation, f) != FM_OK) {
             free(f ? f : flag);
             return fm_error_set(err, FM_ERR_NOMEM, o->name, 0, "trim: out of memory (measure)");
         }
         flag = f;
-        if (pc->max_sys <= o->tolerance || round >= o->max_refinements)
+        int raw_ok = !(o->max_deviation > 0) || pc->max_dev <= o->max_deviation;
+        if ((pc->max_sys <= o->tolerance && raw_ok) || round >= o->max_refinements)
             break;
         int changed = refine(pc, flag, in->spacing);
         if (changed < 0) {
@@ -187,6 +191,12 @@ static double polygon_area(const trim_input *in)
 fm_status fm_trim_fit(const double *uv, size_t n, const fm_trim_options *opt,
                       fm_trim_loop **out, fm_error *err)
 {
+    return fm_trim_fit_metric(uv, NULL, n, opt, out, err);
+}
+
+fm_status fm_trim_fit_metric(const double *uv, const double *metric, size_t n,
+                             const fm_trim_options *opt, fm_trim_loop **out, fm_error *err)
+{
     fm_trim_options o;
     if (opt)
         o = *opt;
@@ -199,7 +209,7 @@ fm_status fm_trim_fit(const double *uv, size_t n, const fm_trim_options *opt,
     if (st != FM_OK)
         return st;
     trim_input in;
-    st = trim_input_make(uv, n, &in, o.name, err);
+    st = trim_input_make(uv, metric, n, &in, o.name, err);
     if (st != FM_OK)
         return st;
 

@@ -5,31 +5,49 @@
 #include <math.h>
 #include <stdlib.h>
 
-double trim_segment_distance(const double p[2], const double a[2], const double b[2])
+double trim_segment_distance(const double p[2], const double a[2], const double b[2],
+                             const double *M)
 {
-    double ex = b[0] - a[0], ey = b[1] - a[1];
-    double l2 = ex * ex + ey * ey;
-    double f = l2 > 0 ? ((p[0] - a[0]) * ex + (p[1] - a[1]) * ey) / l2 : 0;
+    double e[2] = {b[0] - a[0], b[1] - a[1]}, r[2] = {p[0] - a[0], p[1] - a[1]};
+    double l2 = trim_norm2(M, e);
+    double re = M ? M[0] * r[0] * e[0] + M[1] * (r[0] * e[1] + r[1] * e[0]) + M[2] * r[1] * e[1]
+                  : r[0] * e[0] + r[1] * e[1];
+    double f = l2 > 0 ? re / l2 : 0;
     f = f < 0 ? 0 : f > 1 ? 1 : f;
-    return hypot(p[0] - a[0] - f * ex, p[1] - a[1] - f * ey);
+    double d[2] = {r[0] - f * e[0], r[1] - f * e[1]};
+    return sqrt(trim_norm2(M, d));
 }
 
-static double dist2_at(const trim_piece *pc, double t, const double P[2])
+/* M x (M NULL: identity). */
+static void apply(const double *M, const double x[2], double y[2])
+{
+    if (M) {
+        y[0] = M[0] * x[0] + M[1] * x[1];
+        y[1] = M[1] * x[0] + M[2] * x[1];
+    } else {
+        y[0] = x[0];
+        y[1] = x[1];
+    }
+}
+
+static double dist2_at(const trim_piece *pc, double t, const double P[2], const double *M)
 {
     double c[3][2];
     trim_eval(pc, t, 0, c);
-    double dx = c[0][0] - P[0], dy = c[0][1] - P[1];
-    return dx * dx + dy * dy;
+    double d[2] = {c[0][0] - P[0], c[0][1] - P[1]};
+    return trim_norm2(M, d);
 }
 
-/* Closest parameter to P near t0: a coarse scan (the fit's parameter can be
- * off by a fraction of a span) and then Newton on the squared distance,
+/* Closest parameter to P near t0 in the form M (the point's own: the 3D
+ * distance to a nearby curve point): a coarse scan (the fit's parameter can
+ * be off by a fraction of a span) and then Newton on the squared distance,
  * steps halved until they improve it. */
-static double project(const trim_piece *pc, const double P[2], double t0, double step)
+static double project(const trim_piece *pc, const double P[2], const double *M, double t0,
+                      double step)
 {
-    double best = trim_wrap(pc, t0), bestd = dist2_at(pc, best, P);
+    double best = trim_wrap(pc, t0), bestd = dist2_at(pc, best, P, M);
     for (int k = -4; k <= 4; k++) {
-        double t = trim_wrap(pc, t0 + k * step), d = dist2_at(pc, t, P);
+        double t = trim_wrap(pc, t0 + k * step), d = dist2_at(pc, t, P, M);
         if (d < bestd) {
             bestd = d;
             best = t;
@@ -38,10 +56,11 @@ static double project(const trim_piece *pc, const double P[2], double t0, double
     for (int it = 0; it < 30; it++) {
         double c[3][2];
         trim_eval(pc, best, 2, c);
-        double rx = c[0][0] - P[0], ry = c[0][1] - P[1];
-        double f = rx * c[1][0] + ry * c[1][1];
-        double g = c[1][0] * c[1][0] + c[1][1] * c[1][1];
-        double fp = g + rx * c[2][0] + ry * c[2][1];
+        double r[2] = {c[0][0] - P[0], c[0][1] - P[1]}, Mr[2];
+        apply(M, r, Mr);
+        double f = Mr[0] * c[1][0] + Mr[1] * c[1][1];
+        double g = trim_norm2(M, c[1]);
+        double fp = g + Mr[0] * c[2][0] + Mr[1] * c[2][1];
         if (!(fp > 0))
             fp = g;
         if (!(fp > 0))
@@ -51,7 +70,7 @@ static double project(const trim_piece *pc, const double P[2], double t0, double
             dt = dt > 0 ? 4 * step : -4 * step;
         int moved = 0;
         for (int h = 0; h < 30 && !moved; h++, dt *= 0.5) {
-            double t = trim_wrap(pc, best + dt), d = dist2_at(pc, t, P);
+            double t = trim_wrap(pc, best + dt), d = dist2_at(pc, t, P, M);
             if (d < bestd) {
                 bestd = d;
                 best = t;
@@ -130,7 +149,13 @@ static double curve_to_polyline(const trim_input *in, const trim_piece *pc, doub
                 b = mid;
         }
         for (size_t j = a; j < nseg && pc->t[j] <= hi; j++) {
-            double d = trim_segment_distance(C, trim_point(in, pc, j), trim_point(in, pc, j + 1));
+            const double *Ma = trim_point_metric(in, pc, j), *Mb = trim_point_metric(in, pc, j + 1);
+            double mm[3];
+            if (Ma)
+                for (int q = 0; q < 3; q++)
+                    mm[q] = 0.5 * (Ma[q] + Mb[q]);
+            double d = trim_segment_distance(C, trim_point(in, pc, j), trim_point(in, pc, j + 1),
+                                             Ma ? mm : NULL);
             if (d < best)
                 best = d;
         }
@@ -139,7 +164,7 @@ static double curve_to_polyline(const trim_input *in, const trim_piece *pc, doub
 }
 
 fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, double tol,
-                             unsigned char *flag)
+                             double raw_tol, unsigned char *flag)
 {
     size_t m = pc->npts;
     double *r = malloc(m * sizeof *r);
@@ -157,18 +182,26 @@ fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, dou
         /* A clamped piece passes through its end points by construction. */
         if (!pc->periodic && (j == 0 || j == m - 1))
             continue;
-        const double *P = trim_point(in, pc, j);
-        double t = project(pc, P, pc->t[j], 0.25 * hmin);
+        const double *P = trim_point(in, pc, j), *M = trim_point_metric(in, pc, j);
+        double t = project(pc, P, M, pc->t[j], 0.25 * hmin);
         double c[3][2];
         trim_eval(pc, t, 1, c);
         double dx = P[0] - c[0][0], dy = P[1] - c[0][1];
-        double d = hypot(dx, dy);
+        double dd[2] = {dx, dy};
+        double d = sqrt(trim_norm2(M, dd));
         r[j] = c[1][0] * dy - c[1][1] * dx >= 0 ? d : -d;
         pc->max_dev = fmax(pc->max_dev, d);
         pc->sum_dev2 += d * d;
     }
     for (size_t s = 0; s < pc->nspans; s++)
         flag[s] = 0;
+    /* A single point far off: a bend sharper than the knots (rounded off
+     * while its residuals still average to zero) or a point next to a
+     * corner, where the tent is not taken. */
+    if (raw_tol > 0)
+        for (size_t j = 0; j < m; j++)
+            if (fabs(r[j]) > raw_tol)
+                flag[trim_span(pc, pc->t[j])] = 1;
     for (size_t j = 0; j < m; j++) {
         /* Near a corner the tent would hold the corner, which carries no
          * stair-step, and one step without its partner: the average would

@@ -624,6 +624,143 @@ static void test_degenerate(void)
     fm_trim_loop_destroy(NULL);
 }
 
+/* A loop on the steep plane S(u, v) = (u, v, sqrt(15) v): a unit step in v
+ * is 4 m long in 3D, one in u 1 m. The top edge carries a wave along u
+ * that the smoothing halves: its residual passes the tolerance in (u, v)
+ * but is four times larger in 3D. With the metric the fit must see that
+ * and meet the tolerance in 3D, which is checked here against the curve
+ * sampled densely, independently of the fit's own stats. */
+#define STEEP_G 16.0
+
+static size_t steep_loop(double *uv)
+{
+    size_t n = 0;
+    for (int i = 0; i < 40; i++, n++) { /* bottom, u 0 .. 20 km */
+        uv[2 * n] = 500.0 * i;
+        uv[2 * n + 1] = 0;
+    }
+    for (int i = 0; i < 10; i++, n++) { /* right side, 125 m in v = 500 m in 3D */
+        uv[2 * n] = 20000;
+        uv[2 * n + 1] = 125.0 * i;
+    }
+    for (int i = 0; i < 40; i++, n++) { /* top, wavy, back along u */
+        double u = 20000 - 500.0 * i;
+        uv[2 * n] = u;
+        uv[2 * n + 1] = 1250 + 40 * sin(2 * PI * u / 3000);
+    }
+    for (int i = 0; i < 10; i++, n++) { /* left side */
+        uv[2 * n] = 0;
+        uv[2 * n + 1] = 1250 - 125.0 * i;
+    }
+    return n;
+}
+
+/* Largest 3D distance from the top edge's points (away from its corners)
+ * to the curve sampled every metre. */
+static double steep_top_3d(const fm_trim_loop *loop, const double *uv)
+{
+    double *smp = NULL;
+    size_t ns = 0;
+    fm_error err;
+    CHECK_EQ(fm_trim_loop_sample(loop, 1.0, &smp, &ns, NULL, &err), FM_OK);
+    double worst = 0;
+    for (size_t j = 53; j < 87; j++) {
+        double best = INFINITY;
+        for (size_t q = 0; q < ns; q++) {
+            double du = smp[2 * q] - uv[2 * j], dv = smp[2 * q + 1] - uv[2 * j + 1];
+            if (fabs(du) > 1500)
+                continue;
+            best = fmin(best, sqrt(du * du + STEEP_G * dv * dv));
+        }
+        worst = fmax(worst, best);
+    }
+    free(smp);
+    return worst;
+}
+
+static void test_metric(void)
+{
+    double uv[2 * 100], metric[3 * 100];
+    size_t n = steep_loop(uv);
+    CHECK_EQ(n, 100);
+    for (size_t i = 0; i < n; i++) {
+        metric[3 * i] = 1;
+        metric[3 * i + 1] = 0;
+        metric[3 * i + 2] = STEEP_G;
+    }
+    fm_trim_options opt;
+    fm_trim_options_default(&opt);
+    /* In 3D the wave turns by up to 20 degrees; keep it off the corners. */
+    opt.corner_angle = 60;
+    fm_error err;
+
+    /* Without the metric the fit is content in (u, v) ... */
+    fm_trim_loop *flat = NULL;
+    CHECK_EQ(fm_trim_fit(uv, n, &opt, &flat, &err), FM_OK);
+    const fm_trim_stats *fs = fm_trim_loop_stats(flat);
+    CHECK(fs->within_tolerance);
+    CHECK_EQ(fs->corners, 4);
+    double flat3d = steep_top_3d(flat, uv);
+    /* ... but misses the tolerance in 3D. */
+    CHECK(flat3d > 1.3 * opt.tolerance);
+
+    /* NULL metric is fm_trim_fit exactly. */
+    fm_trim_loop *same = NULL;
+    CHECK_EQ(fm_trim_fit_metric(uv, NULL, n, &opt, &same, &err), FM_OK);
+    CHECK_EQ(fm_trim_loop_stats(same)->spans, fs->spans);
+    CHECK_EQ(fm_trim_loop_stats(same)->max_dev, fs->max_dev);
+    fm_trim_loop_destroy(same);
+
+    fm_trim_loop *steep = NULL;
+    CHECK_EQ(fm_trim_fit_metric(uv, metric, n, &opt, &steep, &err), FM_OK);
+    const fm_trim_stats *ss = fm_trim_loop_stats(steep);
+    CHECK(ss->within_tolerance);
+    CHECK_EQ(ss->corners, 4);
+    CHECK(ss->spans > fs->spans); /* refined where 3D asked for it */
+    /* 3D spacing: the sides' 125 m steps are 500 m long. */
+    CHECK_NEAR(ss->spacing, 500, 1);
+    double steep3d = steep_top_3d(steep, uv);
+    /* The tolerance bounds the tent-averaged deviation; a wave's crest
+     * sits a little further out than that average. */
+    CHECK(ss->max_systematic <= opt.tolerance);
+    CHECK(steep3d <= 1.25 * opt.tolerance);
+    CHECK(steep3d < 0.6 * flat3d);
+    /* The stats are 3D distances: the raw maximum matches the independent
+     * measure (the largest deviation lies on the top edge). */
+    CHECK_NEAR(ss->max_dev, steep3d, 0.05 * steep3d + 1);
+    printf("metric: flat fit %.1f m in 3D (%zu spans), metric fit %.1f m (%zu spans)\n", flat3d,
+           fs->spans, steep3d, ss->spans);
+
+    /* Raw bound: a 3D tolerance so loose that the systematic test passes,
+     * with max_deviation asking for the single points. */
+    fm_trim_options raw = opt;
+    raw.tolerance = 1000;
+    raw.max_deviation = 0.5 * flat3d;
+    fm_trim_loop *rl = NULL;
+    CHECK_EQ(fm_trim_fit_metric(uv, metric, n, &raw, &rl, &err), FM_OK);
+    CHECK(fm_trim_loop_stats(rl)->max_dev <= raw.max_deviation);
+    fm_trim_loop_destroy(rl);
+
+    /* Bad metrics are refused, a singular one is tolerated. */
+    fm_trim_loop *bad = NULL;
+    metric[3 * 7 + 2] = -1;
+    CHECK_EQ(fm_trim_fit_metric(uv, metric, n, &opt, &bad, &err), FM_ERR_INVALID);
+    metric[3 * 7 + 2] = NAN;
+    CHECK_EQ(fm_trim_fit_metric(uv, metric, n, &opt, &bad, &err), FM_ERR_INVALID);
+    metric[3 * 7] = metric[3 * 7 + 1] = metric[3 * 7 + 2] = 0;
+    CHECK_EQ(fm_trim_fit_metric(uv, metric, n, &opt, &bad, &err), FM_ERR_INVALID);
+    metric[3 * 7] = 1;
+    metric[3 * 7 + 1] = 4;
+    metric[3 * 7 + 2] = 16; /* E G = F^2 */
+    CHECK_EQ(fm_trim_fit_metric(uv, metric, n, &opt, &bad, &err), FM_OK);
+    fm_trim_loop_destroy(bad);
+    opt.max_deviation = -1;
+    CHECK_EQ(fm_trim_fit_metric(uv, NULL, n, &opt, &bad, &err), FM_ERR_INVALID);
+
+    fm_trim_loop_destroy(flat);
+    fm_trim_loop_destroy(steep);
+}
+
 FM_TEST_MAIN(FM_CASE(test_rectangle), FM_CASE(test_circle), FM_CASE(test_trace),
              FM_CASE(test_orientation), FM_CASE(test_determinism), FM_CASE(test_refinement),
-             FM_CASE(test_degenerate))
+             FM_CASE(test_degenerate), FM_CASE(test_metric))
