@@ -25,7 +25,8 @@ static void fit_usage(FILE *fp)
             "  --knot-spacing M     surface knot spacing, metres (default: automatic)\n"
             "  --smoothing L        thin-plate weight, m^4 (default: automatic)\n"
             "  --degree N           surface degree 2..5 (default 3)\n"
-            "  --trim-tol M         outline tolerance, metres (default 50)\n"
+            "  --trim-tol M         outline tolerance (averaged deviation), metres (default 50)\n"
+            "  --trim-max-dev M     refine the outline where one point is farther (default 80)\n"
             "  --corner-angle DEG   outline corners turn at least this much (default 35)\n");
     fputs(fm_cli_repair_help, fp);
 }
@@ -219,6 +220,9 @@ int fm_cmd_fit(int argc, char **argv)
             i++;
         } else if (!strcmp(a, "--trim-tol")) {
             rc = fm_parse_double(a, val, &cli.model.trim.tolerance) ? FM_EXIT_USAGE : 0;
+            i++;
+        } else if (!strcmp(a, "--trim-max-dev")) {
+            rc = fm_parse_double(a, val, &cli.model.trim.max_deviation) ? FM_EXIT_USAGE : 0;
             i++;
         } else if (!strcmp(a, "--corner-angle")) {
             rc = fm_parse_double(a, val, &cli.model.trim.corner_angle) ? FM_EXIT_USAGE : 0;

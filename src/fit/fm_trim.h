@@ -7,6 +7,12 @@
  * where a fault's top trace meets its lateral edges. fm_trim_fit turns it
  * into cubic B-spline curves that keep the corners and smooth the steps.
  *
+ * Metres. The (u, v) plane of a steep or flattened sheet is not isometric
+ * to the fault: fm_trim_fit_metric takes the surface's first fundamental
+ * form at every point, and then every length below (point spacing, knot
+ * spacing, corner window, deviations, tolerance) is measured on the fault
+ * in 3D; fm_trim_fit is the same with the identity form.
+ *
  * Corners. The turning at vertex i is the angle between the principal
  * directions of the polyline over the arc length `corner_window` before i
  * and the same length after it (each side's direction is the major axis of

@@ -133,6 +133,7 @@ void fm_model_write_sheet_report(fm_json *j, const fm_model *m, size_t i, int wi
     fm_json_kv_number(j, "knot_spacing_m", fs->knot_spacing);
     fm_json_kv_number(j, "smoothing", fs->smoothing);
     fm_json_kv_int(j, "refinement_passes", fs->passes);
+    fm_json_kv_int(j, "repair_sheet", (int64_t)r->repair_sheet);
     if (with_time)
         fm_json_kv_number(j, "time_s", r->time);
     fm_json_end_object(j);
@@ -167,6 +168,32 @@ fm_status fm_model_write_json(const char *path, const char *name, const fm_model
         fm_json_end_array(&j);
         fm_json_key(&j, "report");
         fm_model_write_sheet_report(&j, m, i, 0);
+        fm_json_end_object(&j);
+    }
+    fm_json_end_array(&j);
+    /* Where a ring-shaped sheet was cut into disks: the remeshed pieces must
+     * meet again along these polylines. */
+    fm_json_key(&j, "cuts");
+    fm_json_begin_array(&j);
+    for (size_t c = 0; c < fm_model_ncuts(m); c++) {
+        size_t np;
+        long sh[2];
+        const double *p = fm_model_cut(m, c, &np, sh);
+        fm_json_begin_object(&j);
+        fm_json_key(&j, "sheets");
+        fm_json_begin_array(&j);
+        fm_json_int(&j, sh[0]);
+        fm_json_int(&j, sh[1]);
+        fm_json_end_array(&j);
+        fm_json_key(&j, "points");
+        fm_json_begin_array(&j);
+        for (size_t q = 0; q < np; q++) {
+            fm_json_begin_array(&j);
+            for (int k = 0; k < 3; k++)
+                fm_json_number_exact(&j, p[3 * q + k]);
+            fm_json_end_array(&j);
+        }
+        fm_json_end_array(&j);
         fm_json_end_object(&j);
     }
     fm_json_end_array(&j);
