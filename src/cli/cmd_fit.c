@@ -25,6 +25,8 @@ static void fit_usage(FILE *fp)
             "  --knot-spacing M     surface knot spacing, metres (default: automatic)\n"
             "  --smoothing L        thin-plate weight, m^4 (default: automatic)\n"
             "  --degree N           surface degree 2..5 (default 3)\n"
+            "  --target-rms M       refine the knots of a sheet fitted worse than this RMS (m)\n"
+            "  --target-max M       ... or this largest vertex distance (m)\n"
             "  --trim-tol M         outline tolerance (averaged deviation), metres (default 50)\n"
             "  --trim-max-dev M     refine the outline where one point is farther (default 80)\n"
             "  --corner-angle DEG   outline corners turn at least this much (default 35)\n");
@@ -217,6 +219,16 @@ int fm_cmd_fit(int argc, char **argv)
             if (rc)
                 fprintf(stderr, "faultmesh fit: --degree must be 2, 3, 4 or 5\n");
             cli.model.fit.degree = (int)d;
+            i++;
+        } else if (!strcmp(a, "--target-rms")) {
+            rc = fm_parse_double(a, val, &cli.model.fit.target_rms) || cli.model.fit.target_rms <= 0
+                     ? FM_EXIT_USAGE
+                     : 0;
+            i++;
+        } else if (!strcmp(a, "--target-max")) {
+            rc = fm_parse_double(a, val, &cli.model.fit.target_max) || cli.model.fit.target_max <= 0
+                     ? FM_EXIT_USAGE
+                     : 0;
             i++;
         } else if (!strcmp(a, "--trim-tol")) {
             rc = fm_parse_double(a, val, &cli.model.trim.tolerance) ? FM_EXIT_USAGE : 0;

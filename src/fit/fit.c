@@ -20,8 +20,8 @@ void fm_fit_options_default(fm_fit_options *opt)
     opt->knot_spacing = 0.0;
     opt->knot_factor = 1.0;
     opt->max_control_points = 40000;
-    opt->target_rms = 8.0;
-    opt->target_max = 80.0;
+    opt->target_rms = 4.0;
+    opt->target_max = 50.0;
     opt->max_refinements = 1;
     opt->smoothing = 0.0;
     opt->smoothing_wavelength = 1.0;

@@ -96,7 +96,7 @@
  *    max_control_points (40000). After the fit the vertices' distances to
  *    the surface are estimated (to its tangent plane at their parameters,
  *    first order, no projection); while their RMS exceeds target_rms
- *    (8 m) or their maximum target_max (80 m), the spacing is halved and
+ *    (4 m) or their maximum target_max (50 m), the spacing is halved and
  *    the sheet refitted, at most max_refinements (1) times and only while
  *    the grid stays within max_control_points. Measured on CFM 5.3 at
  *    500 m (bench/bench_fit): knots at 2e leave a median per-fault RMS of
@@ -181,8 +181,8 @@ typedef struct fm_fit_options {
     double knot_spacing;    /* metres; 0 = automatic (default) */
     double knot_factor;     /* first automatic spacing / median edge length, default 1.0 */
     size_t max_control_points; /* bound for the automatic spacing, default 40000 */
-    double target_rms;      /* refinement goal for the vertex RMS distance (m), default 8 */
-    double target_max;      /* ... and for the largest one (m), default 80 */
+    double target_rms;      /* refinement goal for the vertex RMS distance (m), default 4 */
+    double target_max;      /* ... and for the largest one (m), default 50 */
     int max_refinements;    /* halvings of the automatic spacing, 0..4, default 1 */
     double smoothing;       /* lambda (m^4); 0 = automatic (default) */
     double smoothing_wavelength; /* beta of the automatic rule, default 1.0 */
