@@ -276,8 +276,17 @@ static void pick_rims(const fm_surface *s, size_t sheet, graph *g, size_t *ra, s
     }
 }
 
-/* A sheet is cut when it has a second loop and the fit it would get is not
- * good: no one-to-one plane and a parametric fit missing the fit targets. */
+/* What a parametric fit must reach for its sheet to stay whole: the fit
+ * stage's acceptance figures (10 m RMS, 100 m max) with some margin. Fixed
+ * rather than tied to the knot-refinement targets, which are stricter by
+ * design: a sheet that misses those is refined, not cut (cutting makes
+ * small pieces whose maps are no better). */
+#define SPLIT_RMS 8.0
+#define SPLIT_MAX 80.0
+
+/* A sheet is cut when the fit it would get is not good: no one-to-one
+ * plane and a parametric fit that needs the convex map or misses the
+ * figures above. */
 static int needs_split(const char *name, const fm_mesh *mesh, size_t nloops,
                        const fm_fit_options *fit)
 {
@@ -319,7 +328,7 @@ static int needs_split(const char *name, const fm_mesh *mesh, size_t nloops,
         return 1;
     const fm_fit_stats *st = fm_fit_surface_stats(fs);
     int bad = st->kind == FM_FIT_PARAMETRIC &&
-              (st->convex_map || st->rms_w > fit->target_rms || st->max_w > fit->target_max);
+              (st->convex_map || st->rms_w > SPLIT_RMS || st->max_w > SPLIT_MAX);
     fm_fit_surface_destroy(fs);
     return bad;
 }
