@@ -10,6 +10,7 @@
 #include "fm_json.h"
 #include "fm_model.h"
 #include "fm_model_write.h"
+#include "fm_sort.h"
 #include "fm_tsurf.h"
 
 static void fit_usage(FILE *fp)
@@ -97,12 +98,6 @@ static fm_status write_outputs(const fit_cli *cli, const char *base, const char 
     }
     free(path);
     return st;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 /* Fits one file; appends its faults to the report. Returns the number of
@@ -288,11 +283,7 @@ int fm_cmd_fit(int argc, char **argv)
     for (long i = 0; i < nfiles; i++)
         failed += fit_file(&cli, files[i], &j, &rms, &nrms, &within);
     fm_json_end_array(&j);
-    double median = 0;
-    if (nrms) {
-        qsort(rms, nrms, sizeof *rms, cmp_double);
-        median = nrms % 2 ? rms[nrms / 2] : 0.5 * (rms[nrms / 2 - 1] + rms[nrms / 2]);
-    }
+    double median = fm_median(rms, nrms);
     fm_json_key(&j, "summary");
     fm_json_begin_object(&j);
     fm_json_kv_int(&j, "faults", (int64_t)(nrms + (size_t)failed));

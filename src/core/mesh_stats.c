@@ -1,4 +1,5 @@
 #include "fm_mesh.h"
+#include "fm_sort.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -50,12 +51,6 @@ static int cmp_u64(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 fm_status fm_mesh_compute_stats(const fm_mesh *m, fm_mesh_stats *st)
 {
     memset(st, 0, sizeof *st);
@@ -102,7 +97,7 @@ fm_status fm_mesh_compute_stats(const fm_mesh *m, fm_mesh_stats *st)
             st->angle_below_30++;
     }
     st->angle_mean = angle_sum / (double)nt;
-    qsort(angles, nt, sizeof *angles, cmp_double);
+    fm_sort_doubles(angles, nt);
     st->angle_min_p01 = angles[(size_t)floor(0.01 * (double)(nt - 1))];
 
     int first = 1;
@@ -149,11 +144,10 @@ fm_status fm_mesh_compute_stats(const fm_mesh *m, fm_mesh_stats *st)
         i = j;
     }
     st->edges = ne;
-    qsort(len, ne, sizeof *len, cmp_double);
+    st->edge_median = fm_median(len, ne); /* sorts len */
     st->edge_min = len[0];
     st->edge_max = len[ne - 1];
     st->edge_mean = len_sum / (double)ne;
-    st->edge_median = ne % 2 ? len[ne / 2] : 0.5 * (len[ne / 2 - 1] + len[ne / 2]);
 
     free(len);
     free(keys);

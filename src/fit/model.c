@@ -8,6 +8,7 @@
 
 #include "fit_internal.h"
 #include "fm_closest.h"
+#include "fm_sort.h"
 #include "model_internal.h"
 
 typedef struct sheet_model {
@@ -104,17 +105,7 @@ static double median_spacing(const double *uv, size_t n)
         const double *a = uv + 2 * i, *b = uv + 2 * ((i + 1) % n);
         d[i] = hypot(b[0] - a[0], b[1] - a[1]);
     }
-    /* insertion-free median: partial sort is not worth the code here */
-    for (size_t i = 1; i < n; i++) {
-        double x = d[i];
-        size_t j = i;
-        while (j > 0 && d[j - 1] > x) {
-            d[j] = d[j - 1];
-            j--;
-        }
-        d[j] = x;
-    }
-    double med = d[n / 2];
+    double med = fm_median(d, n);
     free(d);
     return med;
 }

@@ -1,16 +1,11 @@
 /* Checking and cleaning the input loop: repeated points go, arc lengths
  * and the median spacing that scales every automatic choice. */
+#include "fm_sort.h"
 #include "trim_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 void trim_input_free(trim_input *in)
 {
@@ -114,8 +109,7 @@ fm_status trim_input_make(const double *uv, const double *metric, size_t n, trim
         }
         in->s[i + 1] = in->s[i] + len[i];
     }
-    qsort(len, m, sizeof *len, cmp_double);
-    in->spacing = m % 2 ? len[m / 2] : 0.5 * (len[m / 2 - 1] + len[m / 2]);
+    in->spacing = fm_median(len, m);
     free(len);
     return FM_OK;
 }
