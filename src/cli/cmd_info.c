@@ -37,23 +37,12 @@ static fm_mesh *sheets_concat(const fm_surface *s)
     fm_mesh *all = fm_mesh_create();
     if (!all)
         return NULL;
-    for (size_t i = 0; i < fm_surface_nsheets(s); i++) {
-        const fm_mesh *m = fm_surface_sheet_mesh(s, i);
-        int32_t base = (int32_t)fm_mesh_nvertices(all);
-        const double *X = fm_mesh_vertices(m);
-        const int32_t *T = fm_mesh_triangles(m);
-        for (size_t v = 0; v < fm_mesh_nvertices(m); v++)
-            if (fm_mesh_add_vertex(all, X[3 * v], X[3 * v + 1], X[3 * v + 2]) < 0)
-                goto oom;
-        for (size_t t = 0; t < fm_mesh_ntriangles(m); t++)
-            if (fm_mesh_add_triangle(all, base + T[3 * t], base + T[3 * t + 1],
-                                     base + T[3 * t + 2], (int32_t)i) < 0)
-                goto oom;
-    }
+    for (size_t i = 0; i < fm_surface_nsheets(s); i++)
+        if (fm_mesh_append(all, fm_surface_sheet_mesh(s, i), (int32_t)i) != FM_OK) {
+            fm_mesh_destroy(all);
+            return NULL;
+        }
     return all;
-oom:
-    fm_mesh_destroy(all);
-    return NULL;
 }
 
 /* Distinct input vertices the sheets use: a vertex on a junction or a pinch

@@ -45,6 +45,11 @@ int32_t *fm_mesh_triangles_mut(fm_mesh *m);
 const int32_t *fm_mesh_tags(const fm_mesh *m);
 int32_t *fm_mesh_tags_mut(fm_mesh *m);
 
+/* Appends all of src to dst (vertex indices shifted), every appended
+ * triangle tagged with tag: the way several sheets or faults become one
+ * mesh for output. */
+fm_status fm_mesh_append(fm_mesh *dst, const fm_mesh *src, int32_t tag);
+
 /* Shrink counts (keeps capacity); n must not exceed the current count. */
 void fm_mesh_truncate(fm_mesh *m, size_t nv, size_t nt);
 

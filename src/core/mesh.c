@@ -117,6 +117,23 @@ int32_t *fm_mesh_triangles_mut(fm_mesh *m) { return m->tri; }
 const int32_t *fm_mesh_tags(const fm_mesh *m) { return m->tag; }
 int32_t *fm_mesh_tags_mut(fm_mesh *m) { return m->tag; }
 
+fm_status fm_mesh_append(fm_mesh *dst, const fm_mesh *src, int32_t tag)
+{
+    size_t nv = dst->nv, nt = dst->nt;
+    if (fm_mesh_reserve(dst, nv + src->nv, nt + src->nt) != FM_OK)
+        return FM_ERR_NOMEM;
+    if (src->nv)
+        memcpy(dst->xyz + 3 * nv, src->xyz, src->nv * 3 * sizeof *src->xyz);
+    for (size_t t = 0; t < src->nt; t++) {
+        for (int k = 0; k < 3; k++)
+            dst->tri[3 * (nt + t) + k] = src->tri[3 * t + k] + (int32_t)nv;
+        dst->tag[nt + t] = tag;
+    }
+    dst->nv += src->nv;
+    dst->nt += src->nt;
+    return FM_OK;
+}
+
 void fm_mesh_truncate(fm_mesh *m, size_t nv, size_t nt)
 {
     if (nv < m->nv)

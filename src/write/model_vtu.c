@@ -17,18 +17,9 @@ fm_status fm_model_write_vtu(const char *path, const char *name, const fm_model 
     fm_status rc = all && dist ? FM_OK : FM_ERR_NOMEM;
     for (size_t i = 0; i < fm_model_nsheets(m) && rc == FM_OK; i++) {
         const fm_mesh *s = fm_model_samples(m, i);
-        int32_t base = (int32_t)fm_mesh_nvertices(all);
-        const double *X = fm_mesh_vertices(s);
-        const int32_t *T = fm_mesh_triangles(s);
-        memcpy(dist + base, fm_model_sample_distance(m, i),
+        memcpy(dist + fm_mesh_nvertices(all), fm_model_sample_distance(m, i),
                fm_mesh_nvertices(s) * sizeof *dist);
-        for (size_t v = 0; v < fm_mesh_nvertices(s) && rc == FM_OK; v++)
-            if (fm_mesh_add_vertex(all, X[3 * v], X[3 * v + 1], X[3 * v + 2]) < 0)
-                rc = FM_ERR_NOMEM;
-        for (size_t t = 0; t < fm_mesh_ntriangles(s) && rc == FM_OK; t++)
-            if (fm_mesh_add_triangle(all, base + T[3 * t], base + T[3 * t + 1],
-                                     base + T[3 * t + 2], (int32_t)i) < 0)
-                rc = FM_ERR_NOMEM;
+        rc = fm_mesh_append(all, s, (int32_t)i);
     }
     if (rc != FM_OK) {
         fm_mesh_destroy(all);
