@@ -19,6 +19,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_common.h"
 #include "fm_closest.h"
 
 static uint64_t rng_state = 12345;
@@ -32,13 +33,6 @@ static uint64_t splitmix64(void)
 }
 
 static double rnd_unit(void) { return (double)(splitmix64() >> 11) * 0x1p-53; }
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static fm_mesh *wavy(int n)
 {
@@ -87,7 +81,7 @@ static void near_point(const fm_mesh *m, size_t tri, double p[3])
 static void run(const fm_closest_tree *t, const double *pts, size_t nq, double max_dist,
                 const char *order)
 {
-    double t0 = now(), sum = 0;
+    double t0 = bench_now(), sum = 0;
     size_t found = 0;
     for (size_t i = 0; i < nq; i++) {
         fm_closest_hit h;
@@ -96,7 +90,7 @@ static void run(const fm_closest_tree *t, const double *pts, size_t nq, double m
             sum += h.dist;
         }
     }
-    double dt = now() - t0;
+    double dt = bench_now() - t0;
     printf("%s, max_dist %g: %zu queries in %.3f s = %.0f queries/s, %zu found, checksum %.6f\n",
            order, max_dist, nq, dt, (double)nq / dt, found, sum);
 }
@@ -133,9 +127,9 @@ int main(int argc, char **argv)
     printf("mesh: %zu vertices, %zu triangles\n", fm_mesh_nvertices(m), fm_mesh_ntriangles(m));
 
     fm_error err;
-    double t0 = now();
+    double t0 = bench_now();
     fm_closest_tree *t = fm_closest_tree_create(m, &err);
-    double dt = now() - t0;
+    double dt = bench_now() - t0;
     if (!t) {
         fprintf(stderr, "bench_closest: %s\n", err.message);
         return 1;

@@ -19,13 +19,13 @@
  *     faults N, within 10/100 m: K (P%), median RMS X m, failures F
  * Exit status 1 if any sheet failed to fit, 2 on bad usage or unreadable
  * input. */
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
+#include "bench_common.h"
 #include "fm_fit.h"
 #include "fm_repair.h"
 #include "fm_tsurf.h"
@@ -43,54 +43,10 @@ typedef struct fault {
     int worst_kind, worst_passes;
 } fault;
 
-static int by_name(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
 static int by_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
-}
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int list_folder(const char *dir, char ***out, size_t *count)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return -1;
-    char **paths = NULL;
-    size_t n = 0, cap = 0;
-    struct dirent *de;
-    while ((de = readdir(d)) != NULL) {
-        size_t len = strlen(de->d_name);
-        if (len < 4 || strcmp(de->d_name + len - 3, ".ts") != 0)
-            continue;
-        if (n == cap) {
-            cap = cap ? 2 * cap : 512;
-            char **np = realloc(paths, cap * sizeof *np);
-            if (!np)
-                break;
-            paths = np;
-        }
-        paths[n] = malloc(strlen(dir) + len + 2);
-        if (!paths[n])
-            break;
-        sprintf(paths[n], "%s/%s", dir, de->d_name);
-        n++;
-    }
-    closedir(d);
-    qsort(paths, n, sizeof *paths, by_name);
-    *out = paths;
-    *count = n;
-    return 0;
 }
 
 typedef struct totals {
@@ -121,33 +77,33 @@ static int run_file(const char *path, fault *f, totals *tot, int per_sheet,
     fm_tsurf **objs = NULL;
     size_t nobj = 0;
     fm_error err;
-    double t0 = now();
+    double t0 = bench_now();
     if (fm_tsurf_read_file(path, &objs, &nobj, &err) != FM_OK) {
         fprintf(stderr, "bench_fit: %s\n", err.message);
         return -1;
     }
-    double t1 = now();
+    double t1 = bench_now();
     tot->read += t1 - t0;
     const char *base = strrchr(path, '/');
     f->name = strdup(base ? base + 1 : path);
     size_t sheet_no = 0;
     for (size_t o = 0; o < nobj; o++) {
-        double ta = now();
+        double ta = bench_now();
         fm_surface *surf = NULL;
         if (fm_repair(fm_tsurf_mesh(objs[o]), NULL, &surf, &err) != FM_OK) {
             fprintf(stderr, "bench_fit: %s: repair: %s\n", path, err.message);
             fm_tsurf_free_all(objs, nobj);
             return -1;
         }
-        tot->repair += now() - ta;
+        tot->repair += bench_now() - ta;
         for (size_t k = 0; k < fm_surface_nsheets(surf); k++, sheet_no++) {
             const fm_mesh *sheet = fm_surface_sheet_mesh(surf, k);
             fm_fit_options opt = *base_opt;
             opt.name = f->name;
             fm_fit_surface *fs = NULL;
-            double tb = now();
+            double tb = bench_now();
             fm_status st = fm_fit_sheet(sheet, &opt, &fs, &err);
-            double dt = now() - tb;
+            double dt = bench_now() - tb;
             tot->fit += dt;
             f->time += dt;
             f->sheets++;
@@ -242,7 +198,7 @@ int main(int argc, char **argv)
     }
     char **paths;
     size_t n;
-    if (list_folder(dir, &paths, &n) != 0) {
+    if (bench_list_ts(dir, &paths, &n) != 0) {
         fprintf(stderr, "bench_fit: cannot open folder %s\n", dir);
         return 2;
     }
@@ -250,7 +206,7 @@ int main(int argc, char **argv)
     totals tot;
     memset(&tot, 0, sizeof tot);
     size_t nf = 0, failures = 0;
-    double t_start = now();
+    double t_start = bench_now();
     for (size_t i = 0; i < n; i++) {
         if ((match && !strstr(paths[i], match)) || (every > 1 && i % (size_t)every != 0))
             continue;
@@ -263,7 +219,7 @@ int main(int argc, char **argv)
         failures += faults[nf].failed;
         nf++;
     }
-    double t_all = now() - t_start;
+    double t_all = bench_now() - t_start;
 
     size_t within = 0;
     double *rms = malloc((nf ? nf : 1) * sizeof *rms), *mx = malloc((nf ? nf : 1) * sizeof *mx);

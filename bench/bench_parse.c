@@ -7,26 +7,14 @@
  * parsed, wall time on the monotonic clock, MB/s (10^6 bytes), files/s and
  * the time of one pass over the whole set. Any parse error aborts with the
  * reader's message and exit status 1. */
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
 
+#include "bench_common.h"
 #include "fm_tsurf.h"
-
-static int by_name(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Parses every file once; returns bytes parsed or -1 on error. */
 static long long pass(char **paths, size_t n, size_t *tris)
@@ -66,55 +54,34 @@ int main(int argc, char **argv)
     }
     if (repeats < 1)
         repeats = 1;
-    DIR *d = opendir(dir);
-    if (!d) {
-        fprintf(stderr, "bench_parse: cannot open folder %s\n", dir);
+    char **paths = NULL;
+    size_t n = 0;
+    if (bench_list_ts(dir, &paths, &n) != 0) {
+        fprintf(stderr, "bench_parse: cannot read folder %s\n", dir);
         return 1;
     }
-    char **paths = NULL;
-    size_t n = 0, cap = 0;
-    struct dirent *de;
-    while ((de = readdir(d)) != NULL) {
-        size_t len = strlen(de->d_name);
-        if (len < 4 || strcmp(de->d_name + len - 3, ".ts") != 0)
-            continue;
-        if (n == cap) {
-            cap = cap ? 2 * cap : 256;
-            char **p = realloc(paths, cap * sizeof *p);
-            if (!p)
-                return 1;
-            paths = p;
-        }
-        size_t m = strlen(dir) + len + 2;
-        paths[n] = malloc(m);
-        if (!paths[n])
-            return 1;
-        snprintf(paths[n++], m, "%s/%s", dir, de->d_name);
-    }
-    closedir(d);
     if (n == 0) {
         fprintf(stderr, "bench_parse: no .ts file in %s\n", dir);
         return 1;
     }
-    qsort(paths, n, sizeof *paths, by_name);
 
     size_t tris = 0;
     if (repeats > 1 && pass(paths, n, &tris) < 0) /* warm-up */
         return 1;
     int timed = repeats > 1 ? repeats - 1 : 1;
     long long bytes = 0;
-    double best = 1e300, t0 = now();
+    double best = 1e300, t0 = bench_now();
     for (int r = 0; r < timed; r++) {
-        double t = now();
+        double t = bench_now();
         long long b = pass(paths, n, &tris);
         if (b < 0)
             return 1;
-        t = now() - t;
+        t = bench_now() - t;
         if (t < best)
             best = t;
         bytes += b;
     }
-    double secs = now() - t0;
+    double secs = bench_now() - t0;
     double mb = (double)bytes / 1e6;
     printf("folder      %s\n", dir);
     printf("files       %zu x %d passes (%zu triangles per pass)\n", n, timed, tris);
