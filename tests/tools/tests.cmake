@@ -43,3 +43,13 @@ if(FM_SYSTEM_PYTHON)
             ${FM_CFM_DIR}/CFM5.3/500m)
   set_tests_properties(cfm_fit_500m PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 3000)
 endif()
+
+# Fault-set writers: meshio reads the VTU, MSH 4.1 / 2.2, STL and OBJ
+# samples of test_faultset_write and Gmsh opens the MSH files; skipped (77)
+# without Debian's python3-meshio or python3-gmsh.
+if(FM_SYSTEM_PYTHON)
+  add_test(NAME faultset_readers_independent
+    COMMAND ${FM_SYSTEM_PYTHON} ${FM_TOOLS}/check_faultset.py $<TARGET_FILE:test_faultset_write>
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/faultset_readers)
+  set_tests_properties(faultset_readers_independent PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+endif()

@@ -1,0 +1,25 @@
+/* Fault set as VTU: the shared mesh with the fault index per triangle. */
+#include <stdlib.h>
+
+#include "faultset_internal.h"
+
+fm_status fm_faultset_write_vtu(const char *path, const fm_faultset *fs, fm_error *err)
+{
+    fm_status st = fm_faultset_validate(fs, path, err);
+    if (st != FM_OK)
+        return st;
+    fm_vtu_array *cd = malloc((fs->ncell_data + 1) * sizeof *cd);
+    if (!cd)
+        return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    /* Validated: the tags are the fault indices already. */
+    cd[0] = (fm_vtu_array){"fault_id", FM_VTU_INT32, 1, fm_mesh_tags(fs->mesh)};
+    for (size_t i = 0; i < fs->ncell_data; i++)
+        cd[i + 1] = fs->cell_data[i];
+    const char *crs[1] = {fs->crs};
+    fm_vtu_strings fsd[2] = {{"fault_names", fs->names, fs->nfaults}, {"crs", crs, 1}};
+    size_t nfs = fs->crs && fs->crs[0] ? 2 : 1;
+    fm_vtu_content c = {fs->mesh, NULL, 0, cd, fs->ncell_data + 1, fsd, nfs};
+    st = fm_vtu_write(path, &c, err);
+    free(cd);
+    return st;
+}

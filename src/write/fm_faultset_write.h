@@ -1,0 +1,137 @@
+/* faultmesh write: a fault set (every remeshed fault of a run in one mesh)
+ * as VTU, Gmsh MSH 4.1 / 2.2, binary STL, OBJ and one GoCAD TSurf per
+ * fault.
+ *
+ * A fault set is one fm_mesh whose vertices are shared by all faults
+ * (a node on the junction of two faults exists once) and whose triangle
+ * tags are the fault index 0..nfaults-1, plus one UTF-8 name per fault.
+ * Triangles keep the winding they have in the mesh; no writer flips or
+ * re-orients them.
+ *
+ * Every file is written atomically (fm_atomic.h): on failure nothing
+ * appears under the final name and the error names the path. The input
+ * is validated before any byte is written: a triangle with a vertex
+ * outside the mesh, a tag outside 0..nfaults-1, a fault without
+ * triangles (it would vanish silently from STL, OBJ and TSurf), a
+ * non-finite coordinate, a name that is empty, not UTF-8 or holds a
+ * control character (every format puts a name on one text line), or
+ * physical tags that are not distinct and positive: FM_ERR_INVALID or
+ * FM_ERR_NUMERIC. Output is byte-identical for identical input. */
+#ifndef FM_FAULTSET_WRITE_H
+#define FM_FAULTSET_WRITE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fm_core.h"
+#include "fm_mesh.h"
+#include "fm_vtu.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fm_faultset {
+    const fm_mesh *mesh;      /* shared vertices; triangle tag = fault index */
+    const char *const *names; /* nfaults UTF-8 names */
+    size_t nfaults;
+    /* MSH physical tag per fault; NULL means fault index + 1. Simulators
+     * have their own conventions for which tag means what (tandem,
+     * SeisSol, PyLith), so the caller may impose them here. */
+    const int32_t *physical_tags;
+    /* Extra per-triangle arrays passed through to the VTU only (double or
+     * int32, ncomp values per triangle); "fault_id" is taken. */
+    const fm_vtu_array *cell_data;
+    size_t ncell_data;
+    /* Coordinate reference system, e.g. "EPSG:26711"; NULL or "" for none.
+     * Recorded where a format has room: VTU field data "crs", STL header,
+     * OBJ comment. MSH has no place for it and TSurf keeps the CFM's
+     * default coordinate-system block. */
+    const char *crs;
+} fm_faultset;
+
+/* Checks what every writer checks (see above); the writers call it. */
+fm_status fm_faultset_validate(const fm_faultset *fs, const char *path, fm_error *err);
+
+/* VTU: the triangles with Int32 cell data "fault_id" (the tag) and the
+ * extra cell arrays; field data "fault_names" (the names, each followed
+ * by a NUL byte, as fm_vtu.h stores strings) and "crs" when set. */
+fm_status fm_faultset_write_vtu(const char *path, const fm_faultset *fs, fm_error *err);
+
+typedef enum fm_msh_version {
+    FM_MSH_41 = 0, /* Gmsh's current format (the default) */
+    FM_MSH_22      /* the legacy format many simulators still read */
+} fm_msh_version;
+
+/* Gmsh MSH, ASCII. One physical surface per fault (tag from physical_tags
+ * or index + 1, name = the fault name) and, in 4.1, one geometrical
+ * surface entity per fault (tag = index + 1). Node tag = vertex index + 1,
+ * element tag = triangle index + 1 (type 2, the 3-node triangle), so tags
+ * lead straight back to the mesh. Coordinates are the shortest decimal
+ * text that reads back to the same double.
+ *
+ * Only vertices used by some triangle are written (4.1 must place every
+ * node in an entity, and a node of no fault has none); tags keep their
+ * gaps. In 4.1 each node is declared once, in the entity of the lowest
+ * fault using it, and elements of other faults refer to it by tag, which
+ * Gmsh and meshio accept. In 4.1 element blocks go by fault; within a
+ * fault and in 2.2 triangles keep mesh order.
+ *
+ * Physical names: Gmsh reads the text between the first two double
+ * quotes, without escapes, and meshio splits the line shell-style, so '"'
+ * is written as '\'' and '\\' as '/'; names are cut (at a UTF-8 character
+ * boundary) to FM_MSH_NAME_MAX bytes, since Gmsh reads the line into a
+ * fixed 256-byte buffer and loses the rest of the file after a longer one. */
+#define FM_MSH_NAME_MAX 200
+fm_status fm_faultset_write_msh(const char *path, const fm_faultset *fs, fm_msh_version version,
+                                fm_error *err);
+
+/* Binary STL: an 80-byte header naming faultmesh, the fault count and the
+ * CRS (cut to fit; never starting with "solid", which readers take for
+ * ASCII), the triangle count, then per triangle the unit normal of the
+ * triangle as wound (zero if degenerate) and its three corners, all
+ * float32 little-endian, and the 16-bit attribute word holding the low 16
+ * bits of the fault index (readers mostly ignore it; a few take bit 15 as
+ * a colour flag, which indices below 32768 never set).
+ *
+ * float32 cannot hold UTM coordinates exactly: its spacing is 0.25 m
+ * between 2^21 and 2^22 m (2.1e6..4.2e6, most CFM northings) and 0.5 m
+ * above, so corners move by up to 0.125 / 0.25 m. That is inherent in
+ * STL; use MSH, VTU or OBJ when exact coordinates matter. STL has no
+ * shared vertices either: readers merge equal float32 corners. */
+fm_status fm_faultset_write_stl(const char *path, const fm_faultset *fs, fm_error *err);
+
+/* Wavefront OBJ: a comment header (faultmesh, counts, CRS), every vertex
+ * as a "v" line in mesh order (shortest round-trip text), then per fault
+ * "o NAME", "g NAME" and its "f" lines (1-based, mesh order). In NAME
+ * whitespace and '#' become '_', since OBJ names end at whitespace and
+ * some readers strip comments anywhere on a line. */
+fm_status fm_faultset_write_obj(const char *path, const fm_faultset *fs, fm_error *err);
+
+/* One GoCAD TSurf per fault in directory dir (created if missing), with
+ * only that fault's triangles and vertices (renumbered 1..n in mesh order
+ * of the vertices) and HEADER name = the fault name.
+ *
+ * File names (fm_faultset_tsurf_file_names): the name's bytes
+ * A-Z a-z 0-9 '.' '-' '_' are kept, every run of other bytes (spaces,
+ * punctuation, each multi-byte UTF-8 character) becomes one '_', a
+ * leading '.' becomes '_' (no hidden files, no "..") and the result is
+ * cut to 200 bytes; if it then equals, ignoring ASCII case (macOS and
+ * Windows file systems), the name of an earlier fault, "-2", "-3", ... is
+ * appended until it does not; ".ts" ends it.
+ *
+ * Each file is atomic on its own; all objects are built before the first
+ * file is written, so bad input writes nothing, but an I/O failure part
+ * way leaves the files written before it (complete, and named). */
+fm_status fm_faultset_write_tsurf(const char *dir, const fm_faultset *fs, fm_error *err);
+
+/* The nfaults file names (without directory) fm_faultset_write_tsurf
+ * uses, as a malloc'ed array of malloc'ed strings; free with
+ * fm_faultset_free_file_names(). */
+fm_status fm_faultset_tsurf_file_names(const fm_faultset *fs, char ***names, fm_error *err);
+void fm_faultset_free_file_names(char **names, size_t n);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
