@@ -16,6 +16,8 @@
 int fm_cmd_info(int argc, char **argv);
 int fm_cmd_synth(int argc, char **argv);
 int fm_cmd_fit(int argc, char **argv);
+int fm_cmd_remesh(int argc, char **argv);
+int fm_cmd_demo(int argc, char **argv);
 
 /* Consumes argv[*i] (and its value, advancing *i) if it is a repair
  * option: returns 1 if consumed, 0 if not a repair option, -1 on a bad

@@ -12,6 +12,8 @@ static const struct {
 } commands[] = {
     {"info", fm_cmd_info, "read, repair and describe TSurf files"},
     {"fit", fm_cmd_fit, "fit trimmed B-spline models (JSON, IGES, VTU)"},
+    {"remesh", fm_cmd_remesh, "mesh faults at a chosen size (VTU, MSH, STL, OBJ, TSurf)"},
+    {"demo", fm_cmd_demo, "remesh the synthetic fault system (the embedded default)"},
     {"synth", fm_cmd_synth, "generate the synthetic fault system (TSurf)"},
 };
 

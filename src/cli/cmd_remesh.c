@@ -1,0 +1,604 @@
+/* `faultmesh remesh`: every fault of the inputs read, repaired, fitted and
+ * meshed at size H, checked, and written as one fault set (VTU, MSH, STL,
+ * OBJ, one TSurf per fault) with report.json. `faultmesh demo` runs it on
+ * the synthetic fault system. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli.h"
+#include "fm_atomic.h"
+#include "fm_check.h"
+#include "fm_closest.h"
+#include "fm_faultset_write.h"
+#include "fm_json.h"
+#include "fm_model.h"
+#include "fm_remesh.h"
+#include "fm_synth.h"
+#include "fm_tsurf.h"
+
+typedef struct remesh_cli {
+    const char *dir;
+    fm_repair_options repair;
+    fm_model_options model;
+    fm_remesh_options mesh;
+    fm_msh_version msh;
+    const char *crs;
+    int quiet;
+} remesh_cli;
+
+/* What one fault came to, for report.json. */
+typedef struct fault_result {
+    char *file, *name, *error;
+    const char *status; /* "ok", "empty" (nothing below sea level), "error" */
+    size_t sheets;
+    fm_quality q;
+    fm_fidelity fid;
+    fm_remesh_stats ms;
+    double fitted_area;  /* trimmed fitted surface (below sea level when cut), m^2 */
+    double t_fit, t_mesh, t_check;
+} fault_result;
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static char *dup_str(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d)
+        memcpy(d, s, n);
+    return d;
+}
+
+static void remesh_usage(FILE *fp)
+{
+    fprintf(fp,
+            "usage: faultmesh remesh [options] -o DIR FILE|DIR...\n"
+            "Meshes every fault at edge length H with well-shaped triangles on its\n"
+            "fitted surface, cut at sea level by default, and writes DIR/mesh.vtu,\n"
+            "DIR/mesh.msh, DIR/mesh.stl, DIR/mesh.obj, DIR/NAME.ts per fault and\n"
+            "DIR/report.json.\n\n"
+            "options:\n"
+            "  -o, --output DIR      output folder (created if missing)\n"
+            "  --size H              target edge length in metres (default 1000)\n"
+            "  --top cut|keep        cut at sea level (z = 0, default) or keep the fitted top\n"
+            "  --top extend D        extend tops less than D metres below sea level up to it,\n"
+            "                        then cut\n"
+            "  --msh-version 4.1|2.2 Gmsh MSH format version (default 4.1)\n"
+            "  --crs STRING          coordinate reference system recorded in the outputs\n"
+            "                        (default EPSG:26711, the CFM's UTM 11N NAD27)\n"
+            "  --quiet               no per-fault lines\n");
+    fputs(fm_cli_repair_help, fp);
+}
+
+/* Area of a triangle's part with z <= level. */
+static double area_below(const double *a, const double *b, const double *c, double level)
+{
+    const double *p[3] = {a, b, c};
+    double poly[4][3];
+    int n = 0;
+    for (int i = 0; i < 3; i++) {
+        const double *u = p[i], *v = p[(i + 1) % 3];
+        double du = u[2] - level, dv = v[2] - level;
+        if (du <= 0)
+            memcpy(poly[n++], u, sizeof poly[0]);
+        if ((du < 0 && dv > 0) || (du > 0 && dv < 0)) {
+            double f = du / (du - dv);
+            for (int k = 0; k < 3; k++)
+                poly[n][k] = u[k] + f * (v[k] - u[k]);
+            n++;
+        }
+    }
+    double area = 0;
+    for (int i = 1; i + 1 < n; i++)
+        area += fm_triangle_area(poly[0], poly[i], poly[i + 1]);
+    return area;
+}
+
+static double fitted_area(const fm_model *m, int cut, double level)
+{
+    double area = 0;
+    for (size_t i = 0; i < fm_model_nsheets(m); i++) {
+        const fm_mesh *s = fm_model_samples(m, i);
+        if (!s)
+            continue;
+        const double *X = fm_mesh_vertices(s);
+        const int32_t *T = fm_mesh_triangles(s);
+        for (size_t t = 0; t < fm_mesh_ntriangles(s); t++) {
+            const double *a = X + 3 * T[3 * t], *b = X + 3 * T[3 * t + 1], *c = X + 3 * T[3 * t + 2];
+            area += cut ? area_below(a, b, c, level) : fm_triangle_area(a, b, c);
+        }
+    }
+    return area;
+}
+
+/* Remeshes one fault (one TSurf object) into fault (tags = sheet). */
+static fm_status remesh_fault(const remesh_cli *cli, const char *path, const fm_mesh *orig,
+                              fault_result *r, fm_mesh **fault, fm_error *err)
+{
+    fm_surface *surf = NULL;
+    fm_model *model = NULL;
+    double t0 = now();
+    fm_status st = fm_repair(orig, &cli->repair, &surf, err);
+    if (st == FM_OK)
+        st = fm_model_build(path, surf, &cli->model, &model, err);
+    double t1 = now();
+    r->t_fit = t1 - t0;
+    if (st == FM_OK) {
+        fm_remesh_options mo = cli->mesh;
+        mo.name = path;
+        st = fm_remesh_model(model, &mo, fault, &r->ms, err);
+        r->sheets = fm_model_nsheets(model);
+        r->fitted_area = fitted_area(model, cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level);
+    }
+    double t2 = now();
+    r->t_mesh = t2 - t1;
+    if (st == FM_OK && fm_mesh_ntriangles(*fault) > 0) {
+        fm_closest_tree *tree = fm_closest_tree_create(orig, err);
+        st = tree ? fm_check_quality(*fault, -1, cli->mesh.size, &r->q) : FM_ERR_NOMEM;
+        if (st == FM_OK)
+            st = fm_check_fidelity(*fault, -1, tree, &r->fid);
+        if (st != FM_OK && tree)
+            fm_error_set(err, st, path, 0, "out of memory");
+        fm_closest_tree_destroy(tree);
+    }
+    r->t_check = now() - t2;
+    fm_model_destroy(model);
+    fm_surface_destroy(surf);
+    return st;
+}
+
+typedef struct run_state {
+    fm_mesh *set;       /* all faults; tag = fault index */
+    char **names;
+    size_t nfaults;
+    fault_result *res;
+    size_t nres, cap;
+    long failed;
+} run_state;
+
+static fault_result *new_result(run_state *rs)
+{
+    if (rs->nres == rs->cap) {
+        size_t cap = rs->cap ? 2 * rs->cap : 64;
+        fault_result *n = realloc(rs->res, cap * sizeof *n);
+        if (!n)
+            return NULL;
+        rs->res = n;
+        rs->cap = cap;
+    }
+    fault_result *r = &rs->res[rs->nres++];
+    memset(r, 0, sizeof *r);
+    return r;
+}
+
+static void print_fault(const fault_result *r, double H)
+{
+    if (strcmp(r->status, "ok")) {
+        printf("%-64s %s%s%s\n", r->name ? r->name : r->file, r->status, r->error ? ": " : "",
+               r->error ? r->error : "");
+        return;
+    }
+    printf("%-64s %7zu tri  min %5.1f deg  <30 %5.2f%%  edges in band %5.1f%%  node dist "
+           "%5.1f/%6.1f m%s\n",
+           r->name, r->q.triangles, r->q.angle_min,
+           100.0 * (double)r->q.below_30 / (double)(r->q.triangles ? r->q.triangles : 1),
+           100.0 * (double)r->q.edges_in_band / (double)(r->q.edges ? r->q.edges : 1), r->fid.rms,
+           r->fid.max, r->ms.cut ? "  cut" : "");
+    (void)H;
+}
+
+static void process_file(const remesh_cli *cli, const char *path, run_state *rs)
+{
+    fm_tsurf **objs = NULL;
+    size_t nobj = 0;
+    fm_error err;
+    fm_error_clear(&err);
+    if (fm_tsurf_read_file(path, &objs, &nobj, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: %s\n", err.message);
+        fault_result *r = new_result(rs);
+        if (r) {
+            r->file = dup_str(path);
+            r->status = "error";
+            r->error = dup_str(err.message);
+        }
+        rs->failed++;
+        return;
+    }
+    for (size_t o = 0; o < nobj; o++) {
+        fault_result *r = new_result(rs);
+        if (!r) {
+            rs->failed++;
+            continue;
+        }
+        const char *name = fm_tsurf_name(objs[o]);
+        r->file = dup_str(path);
+        r->name = dup_str(name[0] ? name : path);
+        fm_mesh *fault = NULL;
+        fm_error_clear(&err);
+        fm_status st = remesh_fault(cli, path, fm_tsurf_mesh(objs[o]), r, &fault, &err);
+        if (st == FM_OK && fm_mesh_ntriangles(fault) == 0) {
+            r->status = "empty";
+            r->error = dup_str("nothing of the fault lies below sea level");
+        } else if (st == FM_OK) {
+            char **nn = realloc(rs->names, (rs->nfaults + 1) * sizeof *nn);
+            if (nn)
+                rs->names = nn;
+            if (!nn || fm_mesh_append(rs->set, fault, (int32_t)rs->nfaults) != FM_OK) {
+                st = fm_error_set(&err, FM_ERR_NOMEM, path, 0, "out of memory");
+            } else {
+                rs->names[rs->nfaults++] = r->name;
+                r->status = "ok";
+            }
+        }
+        if (st != FM_OK) {
+            fprintf(stderr, "faultmesh: %s\n", err.message);
+            r->status = "error";
+            r->error = dup_str(err.message);
+            rs->failed++;
+        }
+        if (!cli->quiet)
+            print_fault(r, cli->mesh.size);
+        fm_mesh_destroy(fault);
+    }
+    fm_tsurf_free_all(objs, nobj);
+}
+
+static void json_quality(fm_json *j, const fault_result *r, double H)
+{
+    const fm_quality *q = &r->q;
+    fm_json_key(j, "quality");
+    fm_json_begin_object(j);
+    fm_json_kv_number(j, "min_angle_deg", q->angle_min);
+    fm_json_kv_number(j, "mean_min_angle_deg", q->angle_mean);
+    fm_json_kv_int(j, "triangles_below_30_deg", (int64_t)q->below_30);
+    fm_json_kv_int(j, "triangles_below_20_deg", (int64_t)q->below_20);
+    fm_json_kv_int(j, "triangles_below_20_deg_at_sharp_corners", (int64_t)q->below_20_forced);
+    fm_json_kv_int(j, "sharp_corners", (int64_t)q->sharp_corners);
+    fm_json_end_object(j);
+    fm_json_key(j, "size");
+    fm_json_begin_object(j);
+    fm_json_kv_number(j, "target_m", H);
+    fm_json_kv_int(j, "edges", (int64_t)q->edges);
+    fm_json_kv_int(j, "edges_within_0.7_1.4", (int64_t)q->edges_in_band);
+    fm_json_kv_number(j, "edge_min_m", q->edge_min);
+    fm_json_kv_number(j, "edge_p05_m", q->edge_p05);
+    fm_json_kv_number(j, "edge_median_m", q->edge_median);
+    fm_json_kv_number(j, "edge_p95_m", q->edge_p95);
+    fm_json_kv_number(j, "edge_max_m", q->edge_max);
+    fm_json_end_object(j);
+}
+
+static void json_fault(fm_json *j, const fault_result *r, double H)
+{
+    fm_json_begin_object(j);
+    fm_json_kv_string(j, "file", r->file ? r->file : "");
+    if (r->name)
+        fm_json_kv_string(j, "name", r->name);
+    fm_json_kv_string(j, "status", r->status ? r->status : "error");
+    if (r->error)
+        fm_json_kv_string(j, "error", r->error);
+    if (r->status && !strcmp(r->status, "ok")) {
+        fm_json_kv_int(j, "sheets", (int64_t)r->sheets);
+        fm_json_kv_int(j, "triangles", (int64_t)r->q.triangles);
+        fm_json_kv_int(j, "nodes", (int64_t)r->q.nodes);
+        fm_json_kv_number(j, "area_m2", r->q.area);
+        json_quality(j, r, H);
+        fm_json_key(j, "fidelity");
+        fm_json_begin_object(j);
+        fm_json_kv_number(j, "node_to_original_rms_m", r->fid.rms);
+        fm_json_kv_number(j, "node_to_original_max_m", r->fid.max);
+        fm_json_kv_number(j, "fitted_area_m2", r->fitted_area);
+        fm_json_kv_number(j, "coverage", r->fitted_area > 0 ? r->q.area / r->fitted_area : 0);
+        fm_json_end_object(j);
+        fm_json_key(j, "top");
+        fm_json_begin_object(j);
+        fm_json_kv_bool(j, "cut", r->ms.cut);
+        fm_json_kv_int(j, "sea_level_nodes", (int64_t)r->ms.level_points);
+        fm_json_kv_number(j, "z_max_m", r->q.zmax);
+        fm_json_kv_int(j, "nodes_lowered_to_sea_level", (int64_t)r->ms.clamped);
+        fm_json_kv_number(j, "largest_lowering_m", r->ms.clamp_max);
+        fm_json_kv_number(j, "extended_m", r->ms.extended);
+        fm_json_end_object(j);
+        fm_json_key(j, "time_s");
+        fm_json_begin_object(j);
+        fm_json_kv_number(j, "fit", r->t_fit);
+        fm_json_kv_number(j, "mesh", r->t_mesh);
+        fm_json_kv_number(j, "check", r->t_check);
+        fm_json_end_object(j);
+    }
+    fm_json_end_object(j);
+}
+
+static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_error *err)
+{
+    size_t n = strlen(cli->dir) + 32;
+    char *path = malloc(n);
+    if (!path)
+        return fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    snprintf(path, n, "%s/report.json", cli->dir);
+    fm_atomic_file *af = fm_atomic_open(path, err);
+    free(path);
+    if (!af)
+        return err->code;
+    fm_json j;
+    fm_json_init(&j, fm_atomic_stream(af));
+    fm_json_begin_object(&j);
+    fm_json_kv_string(&j, "faultmesh_version", FM_VERSION_STRING);
+    fm_json_key(&j, "options");
+    fm_json_begin_object(&j);
+    fm_json_kv_number(&j, "size_m", cli->mesh.size);
+    fm_json_kv_string(&j, "top", cli->mesh.top == FM_TOP_CUT    ? "cut"
+                                 : cli->mesh.top == FM_TOP_KEEP ? "keep"
+                                                                : "extend");
+    if (cli->mesh.top == FM_TOP_EXTEND)
+        fm_json_kv_number(&j, "top_extend_m", cli->mesh.top_extend);
+    fm_json_kv_string(&j, "crs", cli->crs ? cli->crs : "");
+    fm_json_end_object(&j);
+    fm_json_key(&j, "faults");
+    fm_json_begin_array(&j);
+    size_t tris = 0, below30 = 0, below20 = 0, forced = 0, edges = 0, band = 0, ok = 0;
+    double worst_dist = 0, zmax = -INFINITY;
+    for (size_t i = 0; i < rs->nres; i++) {
+        const fault_result *r = &rs->res[i];
+        json_fault(&j, r, cli->mesh.size);
+        if (!r->status || strcmp(r->status, "ok"))
+            continue;
+        ok++;
+        tris += r->q.triangles;
+        below30 += r->q.below_30;
+        below20 += r->q.below_20;
+        forced += r->q.below_20_forced;
+        edges += r->q.edges;
+        band += r->q.edges_in_band;
+        worst_dist = fmax(worst_dist, r->fid.max);
+        zmax = fmax(zmax, r->q.zmax);
+    }
+    fm_json_end_array(&j);
+    fm_json_key(&j, "summary");
+    fm_json_begin_object(&j);
+    fm_json_kv_int(&j, "faults", (int64_t)rs->nres);
+    fm_json_kv_int(&j, "meshed", (int64_t)ok);
+    fm_json_kv_int(&j, "failed", rs->failed);
+    fm_json_kv_int(&j, "triangles", (int64_t)tris);
+    fm_json_kv_int(&j, "triangles_below_30_deg", (int64_t)below30);
+    fm_json_kv_int(&j, "triangles_below_20_deg", (int64_t)below20);
+    fm_json_kv_int(&j, "triangles_below_20_deg_at_sharp_corners", (int64_t)forced);
+    fm_json_kv_int(&j, "edges", (int64_t)edges);
+    fm_json_kv_int(&j, "edges_within_0.7_1.4", (int64_t)band);
+    fm_json_kv_number(&j, "node_to_original_max_m", worst_dist);
+    fm_json_kv_number(&j, "z_max_m", ok ? zmax : 0);
+    fm_json_end_object(&j);
+    fm_json_end_object(&j);
+    if (!cli->quiet)
+        printf("faults %zu, meshed %zu, failed %ld; triangles %zu, below 30 deg %.3f%%, below 20 "
+               "deg %zu (%zu at sharp corners), edges in [0.7, 1.4] H %.2f%%, worst node "
+               "distance %.1f m\n",
+               rs->nres, ok, rs->failed, tris, tris ? 100.0 * (double)below30 / (double)tris : 0,
+               below20, forced, edges ? 100.0 * (double)band / (double)edges : 0, worst_dist);
+    return fm_atomic_commit(af, err);
+}
+
+static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error *err)
+{
+    fm_faultset fs = {rs->set, (const char *const *)rs->names, rs->nfaults, NULL, NULL, 0,
+                      cli->crs};
+    size_t n = strlen(cli->dir) + 32;
+    char *path = malloc(n);
+    if (!path)
+        return fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    fm_status st = FM_OK;
+    if (rs->nfaults) {
+        snprintf(path, n, "%s/mesh.vtu", cli->dir);
+        st = fm_faultset_write_vtu(path, &fs, err);
+        if (st == FM_OK) {
+            snprintf(path, n, "%s/mesh.msh", cli->dir);
+            st = fm_faultset_write_msh(path, &fs, cli->msh, err);
+        }
+        if (st == FM_OK) {
+            snprintf(path, n, "%s/mesh.stl", cli->dir);
+            st = fm_faultset_write_stl(path, &fs, err);
+        }
+        if (st == FM_OK) {
+            snprintf(path, n, "%s/mesh.obj", cli->dir);
+            st = fm_faultset_write_obj(path, &fs, err);
+        }
+        if (st == FM_OK)
+            st = fm_faultset_write_tsurf(cli->dir, &fs, err);
+    }
+    free(path);
+    return st;
+}
+
+static int run(const remesh_cli *cli, char **files, long nfiles)
+{
+    fm_error err;
+    fm_error_clear(&err);
+    if (fm_mkdir_p(cli->dir, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: %s\n", err.message);
+        return FM_EXIT_FAILURES;
+    }
+    run_state rs = {0};
+    rs.set = fm_mesh_create();
+    if (!rs.set)
+        return FM_EXIT_FAILURES;
+    for (long i = 0; i < nfiles; i++)
+        process_file(cli, files[i], &rs);
+    fm_status st = write_set(cli, &rs, &err);
+    if (st == FM_OK)
+        st = write_report(cli, &rs, &err);
+    if (st != FM_OK) {
+        fprintf(stderr, "faultmesh: %s\n", err.message);
+        rs.failed++;
+    }
+    for (size_t i = 0; i < rs.nres; i++) {
+        free(rs.res[i].file);
+        free(rs.res[i].name);
+        free(rs.res[i].error);
+    }
+    free(rs.res);
+    free(rs.names);
+    fm_mesh_destroy(rs.set);
+    return rs.failed ? FM_EXIT_FAILURES : FM_EXIT_OK;
+}
+
+/* Options shared by remesh and demo; returns 1 if consumed, -1 on error,
+ * 0 if not one of them. */
+static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
+{
+    const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+        if (!val)
+            return -1;
+        cli->dir = val;
+    } else if (!strcmp(a, "--size")) {
+        if (fm_parse_double(a, val, &cli->mesh.size) || !(cli->mesh.size > 0))
+            return -1;
+    } else if (!strcmp(a, "--top")) {
+        if (val && !strcmp(val, "cut")) {
+            cli->mesh.top = FM_TOP_CUT;
+        } else if (val && !strcmp(val, "keep")) {
+            cli->mesh.top = FM_TOP_KEEP;
+        } else if (val && !strcmp(val, "extend")) {
+            cli->mesh.top = FM_TOP_EXTEND;
+            (*i)++;
+            const char *d = *i + 1 < argc ? argv[*i + 1] : NULL;
+            if (fm_parse_double("--top extend", d, &cli->mesh.top_extend))
+                return -1;
+        } else {
+            fprintf(stderr, "faultmesh: --top takes cut, keep or extend D\n");
+            return -1;
+        }
+    } else if (!strcmp(a, "--msh-version")) {
+        if (val && !strcmp(val, "4.1"))
+            cli->msh = FM_MSH_41;
+        else if (val && !strcmp(val, "2.2"))
+            cli->msh = FM_MSH_22;
+        else {
+            fprintf(stderr, "faultmesh: --msh-version takes 4.1 or 2.2\n");
+            return -1;
+        }
+    } else if (!strcmp(a, "--crs")) {
+        if (!val)
+            return -1;
+        cli->crs = val;
+    } else if (!strcmp(a, "--quiet")) {
+        cli->quiet = 1;
+        return 1;
+    } else {
+        return fm_cli_repair_option(argc, argv, i, &cli->repair);
+    }
+    (*i)++;
+    return 1;
+}
+
+static void cli_defaults(remesh_cli *cli)
+{
+    memset(cli, 0, sizeof *cli);
+    fm_repair_options_default(&cli->repair);
+    fm_model_options_default(&cli->model);
+    fm_remesh_options_default(&cli->mesh);
+    cli->msh = FM_MSH_41;
+    cli->crs = "EPSG:26711";
+}
+
+int fm_cmd_remesh(int argc, char **argv)
+{
+    remesh_cli cli;
+    cli_defaults(&cli);
+    char **paths = calloc((size_t)argc, sizeof *paths);
+    size_t npaths = 0;
+    if (!paths)
+        return FM_EXIT_FAILURES;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            remesh_usage(stdout);
+            free(paths);
+            return FM_EXIT_OK;
+        }
+        int c = mesh_option(argc, argv, &i, &cli);
+        if (c < 0 || (c == 0 && a[0] == '-' && a[1])) {
+            if (c == 0)
+                fprintf(stderr, "faultmesh remesh: unknown option '%s'\n", a);
+            else
+                fprintf(stderr, "faultmesh remesh: bad or missing value for '%s'\n", a);
+            free(paths);
+            return FM_EXIT_USAGE;
+        }
+        if (c == 0)
+            paths[npaths++] = argv[i];
+    }
+    if (!cli.dir || npaths == 0) {
+        remesh_usage(stderr);
+        free(paths);
+        return FM_EXIT_USAGE;
+    }
+    char **files = NULL;
+    long nfiles = fm_input_list(paths, npaths, &files);
+    free(paths);
+    if (nfiles < 0)
+        return FM_EXIT_USAGE;
+    int rc = run(&cli, files, nfiles);
+    fm_input_list_free(files, nfiles);
+    return rc;
+}
+
+int fm_cmd_demo(int argc, char **argv)
+{
+    remesh_cli cli;
+    cli_defaults(&cli);
+    /* The synthetic faults are 20 to 60 km long: 1 km triangles show
+     * their shapes and mesh in a second. Local metres, no real CRS. */
+    cli.crs = "local metres (synthetic)";
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            printf("usage: faultmesh demo [options] -o DIR\n"
+                   "Generates the synthetic fault system in DIR/input and remeshes it into DIR\n"
+                   "(same outputs and options as `faultmesh remesh`).\n");
+            return FM_EXIT_OK;
+        }
+        int c = mesh_option(argc, argv, &i, &cli);
+        if (c <= 0) {
+            fprintf(stderr, "faultmesh demo: bad argument '%s'\n", a);
+            return FM_EXIT_USAGE;
+        }
+    }
+    if (!cli.dir) {
+        fprintf(stderr, "usage: faultmesh demo [options] -o DIR\n");
+        return FM_EXIT_USAGE;
+    }
+    size_t n = strlen(cli.dir) + 16;
+    char *in = malloc(n);
+    if (!in)
+        return FM_EXIT_FAILURES;
+    snprintf(in, n, "%s/input", cli.dir);
+    fm_synth_options so;
+    fm_synth_options_default(&so);
+    fm_synth *s = NULL;
+    fm_error err;
+    fm_error_clear(&err);
+    if (fm_synth_create(&so, &s, &err) != FM_OK || fm_synth_write(s, in, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: %s\n", err.message);
+        fm_synth_destroy(s);
+        free(in);
+        return FM_EXIT_FAILURES;
+    }
+    fm_synth_destroy(s);
+    char *args[1] = {in};
+    char **files = NULL;
+    long nfiles = fm_input_list(args, 1, &files);
+    int rc = nfiles < 0 ? FM_EXIT_FAILURES : run(&cli, files, nfiles);
+    if (nfiles >= 0)
+        fm_input_list_free(files, nfiles);
+    free(in);
+    return rc;
+}

@@ -1,0 +1,98 @@
+/* faultmesh mesh: quality triangle meshes of trimmed spline surfaces.
+ *
+ * A sheet of a fault model (fm_model.h) is a B-spline surface S(u, v) and
+ * trimming loops in its (u, v) plane. Its mesh is made in that plane and
+ * measured on the surface:
+ *  1. Domain. The trimming curves are sampled at the target size H,
+ *     measured along the curve in 3D, every corner a node. With the top
+ *     cut (the default) the domain is clipped to z <= sea level: where a
+ *     loop crosses sea level the crossing is found on the curve, and the
+ *     level curve z(u, v) = 0 of the surface is traced through the domain
+ *     from each exit to the next entry (predictor on the level curve's
+ *     tangent, Newton corrector along grad z), so that the top of the mesh
+ *     is a curve of the surface and its nodes lie on z = 0 exactly.
+ *     `extend` first moves the top edge of a fault whose top lies less
+ *     than D below sea level up dip along the surface's extension, past
+ *     sea level, and then cuts.
+ *  2. Constrained Delaunay triangulation of the domain in (u, v) and
+ *     Delaunay refinement under the surface's first fundamental form
+ *     (fm_cdt.h): triangles about H on the surface in 3D, boundary nodes
+ *     placed on the true curves.
+ *  3. Optimisation in 3D with nodes kept on the surface: edge flips that
+ *     raise the smallest 3D angle, and tangential smoothing (each free node
+ *     moved in (u, v) towards the 3D centroid of its neighbours, by a
+ *     Gauss-Newton step through the surface's Jacobian). Every move and
+ *     flip keeps all triangles counter-clockwise in (u, v), tested with the
+ *     exact orient2d, so the mesh never folds; constrained edges never
+ *     change.
+ * Triangles are counter-clockwise in (u, v), so their normals point to the
+ * S_u x S_v side (up for the height fields of dipping faults). */
+#ifndef FM_REMESH_H
+#define FM_REMESH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fm_core.h"
+#include "fm_fit.h"
+#include "fm_mesh.h"
+#include "fm_model.h"
+#include "fm_trim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum fm_top_mode {
+    FM_TOP_CUT = 0,   /* clip at sea level (default) */
+    FM_TOP_KEEP = 1,  /* keep the fitted (topographic) top */
+    FM_TOP_EXTEND = 2 /* extend tops less than top_extend below sea level up to it, then cut */
+} fm_top_mode;
+
+typedef struct fm_remesh_options {
+    const char *name;      /* FILE in messages; may be NULL */
+    double size;           /* target edge length H in metres (> 0) */
+    fm_top_mode top;
+    double top_extend;     /* metres, for FM_TOP_EXTEND */
+    double sea_level;      /* z of the cut, default 0 */
+    int optimise_passes;   /* flip + smooth rounds, default 6 */
+    size_t max_points;     /* safety bound per sheet; 0 = from area / H^2 */
+} fm_remesh_options;
+
+void fm_remesh_options_default(fm_remesh_options *opt);
+
+typedef struct fm_remesh_stats {
+    size_t points, triangles;
+    size_t boundary_points;    /* on trimming curves or the sea-level line */
+    size_t level_points;       /* on the sea-level line (z set to sea level exactly) */
+    size_t clamped;            /* interior nodes a hair above sea level, put on it */
+    double clamp_max;          /* largest such move (m) */
+    size_t flips, smoothed;    /* optimisation moves accepted */
+    size_t collapsed;          /* short edges collapsed */
+    int cut;                   /* 1: the top was cut, 0: wholly below (or keep) */
+    int empty;                 /* 1: nothing of the sheet lies below sea level */
+    double extended;           /* FM_TOP_EXTEND: largest up-dip extension (m) */
+    double time;               /* seconds */
+} fm_remesh_stats;
+
+/* Meshes one trimmed sheet. loops[0] is the outer loop (counter-clockwise
+ * in (u, v)), the rest holes (clockwise). out receives the mesh in 3D
+ * (triangles tagged `tag`); uv_out (may be NULL) the (u, v) of every node
+ * (2 per node, malloc'ed, freed by the caller). A sheet wholly above sea
+ * level with the top cut gives an empty mesh and stats->empty = 1. */
+fm_status fm_remesh_sheet(const fm_fit_surface *s, const fm_trim_loop *const *loops,
+                          size_t nloops, const fm_remesh_options *opt, int32_t tag,
+                          fm_mesh **out, double **uv_out, fm_remesh_stats *stats,
+                          fm_error *err);
+
+/* Meshes every sheet of a fault model into one mesh (triangles tagged
+ * with the model sheet index; sheets are not joined to each other here).
+ * stats (may be NULL) receives the sums over sheets (cut, empty: any /
+ * all sheets; clamp_max, extended: the largest). */
+fm_status fm_remesh_model(const fm_model *m, const fm_remesh_options *opt, fm_mesh **out,
+                          fm_remesh_stats *stats, fm_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

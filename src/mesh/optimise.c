@@ -1,0 +1,317 @@
+/* Optimisation of a surface mesh in 3D with nodes kept on the surface.
+ *
+ * The refinement in (u, v) sees the surface only through a metric frozen
+ * per triangle; the shapes that count are those in 3D. Two moves fix what
+ * that approximation leaves:
+ *  - flips of an edge when the two triangles' smallest 3D angle grows
+ *    (max-min angle, the 3D analogue of Delaunay flips);
+ *  - tangential smoothing: a free node goes towards the mean of its
+ *    neighbours in 3D, brought back onto the surface by Gauss-Newton steps
+ *    in (u, v) through the surface's Jacobian. Accepted when the worst
+ *    angle around it does not get worse than it was (or stays above
+ *    35 degrees), so smoothing never trades quality for evenness.
+ * Both keep every triangle counter-clockwise in (u, v) by the exact
+ * orient2d: the map to 3D is one-to-one, so the mesh cannot fold. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fm_predicates.h"
+#include "remesh_internal.h"
+
+typedef struct opt_mesh {
+    const fm_fit_surface *s;
+    double *uv, *xyz;
+    const unsigned char *fixed;
+    size_t np, nt;
+    int32_t *tri;
+    int32_t *nbr;         /* 3 per triangle: across the edge opposite corner i */
+    unsigned char *cons;  /* 3 per triangle: that edge is constrained */
+} opt_mesh;
+
+typedef struct half {
+    int32_t lo, hi;
+    int32_t t;
+    int32_t i;
+} half;
+
+static int cmp_half(const void *pa, const void *pb)
+{
+    const half *a = pa, *b = pb;
+    if (a->lo != b->lo)
+        return a->lo < b->lo ? -1 : 1;
+    if (a->hi != b->hi)
+        return a->hi < b->hi ? -1 : 1;
+    if (a->t != b->t)
+        return a->t < b->t ? -1 : 1;
+    return (a->i > b->i) - (a->i < b->i);
+}
+
+static int cmp_pair(const void *pa, const void *pb)
+{
+    const int32_t *a = pa, *b = pb;
+    if (a[0] != b[0])
+        return a[0] < b[0] ? -1 : 1;
+    return (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+static fm_status build_adjacency(opt_mesh *m, const int32_t *cons, size_t ncons)
+{
+    half *h = malloc(3 * m->nt * sizeof *h + 1);
+    int32_t *ck = malloc(2 * ncons * sizeof *ck + 1);
+    if (!h || !ck) {
+        free(h);
+        free(ck);
+        return FM_ERR_NOMEM;
+    }
+    for (size_t t = 0; t < m->nt; t++)
+        for (int i = 0; i < 3; i++) {
+            int32_t a = m->tri[3 * t + (i + 1) % 3], b = m->tri[3 * t + (i + 2) % 3];
+            half *e = &h[3 * t + (size_t)i];
+            e->lo = a < b ? a : b;
+            e->hi = a < b ? b : a;
+            e->t = (int32_t)t;
+            e->i = i;
+            m->nbr[3 * t + (size_t)i] = -1;
+            m->cons[3 * t + (size_t)i] = 1; /* boundary until a twin is found */
+        }
+    for (size_t k = 0; k < ncons; k++) {
+        int32_t a = cons[2 * k], b = cons[2 * k + 1];
+        ck[2 * k] = a < b ? a : b;
+        ck[2 * k + 1] = a < b ? b : a;
+    }
+    qsort(h, 3 * m->nt, sizeof *h, cmp_half);
+    qsort(ck, ncons, 2 * sizeof *ck, cmp_pair);
+    for (size_t k = 0; k + 1 < 3 * m->nt; k++) {
+        if (h[k].lo != h[k + 1].lo || h[k].hi != h[k + 1].hi)
+            continue;
+        int32_t key[2] = {h[k].lo, h[k].hi};
+        int c = ncons && bsearch(key, ck, ncons, 2 * sizeof *ck, cmp_pair) != NULL;
+        size_t a = 3 * (size_t)h[k].t + (size_t)h[k].i, b = 3 * (size_t)h[k + 1].t + (size_t)h[k + 1].i;
+        m->nbr[a] = h[k + 1].t;
+        m->nbr[b] = h[k].t;
+        m->cons[a] = m->cons[b] = (unsigned char)c;
+        k++;
+    }
+    free(h);
+    free(ck);
+    return FM_OK;
+}
+
+static double min_angle(const opt_mesh *m, int32_t a, int32_t b, int32_t c)
+{
+    return fm_triangle_min_angle(m->xyz + 3 * a, m->xyz + 3 * b, m->xyz + 3 * c);
+}
+
+static void set_back(opt_mesh *m, int32_t t, int32_t from, int32_t to)
+{
+    if (t < 0)
+        return;
+    for (int k = 0; k < 3; k++)
+        if (m->nbr[3 * t + k] == from) {
+            m->nbr[3 * t + k] = to;
+            return;
+        }
+}
+
+/* Flips the edge opposite corner i of triangle t if that raises the
+ * smallest 3D angle of the pair. Returns 1 when flipped. */
+static int try_flip(opt_mesh *m, int32_t t, int i)
+{
+    int32_t u = m->nbr[3 * t + i];
+    if (u < 0 || m->cons[3 * t + i])
+        return 0;
+    int32_t *T = m->tri + 3 * t, *U = m->tri + 3 * u;
+    int j = 0;
+    while (j < 3 && m->nbr[3 * u + j] != t)
+        j++;
+    if (j == 3)
+        return 0;
+    int32_t a = T[i], b = T[(i + 1) % 3], c = T[(i + 2) % 3], d = U[j];
+    const double *A = m->uv + 2 * a, *B = m->uv + 2 * b, *C = m->uv + 2 * c, *D = m->uv + 2 * d;
+    if (fm_orient2d(A, B, D) <= 0 || fm_orient2d(A, D, C) <= 0)
+        return 0;
+    double before = fmin(min_angle(m, a, b, c), min_angle(m, d, c, b));
+    double after = fmin(min_angle(m, a, b, d), min_angle(m, a, d, c));
+    if (!(after > before + 1e-6))
+        return 0;
+    int32_t N1 = m->nbr[3 * t + (i + 1) % 3], N2 = m->nbr[3 * t + (i + 2) % 3];
+    unsigned char cN1 = m->cons[3 * t + (i + 1) % 3], cN2 = m->cons[3 * t + (i + 2) % 3];
+    int32_t M1 = m->nbr[3 * u + (j + 1) % 3], M2 = m->nbr[3 * u + (j + 2) % 3];
+    unsigned char cM1 = m->cons[3 * u + (j + 1) % 3], cM2 = m->cons[3 * u + (j + 2) % 3];
+    T[0] = a, T[1] = b, T[2] = d;
+    U[0] = a, U[1] = d, U[2] = c;
+    int32_t *nt = m->nbr + 3 * t, *nu = m->nbr + 3 * u;
+    unsigned char *ct = m->cons + 3 * t, *cu = m->cons + 3 * u;
+    nt[0] = M1, nt[1] = u, nt[2] = N2;
+    ct[0] = cM1, ct[1] = 0, ct[2] = cN2;
+    nu[0] = M2, nu[1] = N1, nu[2] = t;
+    cu[0] = cM2, cu[1] = cN1, cu[2] = 0;
+    set_back(m, M1, u, t);
+    set_back(m, N1, t, u);
+    return 1;
+}
+
+static size_t flip_pass(opt_mesh *m)
+{
+    size_t flips = 0;
+    for (int round = 0; round < 8; round++) {
+        size_t f = 0;
+        for (size_t t = 0; t < m->nt; t++)
+            for (int i = 0; i < 3; i++)
+                f += (size_t)try_flip(m, (int32_t)t, i);
+        flips += f;
+        if (!f)
+            break;
+    }
+    return flips;
+}
+
+/* Triangles around every node, as compressed rows. */
+static fm_status incidence(const opt_mesh *m, size_t **start, int32_t **list)
+{
+    size_t *st = calloc(m->np + 1, sizeof *st);
+    int32_t *li = malloc(3 * m->nt * sizeof *li + 1);
+    if (!st || !li) {
+        free(st);
+        free(li);
+        return FM_ERR_NOMEM;
+    }
+    for (size_t k = 0; k < 3 * m->nt; k++)
+        st[m->tri[k] + 1]++;
+    for (size_t v = 0; v < m->np; v++)
+        st[v + 1] += st[v];
+    size_t *fill = malloc((m->np + 1) * sizeof *fill);
+    if (!fill) {
+        free(st);
+        free(li);
+        return FM_ERR_NOMEM;
+    }
+    memcpy(fill, st, (m->np + 1) * sizeof *fill);
+    for (size_t t = 0; t < m->nt; t++)
+        for (int i = 0; i < 3; i++)
+            li[fill[m->tri[3 * t + i]]++] = (int32_t)t;
+    free(fill);
+    *start = st;
+    *list = li;
+    return FM_OK;
+}
+
+/* Smallest 3D angle of the triangles around v, and whether all are
+ * counter-clockwise in (u, v). */
+static double ring_quality(const opt_mesh *m, const int32_t *ring, size_t n, int *valid)
+{
+    double q = 180;
+    *valid = 1;
+    for (size_t k = 0; k < n; k++) {
+        const int32_t *T = m->tri + 3 * ring[k];
+        if (fm_orient2d(m->uv + 2 * T[0], m->uv + 2 * T[1], m->uv + 2 * T[2]) <= 0)
+            *valid = 0;
+        q = fmin(q, min_angle(m, T[0], T[1], T[2]));
+    }
+    return q;
+}
+
+static size_t smooth_pass(opt_mesh *m, const size_t *start, const int32_t *list)
+{
+    size_t moved = 0;
+    for (size_t v = 0; v < m->np; v++) {
+        if (m->fixed[v] || start[v + 1] == start[v])
+            continue;
+        const int32_t *ring = list + start[v];
+        size_t n = start[v + 1] - start[v];
+        double target[3] = {0, 0, 0}, w = 0;
+        /* Area-weighted centroid of the ring's triangles: stays near the
+         * node where the ring is uneven, unlike the plain neighbour mean. */
+        for (size_t k = 0; k < n; k++) {
+            const int32_t *T = m->tri + 3 * ring[k];
+            const double *a = m->xyz + 3 * T[0], *b = m->xyz + 3 * T[1], *c = m->xyz + 3 * T[2];
+            double ar = fm_triangle_area(a, b, c);
+            for (int q = 0; q < 3; q++)
+                target[q] += ar * (a[q] + b[q] + c[q]) / 3.0;
+            w += ar;
+        }
+        if (!(w > 0))
+            continue;
+        for (int q = 0; q < 3; q++)
+            target[q] /= w;
+        int valid;
+        double before = ring_quality(m, ring, n, &valid);
+        double old_uv[2] = {m->uv[2 * v], m->uv[2 * v + 1]};
+        double old_xyz[3] = {m->xyz[3 * v], m->xyz[3 * v + 1], m->xyz[3 * v + 2]};
+        double uv[2] = {old_uv[0], old_uv[1]};
+        for (int it = 0; it < 3; it++) {
+            double P[3], du[3], dv[3];
+            fm_fit_surface_eval(m->s, uv[0], uv[1], P, du, dv);
+            double d[3] = {target[0] - P[0], target[1] - P[1], target[2] - P[2]};
+            double E = du[0] * du[0] + du[1] * du[1] + du[2] * du[2];
+            double F = du[0] * dv[0] + du[1] * dv[1] + du[2] * dv[2];
+            double G = dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2];
+            double r0 = du[0] * d[0] + du[1] * d[1] + du[2] * d[2];
+            double r1 = dv[0] * d[0] + dv[1] * d[1] + dv[2] * d[2];
+            double det = E * G - F * F;
+            if (!(det > 0))
+                break;
+            uv[0] += (G * r0 - F * r1) / det;
+            uv[1] += (E * r1 - F * r0) / det;
+        }
+        m->uv[2 * v] = uv[0];
+        m->uv[2 * v + 1] = uv[1];
+        fm_fit_surface_eval(m->s, uv[0], uv[1], m->xyz + 3 * v, NULL, NULL);
+        double after = ring_quality(m, ring, n, &valid);
+        if (valid && (after >= before - 1e-9 || after >= 35.0)) {
+            moved++;
+        } else {
+            memcpy(m->uv + 2 * v, old_uv, sizeof old_uv);
+            memcpy(m->xyz + 3 * v, old_xyz, sizeof old_xyz);
+        }
+    }
+    return moved;
+}
+
+fm_status optimise_mesh(const fm_fit_surface *s, double *uv, double *xyz, const unsigned char *fixed,
+                        size_t np, int32_t *tri, size_t *nt, const int32_t *cons, size_t ncons,
+                        int passes, double size, opt_result *res)
+{
+    memset(res, 0, sizeof *res);
+    opt_mesh m = {s, uv, xyz, fixed, np, *nt, tri, NULL, NULL};
+    m.nbr = malloc(3 * m.nt * sizeof *m.nbr + 1);
+    m.cons = malloc(3 * m.nt + 1);
+    if (!m.nbr || !m.cons) {
+        free(m.nbr);
+        free(m.cons);
+        return FM_ERR_NOMEM;
+    }
+    fm_status st = build_adjacency(&m, cons, ncons);
+    for (int p = 0; st == FM_OK && p < passes; p++) {
+        /* Collapses first, while the short edges are still short: flips
+         * and smoothing would spread them into slivers. */
+        int nomem = 0;
+        size_t c = collapse_short(uv, xyz, fixed, np, tri, &m.nt, size, &nomem);
+        if (nomem) {
+            st = FM_ERR_NOMEM;
+            break;
+        }
+        res->collapsed += c;
+        if (c)
+            st = build_adjacency(&m, cons, ncons);
+        if (st != FM_OK)
+            break;
+        res->flips += flip_pass(&m);
+        size_t *start = NULL;
+        int32_t *list = NULL;
+        st = incidence(&m, &start, &list);
+        if (st != FM_OK)
+            break;
+        size_t moved = smooth_pass(&m, start, list);
+        res->smoothed += moved;
+        free(start);
+        free(list);
+    }
+    if (st == FM_OK)
+        res->flips += flip_pass(&m);
+    *nt = m.nt;
+    free(m.nbr);
+    free(m.cons);
+    return st;
+}

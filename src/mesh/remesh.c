@@ -1,0 +1,176 @@
+/* One trimmed sheet to a quality mesh: domain, constrained Delaunay
+ * refinement under the surface metric, optimisation in 3D (fm_remesh.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "remesh_internal.h"
+
+void fm_remesh_options_default(fm_remesh_options *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->size = 1000;
+    opt->top = FM_TOP_CUT;
+    opt->top_extend = 2000;
+    opt->sea_level = 0;
+    opt->optimise_passes = 6;
+}
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static fm_status build_domain(const fm_fit_surface *s, const fm_trim_loop *const *loops,
+                              size_t nloops, const fm_remesh_options *opt,
+                              remesh_domain *dom, fm_remesh_stats *st, fm_error *err)
+{
+    remesh_domain d0;
+    fm_status rc = domain_sample(s, loops, nloops, opt->size, &d0, err, opt->name);
+    if (rc != FM_OK)
+        return rc;
+    domain_despike(s, &d0, 30.0);
+    if (opt->top == FM_TOP_EXTEND) {
+        rc = domain_extend_top(s, &d0, opt->sea_level, opt->top_extend, opt->size, &st->extended,
+                               err, opt->name);
+        if (rc != FM_OK) {
+            domain_free(&d0);
+            return rc;
+        }
+    }
+    if (opt->top == FM_TOP_KEEP) {
+        *dom = d0;
+        return FM_OK;
+    }
+    rc = domain_clip(s, loops, &d0, opt->sea_level, opt->size, dom, &st->cut, err, opt->name);
+    domain_free(&d0);
+    return rc;
+}
+
+fm_status fm_remesh_sheet(const fm_fit_surface *s, const fm_trim_loop *const *loops,
+                          size_t nloops, const fm_remesh_options *opt, int32_t tag,
+                          fm_mesh **out, double **uv_out, fm_remesh_stats *st, fm_error *err)
+{
+    double t0 = now();
+    memset(st, 0, sizeof *st);
+    *out = NULL;
+    if (uv_out)
+        *uv_out = NULL;
+    if (!(opt->size > 0) || !isfinite(opt->size))
+        return fm_error_set(err, FM_ERR_INVALID, opt->name, 0, "mesh size must be positive");
+    if (nloops == 0)
+        return fm_error_set(err, FM_ERR_INVALID, opt->name, 0, "sheet without outline");
+    fm_mesh *mesh = fm_mesh_create();
+    if (!mesh)
+        return fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
+    remesh_domain dom = {0};
+    flat_domain fd = {0};
+    fm_cdt *cdt = NULL;
+    double *uv = NULL, *xyz = NULL;
+    unsigned char *fixed = NULL;
+    int32_t *tri = NULL;
+    fm_status rc = build_domain(s, loops, nloops, opt, &dom, st, err);
+    if (rc != FM_OK)
+        goto done;
+    if (dom.n == 0) {
+        st->empty = 1;
+        goto done;
+    }
+    rc = domain_triangulate(s, loops, opt->sea_level, &dom, opt->size, opt->max_points, &fd, &cdt,
+                            err, opt->name);
+    if (rc != FM_OK)
+        goto done;
+
+    size_t np = fm_cdt_npoints(cdt), nt = fm_cdt_ntriangles(cdt), ne = fm_cdt_nedges(cdt);
+    size_t ninput = fm_cdt_ninput(cdt);
+    const int32_t *pseg = fm_cdt_point_segment(cdt);
+    uv = malloc(2 * np * sizeof *uv + 1);
+    xyz = malloc(3 * np * sizeof *xyz + 1);
+    fixed = malloc(np + 1);
+    tri = malloc(3 * nt * sizeof *tri + 1);
+    if (!uv || !xyz || !fixed || !tri)
+        goto nomem;
+    memcpy(uv, fm_cdt_points(cdt), 2 * np * sizeof *uv);
+    memcpy(tri, fm_cdt_triangles(cdt), 3 * nt * sizeof *tri);
+    for (size_t i = 0; i < np; i++) {
+        fixed[i] = pseg[i] >= 0;
+        fm_fit_surface_eval(s, uv[2 * i], uv[2 * i + 1], xyz + 3 * i, NULL, NULL);
+    }
+    opt_result orr;
+    rc = optimise_mesh(s, uv, xyz, fixed, np, tri, &nt, fm_cdt_edges(cdt), ne,
+                       opt->optimise_passes, opt->size, &orr);
+    if (rc != FM_OK)
+        goto nomem;
+    st->flips = orr.flips;
+    st->smoothed = orr.smoothed;
+    st->collapsed = orr.collapsed;
+
+    /* Only nodes used by triangles go out (input points outside the
+     * domain are not). */
+    int32_t *map = malloc(np * sizeof *map + 1);
+    if (!map)
+        goto nomem;
+    for (size_t i = 0; i < np; i++)
+        map[i] = -1;
+    for (size_t k = 0; k < 3 * nt; k++)
+        map[tri[k]] = 0;
+    size_t nout = 0;
+    for (size_t i = 0; i < np; i++)
+        if (map[i] == 0)
+            map[i] = (int32_t)nout++;
+    double *uvo = uv_out ? malloc(2 * nout * sizeof *uvo + 1) : NULL;
+    if ((uv_out && !uvo) || fm_mesh_reserve(mesh, nout, nt) != FM_OK) {
+        free(map);
+        free(uvo);
+        goto nomem;
+    }
+    int cut = opt->top != FM_TOP_KEEP;
+    for (size_t i = 0; i < np; i++) {
+        if (map[i] < 0)
+            continue;
+        double *p = xyz + 3 * i;
+        int on_level = i < ninput ? fd.level[i] : (pseg[i] >= 0 && fd.segs[pseg[i]].kind == SEG_LEVEL);
+        if (cut && on_level) {
+            p[2] = opt->sea_level;
+            st->level_points++;
+        } else if (cut && p[2] > opt->sea_level) {
+            /* A node between two sea-level nodes can sit a hair above
+             * the line where the level curve bends between them. */
+            st->clamp_max = fmax(st->clamp_max, p[2] - opt->sea_level);
+            p[2] = opt->sea_level;
+            st->clamped++;
+        }
+        st->boundary_points += fixed[i];
+        fm_mesh_add_vertex(mesh, p[0], p[1], p[2]);
+        if (uvo)
+            memcpy(uvo + 2 * map[i], uv + 2 * i, 2 * sizeof *uvo);
+    }
+    for (size_t t = 0; t < nt; t++)
+        fm_mesh_add_triangle(mesh, map[tri[3 * t]], map[tri[3 * t + 1]], map[tri[3 * t + 2]], tag);
+    free(map);
+    if (uv_out)
+        *uv_out = uvo;
+    st->points = nout;
+    st->triangles = nt;
+    goto done;
+nomem:
+    rc = fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
+done:
+    fm_cdt_destroy(cdt);
+    flat_free(&fd);
+    domain_free(&dom);
+    free(uv);
+    free(xyz);
+    free(fixed);
+    free(tri);
+    st->time = now() - t0;
+    if (rc != FM_OK) {
+        fm_mesh_destroy(mesh);
+        return rc;
+    }
+    *out = mesh;
+    return FM_OK;
+}

@@ -1,0 +1,121 @@
+/* Internals of the surface mesher (fm_remesh.h): the domain in (u, v) as
+ * closed loops of nodes, each boundary segment knowing the curve it
+ * samples, so that refinement can put new boundary nodes on that curve. */
+#ifndef FM_REMESH_INTERNAL_H
+#define FM_REMESH_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fm_cdt.h"
+#include "fm_remesh.h"
+
+/* What a boundary segment (or node) lies on. */
+typedef enum seg_kind {
+    SEG_TRIM = 0,  /* a trimming curve piece: loop, piece, t from ta to tb */
+    SEG_LEVEL = 1, /* the sea-level curve of the surface */
+    SEG_FREE = 2   /* a straight line in (u, v) (extension sides) */
+} seg_kind;
+
+typedef struct dom_seg {
+    seg_kind kind;
+    int loop;     /* trimming loop (SEG_TRIM) */
+    size_t piece;
+    double ta, tb; /* curve parameters at the segment's two ends (ta < tb) */
+} dom_seg;
+
+typedef struct dom_loop {
+    double *uv;    /* 2 per node */
+    int *level;    /* per node: 1 when it lies on the sea-level curve */
+    dom_seg *seg;  /* seg[i] joins node i to node i + 1 (mod n) */
+    size_t n, cap;
+} dom_loop;
+
+typedef struct remesh_domain {
+    dom_loop *loops;
+    size_t n, cap;
+} remesh_domain;
+
+void domain_free(remesh_domain *d);
+dom_loop *domain_add_loop(remesh_domain *d);
+int loop_push(dom_loop *l, const double uv[2], int level, const dom_seg *seg);
+
+/* Height above sea level (z - level) and its (u, v) gradient. */
+double surface_z(const fm_fit_surface *s, const double uv[2], double level, double grad[2]);
+/* Moves uv along grad z onto z = level (Newton); returns the final |z - level|. */
+double level_project(const fm_fit_surface *s, double uv[2], double level);
+/* 3D distance between the surface points at two parameters. */
+double surface_dist(const fm_fit_surface *s, const double a[2], const double b[2]);
+
+/* The trimming loops sampled at spacing h along their 3D length, every
+ * corner a node. */
+fm_status domain_sample(const fm_fit_surface *s, const fm_trim_loop *const *loops,
+                        size_t nloops, double h, remesh_domain *out, fm_error *err,
+                        const char *name);
+
+/* 1 if segments (a, b) and (c, d) cross, touch or overlap (exact). */
+int segments_cross(const double *a, const double *b, const double *c, const double *d);
+
+/* Removes nodes where a loop turns back on itself (3D angle below
+ * min_angle degrees: a trimming curve that overshoots a corner and
+ * returns), when the chord that replaces them crosses nothing. */
+void domain_despike(const fm_fit_surface *s, remesh_domain *d, double min_angle);
+
+/* in clipped to z <= level; *cut = 1 when anything was above. */
+fm_status domain_clip(const fm_fit_surface *s, const fm_trim_loop *const *loops,
+                      const remesh_domain *in, double level, double h, remesh_domain *out,
+                      int *cut, fm_error *err, const char *name);
+
+/* Moves the top edge of the outer loop up dip past sea level (by at most
+ * `reach` metres of depth) when the top lies less than `reach` below it;
+ * *moved = largest up-dip move (m), 0 when nothing moved. */
+fm_status domain_extend_top(const fm_fit_surface *s, remesh_domain *d, double level,
+                            double reach, double h, double *moved, fm_error *err,
+                            const char *name);
+
+/* The point of a segment's curve at fraction f of its way from a to b
+ * (for a trimming curve: of its parameter range). */
+void segment_point(const fm_fit_surface *s, const fm_trim_loop *const *loops, double level,
+                   const dom_seg *sg, const double a[2], const double b[2], double f,
+                   double out[2]);
+
+/* The domain as one point list: point k is loop node k in loop order,
+ * segment k joins it to the next node of its loop (seg[2k], seg[2k+1]),
+ * segs[k] is that segment's curve and ends[4k..4k+3] its two end points. */
+typedef struct flat_domain {
+    double *uv;
+    int *level;
+    int32_t *seg;
+    dom_seg *segs;
+    double *ends;
+    size_t n;
+} flat_domain;
+void flat_free(flat_domain *f);
+
+/* Flattens dom, triangulates it and refines it at `size` under the
+ * surface metric; caller ids of segments are their flat indices. */
+fm_status domain_triangulate(const fm_fit_surface *s, const fm_trim_loop *const *loops,
+                             double level, const remesh_domain *dom, double size,
+                             size_t max_points, flat_domain *fd, fm_cdt **out, fm_error *err,
+                             const char *name);
+
+/* Where along input segment k (as a fraction of its chord) a point lies. */
+double chord_fraction(const double *ends, const double p[2]);
+
+/* The optimisation stage: flips and smoothing in 3D with nodes on the
+ * surface. fixed[i] != 0: node i does not move; constrained edges are the
+ * pairs in cons (ncons of them). */
+typedef struct opt_result {
+    size_t flips, smoothed, collapsed;
+} opt_result;
+fm_status optimise_mesh(const fm_fit_surface *s, double *uv, double *xyz, const unsigned char *fixed,
+                        size_t np, int32_t *tri, size_t *nt, const int32_t *cons, size_t ncons,
+                        int passes, double size, opt_result *res);
+
+/* One round of collapses of edges shorter than 0.7 size into a free end
+ * (collapse.c); tri is compacted and *nt updated. Returns the count;
+ * *nomem set when memory ran out (nothing changed then). */
+size_t collapse_short(const double *uv, const double *xyz, const unsigned char *fixed, size_t np,
+                      int32_t *tri, size_t *nt, double size, int *nomem);
+
+#endif
