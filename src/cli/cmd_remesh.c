@@ -499,6 +499,15 @@ static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     return 1;
 }
 
+/* `--top extend D` grows tops over the fitted surface's extension, which
+ * must reach that far up dip: D of depth is D / sin(dip) along a fault,
+ * so the margin grows with D (the default 2 km is for closing gaps). */
+static void extend_fit(remesh_cli *cli)
+{
+    if (cli->mesh.top == FM_TOP_EXTEND)
+        cli->model.fit.extend = fmax(cli->model.fit.extend, 1.5 * cli->mesh.top_extend + cli->mesh.size);
+}
+
 static void cli_defaults(remesh_cli *cli)
 {
     memset(cli, 0, sizeof *cli);
@@ -536,6 +545,7 @@ int fm_cmd_remesh(int argc, char **argv)
         if (c == 0)
             paths[npaths++] = argv[i];
     }
+    extend_fit(&cli);
     if (!cli.dir || npaths == 0) {
         remesh_usage(stderr);
         free(paths);
@@ -572,6 +582,7 @@ int fm_cmd_demo(int argc, char **argv)
             return FM_EXIT_USAGE;
         }
     }
+    extend_fit(&cli);
     if (!cli.dir) {
         fprintf(stderr, "usage: faultmesh demo [options] -o DIR\n");
         return FM_EXIT_USAGE;

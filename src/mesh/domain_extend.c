@@ -93,19 +93,34 @@ fm_status domain_extend_top(const fm_fit_surface *s, remesh_domain *d, double le
     fm_fit_surface_domain(s, dom);
     /* Past sea level by a fraction of a triangle, so the cut is clean. */
     double target = level + 0.3 * h;
-    for (size_t i = 0; i < l->n; i++) {
+    /* All or nothing: a top edge moved only in part would be jagged. */
+    double *moved_uv = malloc(2 * l->n * sizeof *moved_uv);
+    if (!moved_uv) {
+        free(top);
+        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
+    }
+    double longest = 0;
+    int ok = 1;
+    for (size_t i = 0; i < l->n && ok; i++) {
+        moved_uv[2 * i] = l->uv[2 * i];
+        moved_uv[2 * i + 1] = l->uv[2 * i + 1];
         if (!top[i])
             continue;
-        double uv[2] = {l->uv[2 * i], l->uv[2 * i + 1]};
-        double len = climb(s, uv, target, h, 4.0 * reach + 2.0 * h, dom);
-        if (len < 0)
-            continue; /* stays where it is: the cut or the outline bound it */
-        l->uv[2 * i] = uv[0];
-        l->uv[2 * i + 1] = uv[1];
+        double len = climb(s, moved_uv + 2 * i, target, h, 4.0 * reach + 2.0 * h, dom);
+        ok = len >= 0;
+        longest = fmax(longest, len);
+    }
+    for (size_t i = 0; ok && i < l->n; i++) {
+        if (!top[i])
+            continue;
+        l->uv[2 * i] = moved_uv[2 * i];
+        l->uv[2 * i + 1] = moved_uv[2 * i + 1];
         l->seg[i].kind = SEG_FREE;
         l->seg[(i + l->n - 1) % l->n].kind = SEG_FREE;
-        *moved = fmax(*moved, len);
     }
+    if (ok)
+        *moved = longest;
+    free(moved_uv);
     free(top);
     return FM_OK;
 }

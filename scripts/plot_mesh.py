@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""Draws the README's pictures of remeshed faults: every fault of a
+`faultmesh remesh` or `faultmesh demo` output in 3D, coloured by fault,
+with the triangle edges, and optionally the original triangulation of one
+fault beside its new mesh.
+
+usage: plot_mesh.py OUT_DIR/mesh.vtu OUT.png [TITLE] [--fault NAME --original FILE.ts]
+Needs Debian's python3-meshio and python3-matplotlib (not needed to build
+or test faultmesh).
+"""
+import sys
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import meshio
+import numpy as np
+from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+
+def read_ts(path):
+    pos, tris = {}, []
+    with open(path, "rb") as f:
+        for raw in f.read().decode("latin-1").splitlines():
+            t = raw.split()
+            if not t:
+                continue
+            if t[0] in ("VRTX", "PVRTX"):
+                pos[int(t[1])] = [float(v) for v in t[2:5]]
+            elif t[0] in ("ATOM", "PATOM"):
+                pos[int(t[1])] = pos[int(t[2])]
+            elif t[0] == "TRGL":
+                tris.append([int(v) for v in t[1:4]])
+    ids = sorted(pos)
+    index = {k: i for i, k in enumerate(ids)}
+    return np.array([pos[k] for k in ids]), np.array([[index[v] for v in t] for t in tris])
+
+
+def names_of(m):
+    raw = bytes(np.asarray(m.field_data["fault_names"]).astype(np.uint8).ravel())
+    return [s.decode() for s in raw.split(b"\0") if s]
+
+
+def draw(ax, p, t, colours, origin, edge="k", lw=0.15):
+    q = (p - np.array([origin[0], origin[1], 0.0])) / 1000.0
+    polys = q[t]
+    pc = Poly3DCollection(polys, facecolors=colours, edgecolors=edge, linewidths=lw)
+    ax.add_collection3d(pc)
+    used = polys.reshape(-1, 3)
+    lo, hi = used.min(axis=0), used.max(axis=0)
+    c, r = (lo + hi) / 2, (hi - lo).max() / 2
+    ax.set_xlim(c[0] - r, c[0] + r)
+    ax.set_ylim(c[1] - r, c[1] + r)
+    ax.set_zlim(lo[2] - 0.5, max(hi[2], 0.0) + 0.5)
+    ax.set_box_aspect((1, 1, 0.45))
+    ax.set_xlabel("east (km)")
+    ax.set_ylabel("north (km)")
+    ax.set_zlabel("z (km)")
+
+
+def main():
+    args = sys.argv[1:]
+    fault = original = None
+    if "--fault" in args:
+        i = args.index("--fault")
+        fault = args[i + 1]
+        del args[i:i + 2]
+    if "--original" in args:
+        i = args.index("--original")
+        original = args[i + 1]
+        del args[i:i + 2]
+    vtu, out = args[0], args[1]
+    title = args[2] if len(args) > 2 else ""
+    m = meshio.read(vtu)
+    p, t = m.points, m.cells_dict["triangle"]
+    fid = np.asarray(m.cell_data["fault_id"][0])
+    names = names_of(m)
+    cmap = plt.get_cmap("tab10")
+    if fault is None:
+        fig = plt.figure(figsize=(11, 7))
+        ax = fig.add_subplot(1, 1, 1, projection="3d")
+        draw(ax, p, t, [cmap(f % 10) for f in fid], p.min(axis=0))
+        ax.view_init(elev=28, azim=-60)
+        ax.set_title(title or "%d faults, %d triangles" % (len(names), len(t)))
+    else:
+        k = names.index(fault)
+        sel = t[fid == k]
+        p0, t0 = read_ts(original)
+        origin = p0.min(axis=0)
+        fig = plt.figure(figsize=(13, 5.2))
+        for j, (pp, tt, label) in enumerate(((p0, t0, "CFM 5.3 triangulation"),
+                                            (p, sel, "faultmesh remesh"))):
+            ax = fig.add_subplot(1, 2, j + 1, projection="3d")
+            draw(ax, pp, tt, "0.85" if j == 0 else "#9ecae1", origin, lw=0.1 if j == 0 else 0.3)
+            ax.view_init(elev=25, azim=-70)
+            ax.set_title(label)
+        fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
+if __name__ == "__main__":
+    main()
