@@ -116,7 +116,8 @@ static fm_status build_contour(const fm_fit_surface *s, double level, const doub
             nk++;
         }
     }
-    qsort(keys, nk, sizeof *keys, cmp_key);
+    if (nk > 1)
+        qsort(keys, nk, sizeof *keys, cmp_key);
     size_t w = 0;
     for (size_t k = 0; k < nk; k++)
         if (w == 0 || keys[k].lo != keys[w - 1].lo || keys[k].hi != keys[w - 1].hi)

@@ -64,7 +64,8 @@ void fm_remesh_options_default(fm_remesh_options *opt);
 typedef struct fm_remesh_stats {
     size_t points, triangles;
     size_t boundary_points;    /* on trimming curves or the sea-level line */
-    size_t level_points;       /* on the sea-level line (z set to sea level exactly) */
+    size_t level_points;       /* on the sea-level line (z set to sea level exactly; also
+                                  outline nodes less than 1 m below it) */
     size_t clamped;            /* interior nodes a hair above sea level, put on it */
     double clamp_max;          /* largest such move (m) */
     size_t flips, smoothed;    /* optimisation moves accepted */

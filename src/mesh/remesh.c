@@ -133,7 +133,10 @@ fm_status fm_remesh_sheet(const fm_fit_surface *s, const fm_trim_loop *const *lo
             continue;
         double *p = xyz + 3 * i;
         int on_level = i < ninput ? fd.level[i] : (pseg[i] >= 0 && fd.segs[pseg[i]].kind == SEG_LEVEL);
-        if (cut && on_level) {
+        /* An outline node within a metre below sea level is on the top
+         * trace of a fault whose original was cut at sea level already:
+         * it goes onto the line, so the top edge is exactly z = 0. */
+        if (cut && (on_level || (fixed[i] && p[2] > opt->sea_level - 1.0))) {
             p[2] = opt->sea_level;
             st->level_points++;
         } else if (cut && p[2] > opt->sea_level) {

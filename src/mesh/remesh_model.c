@@ -46,6 +46,7 @@ fm_status fm_remesh_model(const fm_model *m, const fm_remesh_options *opt, fm_me
         sum.clamp_max = fmax(sum.clamp_max, s.clamp_max);
         sum.flips += s.flips;
         sum.smoothed += s.smoothed;
+        sum.collapsed += s.collapsed;
         sum.cut |= s.cut;
         sum.empty &= s.empty;
         sum.extended = fmax(sum.extended, s.extended);

@@ -53,3 +53,40 @@ if(FM_SYSTEM_PYTHON)
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/faultset_readers)
   set_tests_properties(faultset_readers_independent PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
 endif()
+
+# Remesh (the mesh issue). check_remesh.py recomputes everything from the
+# output files (meshio: VTU, MSH, STL, OBJ; Gmsh: MSH; the TSurf per fault;
+# distances to the original TSurf) and cross-checks report.json; skipped
+# (77) without Debian's python3-meshio, python3-gmsh or the CFM.
+#  - remesh_cli: exit codes, a bad file among good ones, atomic outputs.
+#  - remesh_demo: `faultmesh demo` (MSH 4.1, top cut) and `demo
+#    --msh-version 2.2 --top keep` with every criterion asserted, and two
+#    runs byte-identical.
+#  - cfm_remesh_500m_1000: the CFM 500 m set at H = 1000 m, top cut; every
+#    figure printed, the criteria that hold today asserted
+#    (FM_CFM_REMESH_CRITERIA). -DFM_CFM_REMESH_ALL_CRITERIA=ON asserts all
+#    of them (failures, distance-max, distance-rms, coverage and top do
+#    not hold yet: see the mesh issue).
+add_test(NAME remesh_cli
+  COMMAND bash ${FM_TOOLS}/remesh_cli_test.sh $<TARGET_FILE:faultmesh_cli> ${CMAKE_CURRENT_SOURCE_DIR}/data
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_cli)
+set(FM_CFM_REMESH_CRITERIA "min-angle-30,angle-20,edge-band" CACHE STRING
+    "check_remesh.py criteria asserted by cfm_remesh_500m_1000")
+option(FM_CFM_REMESH_ALL_CRITERIA
+       "cfm_remesh_500m_1000 asserts every criterion of the mesh issue (not all hold yet)" OFF)
+if(FM_SYSTEM_PYTHON)
+  add_test(NAME remesh_demo
+    COMMAND bash ${FM_TOOLS}/remesh_demo_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_demo)
+  set_tests_properties(remesh_demo PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+  if(FM_CFM_REMESH_ALL_CRITERIA)
+    set(fm_remesh_criteria all)
+  else()
+    set(fm_remesh_criteria ${FM_CFM_REMESH_CRITERIA})
+  endif()
+  add_test(NAME cfm_remesh_500m_1000
+    COMMAND bash ${FM_TOOLS}/remesh_cfm_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_remesh_500m_1000 ${FM_CFM_DIR}/CFM5.3/500m
+            --size 1000 -- --size 1000 --top cut --msh-version 4.1 --criteria ${fm_remesh_criteria})
+  set_tests_properties(cfm_remesh_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
+endif()
