@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <pthread.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "fm_atomic.h"
@@ -27,6 +29,7 @@ typedef struct remesh_cli {
     fm_msh_version msh;
     const char *crs;
     int quiet;
+    int jobs;   /* threads; faults are independent until they are connected */
 } remesh_cli;
 
 /* What one fault came to, for report.json. */
@@ -74,6 +77,8 @@ static void remesh_usage(FILE *fp)
             "  --msh-version 4.1|2.2 Gmsh MSH format version (default 4.1)\n"
             "  --crs STRING          coordinate reference system recorded in the outputs\n"
             "                        (default EPSG:26711, the CFM's UTM 11N NAD27)\n"
+            "  -j, --jobs N          threads (default: all cores); the output is the same\n"
+            "                        for any N\n"
             "  --quiet               no per-fault lines\n");
     fputs(fm_cli_repair_help, fp);
 }
@@ -195,29 +200,42 @@ static void print_fault(const fault_result *r, double H)
     (void)H;
 }
 
-static void process_file(const remesh_cli *cli, const char *path, run_state *rs)
+/* One input file's faults, meshed by a worker; merged into the run in
+ * file order, so the output does not depend on which thread did what. */
+typedef struct file_job {
+    const char *path;
+    fault_result *res;  /* per object (one entry if the file could not be read) */
+    fm_mesh **mesh;     /* per object; NULL unless meshed */
+    size_t n;
+} file_job;
+
+static void process_file(const remesh_cli *cli, file_job *job)
 {
     fm_tsurf **objs = NULL;
     size_t nobj = 0;
     fm_error err;
     fm_error_clear(&err);
+    const char *path = job->path;
     if (fm_tsurf_read_file(path, &objs, &nobj, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", err.message);
-        fault_result *r = new_result(rs);
-        if (r) {
-            r->file = dup_str(path);
-            r->status = "error";
-            r->error = dup_str(err.message);
+        job->res = calloc(1, sizeof *job->res);
+        job->mesh = calloc(1, sizeof *job->mesh);
+        if (job->res) {
+            job->n = 1;
+            job->res->file = dup_str(path);
+            job->res->status = "error";
+            job->res->error = dup_str(err.message);
         }
-        rs->failed++;
         return;
     }
+    job->res = calloc(nobj ? nobj : 1, sizeof *job->res);
+    job->mesh = calloc(nobj ? nobj : 1, sizeof *job->mesh);
+    if (!job->res || !job->mesh) {
+        fm_tsurf_free_all(objs, nobj);
+        return;
+    }
+    job->n = nobj;
     for (size_t o = 0; o < nobj; o++) {
-        fault_result *r = new_result(rs);
-        if (!r) {
-            rs->failed++;
-            continue;
-        }
+        fault_result *r = &job->res[o];
         const char *name = fm_tsurf_name(objs[o]);
         r->file = dup_str(path);
         r->name = dup_str(name[0] ? name : path);
@@ -227,28 +245,100 @@ static void process_file(const remesh_cli *cli, const char *path, run_state *rs)
         if (st == FM_OK && fm_mesh_ntriangles(fault) == 0) {
             r->status = "empty";
             r->error = dup_str("nothing of the fault lies below sea level");
+            fm_mesh_destroy(fault);
         } else if (st == FM_OK) {
+            r->status = "ok";
+            job->mesh[o] = fault;
+        } else {
+            r->status = "error";
+            r->error = dup_str(err.message);
+            fm_mesh_destroy(fault);
+        }
+    }
+    fm_tsurf_free_all(objs, nobj);
+}
+
+typedef struct pool {
+    const remesh_cli *cli;
+    file_job *jobs;
+    size_t n, next;
+    pthread_mutex_t mu;
+} pool;
+
+static void *worker(void *arg)
+{
+    pool *p = arg;
+    for (;;) {
+        pthread_mutex_lock(&p->mu);
+        size_t i = p->next++;
+        pthread_mutex_unlock(&p->mu);
+        if (i >= p->n)
+            return NULL;
+        process_file(p->cli, &p->jobs[i]);
+    }
+}
+
+/* Runs the jobs on cli->jobs threads (the calling one included). */
+static void run_jobs(const remesh_cli *cli, file_job *jobs, size_t n)
+{
+    pool p = {cli, jobs, n, 0, PTHREAD_MUTEX_INITIALIZER};
+    size_t nt = cli->jobs > 1 ? (size_t)cli->jobs - 1 : 0;
+    pthread_t *th = nt ? calloc(nt, sizeof *th) : NULL;
+    size_t started = 0;
+    for (size_t k = 0; th && k < nt; k++)
+        if (pthread_create(&th[k], NULL, worker, &p) == 0)
+            started++;
+        else
+            break;
+    worker(&p);
+    for (size_t k = 0; k < started; k++)
+        pthread_join(th[k], NULL);
+    free(th);
+}
+
+/* Merges a job's faults into the run, in order. */
+static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
+{
+    if (!job->res) {
+        fault_result *r = new_result(rs);
+        if (r) {
+            r->file = dup_str(job->path);
+            r->status = "error";
+            r->error = dup_str("out of memory");
+        }
+        rs->failed++;
+        fprintf(stderr, "faultmesh: %s: out of memory\n", job->path);
+        return;
+    }
+    for (size_t o = 0; o < job->n; o++) {
+        fault_result *r = new_result(rs);
+        if (!r) {
+            rs->failed++;
+            continue;
+        }
+        *r = job->res[o];
+        fm_mesh *fault = job->mesh[o];
+        if (fault) {
             char **nn = realloc(rs->names, (rs->nfaults + 1) * sizeof *nn);
             if (nn)
                 rs->names = nn;
             if (!nn || fm_mesh_append(rs->set, fault, (int32_t)rs->nfaults) != FM_OK) {
-                st = fm_error_set(&err, FM_ERR_NOMEM, path, 0, "out of memory");
+                r->status = "error";
+                r->error = dup_str("out of memory");
             } else {
                 rs->names[rs->nfaults++] = r->name;
-                r->status = "ok";
             }
         }
-        if (st != FM_OK) {
-            fprintf(stderr, "faultmesh: %s\n", err.message);
-            r->status = "error";
-            r->error = dup_str(err.message);
+        if (!strcmp(r->status, "error")) {
+            fprintf(stderr, "faultmesh: %s\n", r->error ? r->error : "out of memory");
             rs->failed++;
         }
         if (!cli->quiet)
             print_fault(r, cli->mesh.size);
         fm_mesh_destroy(fault);
     }
-    fm_tsurf_free_all(objs, nobj);
+    free(job->res);
+    free(job->mesh);
 }
 
 static void json_quality(fm_json *j, const fault_result *r, double H)
@@ -429,8 +519,17 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     rs.set = fm_mesh_create();
     if (!rs.set)
         return FM_EXIT_FAILURES;
+    file_job *jobs = calloc(nfiles > 0 ? (size_t)nfiles : 1, sizeof *jobs);
+    if (!jobs) {
+        fm_mesh_destroy(rs.set);
+        return FM_EXIT_FAILURES;
+    }
     for (long i = 0; i < nfiles; i++)
-        process_file(cli, files[i], &rs);
+        jobs[i].path = files[i];
+    run_jobs(cli, jobs, (size_t)nfiles);
+    for (long i = 0; i < nfiles; i++)
+        merge_job(cli, &jobs[i], &rs);
+    free(jobs);
     fm_status st = write_set(cli, &rs, &err);
     if (st == FM_OK)
         st = write_report(cli, &rs, &err);
@@ -489,6 +588,11 @@ static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
         if (!val)
             return -1;
         cli->crs = val;
+    } else if (!strcmp(a, "--jobs") || !strcmp(a, "-j")) {
+        size_t n;
+        if (fm_parse_size(a, val, &n) || n < 1 || n > 1024)
+            return -1;
+        cli->jobs = (int)n;
     } else if (!strcmp(a, "--quiet")) {
         cli->quiet = 1;
         return 1;
@@ -516,6 +620,8 @@ static void cli_defaults(remesh_cli *cli)
     fm_remesh_options_default(&cli->mesh);
     cli->msh = FM_MSH_41;
     cli->crs = "EPSG:26711";
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    cli->jobs = ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;
 }
 
 int fm_cmd_remesh(int argc, char **argv)
