@@ -1,0 +1,77 @@
+/* faultmesh connect: what the files of the stage share. */
+#ifndef FM_CONNECT_INTERNAL_H
+#define FM_CONNECT_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fm_closest.h"
+#include "fm_connect.h"
+
+/* One sheet sampled on its knot lattice (see fm_connect.h). */
+typedef struct cn_sheet {
+    const fm_fit_surface *surf;
+    size_t fault, sheet;
+    double u0, v0, hs;       /* lattice origin and knot spacing */
+    size_t nsu, nsv;         /* spans; nodes (nsu + 1) x (nsv + 1), u fastest */
+    double *xyz;             /* per node */
+    double *sd;              /* per node: signed outline distance (< 0 inside) */
+    double *box;             /* per cell (nsu x nsv): lo[3], hi[3], padded for the bulge */
+    unsigned char *active;   /* per cell */
+    size_t nactive;
+    double lo[3], hi[3];     /* box of the active cells */
+    /* sampled trimming loops, (u, v), all loops one after the other */
+    double *loop_uv;
+    size_t *loop_start;      /* nloops + 1 */
+    size_t nloops;
+    fm_closest_tree *outline;  /* outline segments in 3D (degenerate triangles) */
+    fm_closest_tree *cells;    /* active cell boxes (degenerate triangles lo, hi, lo) */
+    int32_t *cell_id;          /* tree triangle -> cell */
+} cn_sheet;
+
+fm_status cn_sheet_build(const fm_model *m, size_t fault, size_t sheet, double reach,
+                         cn_sheet *out, fm_error *err);
+void cn_sheet_free(cn_sheet *s);
+
+/* 1 when (u, v) lies inside the sampled trimming loops (even-odd). */
+int cn_sheet_inside(const cn_sheet *s, double u, double v);
+/* Signed distance of S(u, v) = xyz to the outline (< 0 inside). */
+double cn_sheet_outline_distance(const cn_sheet *s, double u, double v, const double xyz[3]);
+/* Distance along the straight (u, v) ray from (u, v) in direction d (uv per
+ * metre of 3D length) to where it first leaves the loops, or INFINITY when
+ * that is beyond limit metres. */
+double cn_sheet_ray_exit(const cn_sheet *s, const double uv[2], const double d[2], double limit);
+
+/* Marks the active cells of a that have an active cell of b within margin
+ * (box distance); returns their number. sel has nsu x nsv entries. */
+size_t cn_select_cells(const cn_sheet *a, const cn_sheet *b, double margin, unsigned char *sel);
+
+/* The selected cells subdivided sub x sub and triangulated on one lattice
+ * (shared vertices, shared edges). Edge k of triangle t joins tri[3t + k]
+ * and tri[3t + (k + 1) % 3]. */
+typedef struct cn_zone {
+    size_t nv, nt, ne;
+    double *xyz, *uv, *sd;   /* per vertex */
+    int32_t *tri;            /* 3 per triangle */
+    int32_t *tedge;          /* 3 per triangle: edge ids */
+    int32_t *ev;             /* 2 per edge, lower vertex id first */
+} cn_zone;
+
+fm_status cn_zone_build(const cn_sheet *s, const unsigned char *sel, int sub, cn_zone *z);
+void cn_zone_free(cn_zone *z);
+int cn_subdivision(const cn_sheet *s, double sample_spacing);
+
+/* The zone's triangles clipped to sd <= level, as a triangle soup. */
+fm_mesh *cn_zone_clip(const cn_zone *z, double level);
+
+/* Exact tests with the perturbation rules of fm_connect.h. ids are global
+ * vertex ids that order the vertices (A's below B's). */
+int cn_plane_side(const double *a, const double *b, const double *c, const double *p);
+int cn_edge_crosses_triangle(const double *p, const double *q, int64_t ip, int64_t iq,
+                             const double *const t[3], const int64_t it[3]);
+/* Any intersection between two triangles (no perturbation needed: a touch counts). */
+int cn_triangles_intersect(const double *const a[3], const double *const b[3]);
+
+double cn_now(void);
+
+#endif

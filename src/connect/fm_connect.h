@@ -1,0 +1,185 @@
+/* faultmesh connect: neighbouring faults and the intersection curves of
+ * their fitted surfaces.
+ *
+ * Every sheet of a fault model (fm_model.h) is a B-spline surface S(u, v)
+ * valid over a rectangle that extends about 2 km beyond the sheet, cut by
+ * trimming loops in (u, v). Faults that meet in nature rarely meet in the
+ * data: one stops a few hundred metres short of the other (a gap) or runs
+ * a few hundred metres past it (an overshoot). So both stages work on each
+ * sheet's trimmed surface grown by `reach` metres over its own extension.
+ *
+ * Sampling. Each sheet is sampled once on the lattice of its knots (one
+ * node per knot, over the whole rectangle). Each node carries S and its
+ * signed distance to the trimmed outline: negative inside (point-in-loop
+ * test in (u, v) on the sampled trimming curves, a crossing count per
+ * lattice row), its magnitude the 3D distance to the outline mapped onto
+ * the surface. A knot cell is active when the outline distance at one of
+ * its corners is within reach + half its diagonal; its box bounds S over it
+ * (corners, centre, and a pad for the bulge of the cubic).
+ *
+ * Neighbours (fm_connect_find_pairs). Sheets of different faults whose
+ * active boxes come within `distance` D are candidates (sheet boxes first,
+ * then an AABB tree over each sheet's cell boxes). For each candidate the
+ * knot cells near the other sheet are subdivided into cells of at most
+ * `sample_spacing` and triangulated; the triangles are clipped to the
+ * grown region (outline distance <= reach, interpolated linearly) and to
+ * the trimmed region (<= 0). Whether two clipped meshes cross is decided
+ * with exact orient3d tests; their distance is the smallest vertex-to-mesh
+ * distance both ways (closest-point trees), which for these fine, nearly
+ * flat samples is within a few metres of the true distance. A pair is
+ * reported when its grown surfaces come within D.
+ *
+ * Intersection curves (fm_connect_intersect). The cells of each sheet
+ * whose boxes overlap the other's are subdivided and triangulated on one
+ * lattice, so that neighbouring triangles share edges. An intersection
+ * point is an edge of one mesh crossing a triangle of the other, decided
+ * with exact orient3d on B's vertices moved by a fixed vector of a few
+ * ulps (micrometres) off every axis, because fitted planes and lattices
+ * put whole rows of one mesh's vertices exactly on the other's planes;
+ * remaining exact zeros are broken by rules (a vertex on a plane counts as
+ * above it; an edge on a line of the other mesh goes, by vertex ids, to
+ * one of the two triangles sharing that edge). So each triangle pair meets
+ * in 0 or 2 points (pairs that do not are skipped) and the points chain
+ * into open or closed polylines. Each point is then solved for onto both
+ * surfaces: Newton (with
+ * Levenberg-Marquardt damping, so a small crossing angle slows it but does
+ * not break it) on S_A(uA, vA) - S_B(uB, vB) = 0 with the point held on the
+ * plane through its start across the curve; a point that does not converge
+ * falls back to alternating closest-point projections (fm_fit_project) and
+ * is counted. Curves are cut where they leave either sheet's grown region
+ * (clip_to_reach) or its rectangle, and resampled at `spacing` (3D arc
+ * length), every resampled point solved again. Per point and per sheet the
+ * curve records whether it lies inside the trimmed outline, its signed
+ * outline distance (> 0: in the extension, the gap the sheet must be
+ * extended by to reach the curve), and for inside points the flap: the
+ * distance over the surface, at right angles to the curve, to the outline
+ * on the nearer side (a flap under D is an overshoot to trim).
+ *
+ * Everything is deterministic (fixed orders, no threads); nothing prints.
+ * Limitations: a lattice cell of the fine sampling that contains a closed
+ * curve smaller than itself, or a tangential touch, can be missed; distances
+ * between the sampled meshes are vertex-to-mesh (an edge-to-edge closest
+ * pair between samples counts at its nearer vertex). */
+#ifndef FM_CONNECT_H
+#define FM_CONNECT_H
+
+#include <stddef.h>
+
+#include "fm_core.h"
+#include "fm_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fm_connect_options {
+    double distance;       /* D: pairs whose grown surfaces come this close (m); default 1000 */
+    double reach;          /* growth beyond the outline over the extension (m); < 0 = distance
+                              (default -1) */
+    double sample_spacing; /* largest fine cell (m); default 250 */
+    double spacing;        /* curve point spacing, 3D arc length (m); default 250 */
+    double tolerance;      /* curve points: |S_A - S_B| target (m); default 1e-6 */
+    int clip_to_reach;     /* intersect: keep only curve parts within reach of both
+                              outlines (1, default) or the whole rectangles (0) */
+} fm_connect_options;
+
+void fm_connect_options_default(fm_connect_options *opt);
+
+/* ---- Neighbours ---- */
+
+typedef struct fm_connect_pair {
+    size_t fault_a, sheet_a;  /* fault_a < fault_b (indices into the models array) */
+    size_t fault_b, sheet_b;
+    double distance;          /* grown surfaces: smallest distance found (0: they cross) */
+    int crosses;              /* grown surfaces intersect */
+    double trimmed_distance;  /* trimmed surfaces: smallest distance, INFINITY when more
+                                 than distance + 2 reach */
+    int trimmed_crosses;      /* the trimmed surfaces themselves intersect */
+    double point_a[3], point_b[3]; /* where the grown surfaces are closest (crossing: a
+                                      point near the intersection on each) */
+} fm_connect_pair;
+
+typedef struct fm_connect_pairs fm_connect_pairs;
+
+typedef struct fm_connect_pairs_stats {
+    size_t sheets;            /* sheets sampled */
+    size_t cells;             /* active knot cells */
+    size_t candidates;        /* sheet pairs whose boxes came within D */
+    size_t measured;          /* of those, pairs with cells near each other (meshed) */
+    double time_sample, time_candidates, time_measure; /* seconds (wall clock) */
+} fm_connect_pairs_stats;
+
+/* Finds the pairs among the sheets of models[0 .. n-1] (NULL entries are
+ * skipped). Sorted by fault_a, sheet_a, fault_b, sheet_b. opt may be NULL. */
+fm_status fm_connect_find_pairs(const fm_model *const *models, size_t n,
+                                const fm_connect_options *opt, fm_connect_pairs **out,
+                                fm_error *err);
+void fm_connect_pairs_destroy(fm_connect_pairs *p);
+size_t fm_connect_pairs_count(const fm_connect_pairs *p);
+const fm_connect_pair *fm_connect_pairs_get(const fm_connect_pairs *p, size_t i);
+const fm_connect_pairs_stats *fm_connect_pairs_get_stats(const fm_connect_pairs *p);
+
+/* ---- Intersection curves ---- */
+
+/* How a curve sits on one sheet, by the larger share of its length. */
+typedef enum fm_connect_role {
+    FM_CONNECT_THROUGH = 0,  /* inside the outline, the sheet continues past it by more
+                                than D on both sides */
+    FM_CONNECT_OVERSHOOT = 1,/* inside, but the sheet ends within D beyond it (a flap) */
+    FM_CONNECT_GAP = 2       /* in the extension: the sheet stops short of it */
+} fm_connect_role;
+
+typedef struct fm_connect_side {
+    fm_connect_role role;
+    double length_inside;    /* m of curve inside the trimmed outline */
+    double length_extension; /* m of curve in the extension */
+    double max_gap;          /* largest outline distance of points in the extension (0 if none) */
+    double median_gap;       /* ... their median (0 if none) */
+    double median_flap;      /* inside points whose flap is within D: median flap
+                                (INFINITY if none) */
+    int end_inside[2];       /* first and last point inside the outline */
+} fm_connect_side;
+
+typedef struct fm_connect_curve_info {
+    size_t npoints;
+    int closed;              /* the last point joins the first (not repeated) */
+    double length;           /* 3D polyline length (m) */
+    double min_angle, max_angle, mean_angle; /* crossing angle of the surfaces (degrees) */
+    double max_dist[2];      /* largest |xyz - S(u, v)| of the points, sheet A and B */
+    size_t fallback_points;  /* points solved by alternating projection */
+    size_t unconverged;      /* points left above the tolerance */
+    fm_connect_side side[2]; /* sheet A, sheet B */
+} fm_connect_curve_info;
+
+typedef struct fm_connect_curves fm_connect_curves;
+
+/* Intersection curves of sheet_a of a with sheet_b of b (a and b may be the
+ * same model with different sheets). opt may be NULL. Curves are sorted by
+ * their first point (x, then y, then z); an open curve runs from its end
+ * with the smaller such point. */
+fm_status fm_connect_intersect(const fm_model *a, size_t sheet_a, const fm_model *b,
+                               size_t sheet_b, const fm_connect_options *opt,
+                               fm_connect_curves **out, fm_error *err);
+void fm_connect_curves_destroy(fm_connect_curves *c);
+
+size_t fm_connect_curves_count(const fm_connect_curves *c);
+const fm_connect_curve_info *fm_connect_curve_get_info(const fm_connect_curves *c, size_t i);
+/* Points, 3 doubles each (the mean of S_A and S_B at the solved parameters). */
+const double *fm_connect_curve_points(const fm_connect_curves *c, size_t i, size_t *n);
+/* Parameters on sheet A (side 0) or B (side 1), 2 doubles per point. */
+const double *fm_connect_curve_params(const fm_connect_curves *c, size_t i, int side);
+/* Per point: 1 inside the trimmed outline of that side's sheet. */
+const unsigned char *fm_connect_curve_inside(const fm_connect_curves *c, size_t i, int side);
+/* Per point: signed 3D distance to that sheet's outline (< 0 inside). */
+const double *fm_connect_curve_outline_distance(const fm_connect_curves *c, size_t i,
+                                                int side);
+/* Per point: the flap (see above) for inside points when within D, else INFINITY;
+ * NAN for points outside. */
+const double *fm_connect_curve_flap(const fm_connect_curves *c, size_t i, int side);
+/* Per point: crossing angle of the two surfaces (degrees, 0..90). */
+const double *fm_connect_curve_angles(const fm_connect_curves *c, size_t i);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,305 @@
+/* Neighbours and intersection curves (src/connect): fitted planes crossing
+ * at 90 and 10 degrees against the analytic line, the synthetic system's
+ * T-junction gap and overshoot, and two crossing CFM faults. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "fm_connect.h"
+#include "fm_model.h"
+#include "fm_repair.h"
+#include "fm_synth.h"
+#include "fm_test.h"
+#include "fm_tsurf.h"
+
+#define FM_PI 3.14159265358979323846
+#define X0 400000.0
+#define Y0 3700000.0
+
+/* A vertical plane through (X0, Y0) with horizontal direction (cos az,
+ * sin az), s in [-half, half], z in [zbot, 0], triangles of about h. */
+static fm_mesh *vertical_plane(double az_deg, double half, double zbot, double h)
+{
+    fm_mesh *m = fm_mesh_create();
+    double c = cos(az_deg * FM_PI / 180), s = sin(az_deg * FM_PI / 180);
+    int ns = (int)ceil(2 * half / h), nz = (int)ceil(-zbot / h);
+    for (int j = 0; j <= nz; j++)
+        for (int i = 0; i <= ns; i++) {
+            double t = -half + 2 * half * i / ns, z = zbot * j / nz;
+            fm_mesh_add_vertex(m, X0 + t * c, Y0 + t * s, z);
+        }
+    for (int j = 0; j < nz; j++)
+        for (int i = 0; i < ns; i++) {
+            int32_t a = j * (ns + 1) + i, b = a + 1, d = a + ns + 1, e = d + 1;
+            fm_mesh_add_triangle(m, a, b, e, 0);
+            fm_mesh_add_triangle(m, a, e, d, 0);
+        }
+    return m;
+}
+
+static fm_model *fit_mesh(const char *name, const fm_mesh *m)
+{
+    fm_surface *s = NULL;
+    fm_model *model = NULL;
+    fm_error err;
+    if (fm_repair(m, NULL, &s, &err) != FM_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        return NULL;
+    }
+    if (fm_model_build(name, s, NULL, &model, &err) != FM_OK)
+        fprintf(stderr, "%s\n", err.message);
+    fm_surface_destroy(s);
+    return model;
+}
+
+static void check_points_on_surfaces(const fm_connect_curves *c, const fm_model *a, size_t sa,
+                                     const fm_model *b, size_t sb, double tol)
+{
+    for (size_t i = 0; i < fm_connect_curves_count(c); i++) {
+        size_t n;
+        const double *p = fm_connect_curve_points(c, i, &n);
+        const fm_connect_curve_info *info = fm_connect_curve_get_info(c, i);
+        CHECK(info->max_dist[0] < 1e-3 && info->max_dist[1] < 1e-3);
+        for (size_t k = 0; k < n; k++) {
+            for (int side = 0; side < 2; side++) {
+                const fm_fit_surface *S = fm_model_surface(side ? b : a, side ? sb : sa);
+                const double *uv = fm_connect_curve_params(c, i, side) + 2 * k;
+                double q[3], uvp[2], foot[3], d;
+                fm_fit_surface_eval(S, uv[0], uv[1], q, NULL, NULL);
+                CHECK(fabs(q[0] - p[3 * k]) + fabs(q[1] - p[3 * k + 1]) + fabs(q[2] - p[3 * k + 2]) <
+                      tol);
+                fm_fit_project(S, p + 3 * k, uvp, foot, &d);
+                CHECK(fabs(d) < tol);
+            }
+        }
+    }
+}
+
+/* Two fitted vertical planes crossing along the vertical line through
+ * (X0, Y0) at the given angle. */
+static void planes_at(double angle)
+{
+    fm_mesh *ma = vertical_plane(90.0, 10000, -10000, 500);
+    fm_mesh *mb = vertical_plane(90.0 - angle, 8000, -9000, 500);
+    fm_model *a = fit_mesh("A", ma), *b = fit_mesh("B", mb);
+    CHECK(a && b);
+    if (!a || !b)
+        goto out;
+    fm_error err;
+    fm_connect_pairs *pairs = NULL;
+    const fm_model *models[2] = {a, b};
+    CHECK(fm_connect_find_pairs(models, 2, NULL, &pairs, &err) == FM_OK);
+    CHECK_EQ(fm_connect_pairs_count(pairs), 1);
+    if (fm_connect_pairs_count(pairs) == 1) {
+        const fm_connect_pair *p = fm_connect_pairs_get(pairs, 0);
+        CHECK(p->fault_a == 0 && p->fault_b == 1);
+        CHECK(p->crosses && p->trimmed_crosses);
+        CHECK(p->distance == 0 && p->trimmed_distance == 0);
+    }
+    fm_connect_pairs_destroy(pairs);
+    fm_connect_curves *c = NULL;
+    CHECK(fm_connect_intersect(a, 0, b, 0, NULL, &c, &err) == FM_OK);
+    CHECK_EQ(fm_connect_curves_count(c), 1);
+    if (fm_connect_curves_count(c) == 1) {
+        size_t n;
+        const double *p = fm_connect_curve_points(c, 0, &n);
+        const fm_connect_curve_info *info = fm_connect_curve_get_info(c, 0);
+        double zmin = INFINITY, zmax = -INFINITY, off = 0;
+        for (size_t k = 0; k < n; k++) {
+            off = fmax(off, hypot(p[3 * k] - X0, p[3 * k + 1] - Y0));
+            zmin = fmin(zmin, p[3 * k + 2]);
+            zmax = fmax(zmax, p[3 * k + 2]);
+        }
+        printf("planes %.0f deg: %zu points, z %.1f .. %.1f, off line %.2e m, angle %.3f..%.3f, "
+               "fallback %zu\n",
+               angle, n, zmin, zmax, off, info->min_angle, info->max_angle, info->fallback_points);
+        CHECK(off < 1.0);
+        CHECK(!info->closed);
+        /* grown by reach = 1000 beyond the shallower bottom (-9000) and the tops (0) */
+        CHECK_NEAR(zmin, -10000, 60);
+        CHECK_NEAR(zmax, 1000, 60);
+        CHECK_NEAR(info->min_angle, angle, 0.5);
+        CHECK_NEAR(info->max_angle, angle, 0.5);
+        CHECK(info->unconverged == 0);
+        CHECK(info->side[0].role == FM_CONNECT_THROUGH);
+        CHECK(info->side[1].role == FM_CONNECT_THROUGH);
+        /* spacing */
+        for (size_t k = 0; k + 1 < n; k++) {
+            double l = sqrt(pow(p[3 * k + 3] - p[3 * k], 2) + pow(p[3 * k + 4] - p[3 * k + 1], 2) +
+                            pow(p[3 * k + 5] - p[3 * k + 2], 2));
+            CHECK(l <= 250.0 + 1e-6 && l > 150.0);
+        }
+        check_points_on_surfaces(c, a, 0, b, 0, 1e-3);
+    }
+    fm_connect_curves_destroy(c);
+out:
+    fm_model_destroy(a);
+    fm_model_destroy(b);
+    fm_mesh_destroy(ma);
+    fm_mesh_destroy(mb);
+}
+
+static void test_planes_90(void) { planes_at(90.0); }
+static void test_planes_10(void) { planes_at(10.0); }
+
+/* The synthetic system: the T-junction fault stops 300 m short of the main
+ * fault, the overshooting one runs 400 m past it. */
+static void test_synth(void)
+{
+    fm_synth *sy = NULL;
+    fm_error err;
+    CHECK(fm_synth_create(NULL, &sy, &err) == FM_OK);
+    if (!sy)
+        return;
+    size_t n = fm_synth_nfaults(sy);
+    fm_model **models = calloc(n, sizeof *models);
+    for (size_t i = 0; i < n; i++) {
+        models[i] = fit_mesh(fm_synth_fault_name(sy, i), fm_synth_fault_mesh(sy, i));
+        CHECK(models[i] != NULL);
+    }
+    long main_f = fm_synth_find(sy, "SYNT-MAIN-SS-Main_strike_slip_fault-SYN1");
+    long tj = fm_synth_find(sy, "SYNT-MAIN-TJNC-T_junction_gap_fault-SYN1");
+    long xo = fm_synth_find(sy, "SYNT-MAIN-XOVR-Overshooting_fault-SYN1");
+    CHECK(main_f >= 0 && tj >= 0 && xo >= 0);
+    fm_connect_pairs *pairs = NULL;
+    CHECK(fm_connect_find_pairs((const fm_model *const *)models, n, NULL, &pairs, &err) == FM_OK);
+    int seen_tj = 0, seen_xo = 0;
+    for (size_t i = 0; i < fm_connect_pairs_count(pairs); i++) {
+        const fm_connect_pair *p = fm_connect_pairs_get(pairs, i);
+        printf("pair %zu.%zu - %zu.%zu: distance %.1f crosses %d, trimmed %.1f crosses %d\n",
+               p->fault_a, p->sheet_a, p->fault_b, p->sheet_b, p->distance, p->crosses,
+               p->trimmed_distance, p->trimmed_crosses);
+        CHECK((long)p->fault_a == main_f);
+        if ((long)p->fault_b == tj) {
+            seen_tj = 1;
+            CHECK(p->crosses && !p->trimmed_crosses);
+            CHECK_NEAR(p->trimmed_distance, 300.0, 40.0);
+        } else if ((long)p->fault_b == xo) {
+            seen_xo = 1;
+            CHECK(p->crosses && p->trimmed_crosses);
+        } else {
+            CHECK(0); /* no other pair is meant to meet */
+        }
+    }
+    CHECK(seen_tj && seen_xo);
+    fm_connect_pairs_destroy(pairs);
+    if (main_f >= 0 && tj >= 0 && xo >= 0) {
+        for (int k = 0; k < 2; k++) {
+            long other = k ? xo : tj;
+            fm_connect_curves *c = NULL;
+            CHECK(fm_connect_intersect(models[main_f], 0, models[other], 0, NULL, &c, &err) ==
+                  FM_OK);
+            CHECK_EQ(fm_connect_curves_count(c), 1);
+            if (fm_connect_curves_count(c) != 1) {
+                fm_connect_curves_destroy(c);
+                continue;
+            }
+            const fm_connect_curve_info *info = fm_connect_curve_get_info(c, 0);
+            const fm_connect_side *sm = &info->side[0], *so = &info->side[1];
+            printf("%s: %zu points, length %.0f, angle %.1f, main role %d inside %.0f ext %.0f; "
+                   "other role %d inside %.0f ext %.0f gap %.1f (max %.1f) flap %.1f\n",
+                   k ? "overshoot" : "T-junction", info->npoints, info->length, info->mean_angle,
+                   sm->role, sm->length_inside, sm->length_extension, so->role, so->length_inside,
+                   so->length_extension, so->median_gap, so->max_gap, so->median_flap);
+            CHECK(sm->role == FM_CONNECT_THROUGH);
+            CHECK(sm->length_inside > 10000.0);
+            if (k == 0) {
+                /* the curve lies in the T fault's extension, 300 m past its end */
+                CHECK(so->role == FM_CONNECT_GAP);
+                CHECK(so->length_inside == 0);
+                CHECK_NEAR(so->median_gap, 300.0, 40.0);
+                CHECK_NEAR(info->mean_angle, 90.0, 1.0);
+            } else {
+                /* inside the overshooting fault, with 400 m of it beyond */
+                CHECK(so->role == FM_CONNECT_OVERSHOOT);
+                CHECK(so->length_extension < 0.2 * info->length);
+                /* 400 m from the main fault, so 400 / sin 60 over its own surface */
+                CHECK_NEAR(so->median_flap * sin(info->mean_angle * FM_PI / 180), 400.0, 40.0);
+                CHECK_NEAR(info->mean_angle, 60.0, 1.0);
+            }
+            check_points_on_surfaces(c, models[main_f], 0, models[other], 0, 1e-3);
+            fm_connect_curves_destroy(c);
+        }
+    }
+    for (size_t i = 0; i < n; i++)
+        fm_model_destroy(models[i]);
+    free(models);
+    fm_synth_destroy(sy);
+}
+
+static fm_model *fit_file(const char *path)
+{
+    fm_tsurf **objs = NULL;
+    size_t nobj = 0;
+    fm_error err;
+    if (fm_tsurf_read_file(path, &objs, &nobj, &err) != FM_OK || nobj < 1) {
+        fprintf(stderr, "%s\n", err.message);
+        return NULL;
+    }
+    fm_model *m = fit_mesh(path, fm_tsurf_mesh(objs[0]));
+    fm_tsurf_free_all(objs, nobj);
+    return m;
+}
+
+static int cfm_skipped;
+
+static void test_cfm_santa_monica(void)
+{
+    const char *dir = FM_CFM_DIR "/CFM5.3/500m";
+    char pa[1024], pb[1024];
+    snprintf(pa, sizeof pa, "%s/WTRA-SFFS-SMMT-Santa_Monica_fault_steep-CFM5_500m.ts", dir);
+    snprintf(pb, sizeof pb, "%s/WTRA-SBTS-SMNB-Santa_Monica_thrust_fault-CFM1_500m.ts", dir);
+    FILE *f = fopen(pa, "r");
+    if (!f) {
+        cfm_skipped = 1;
+        return;
+    }
+    fclose(f);
+    fm_model *a = fit_file(pa), *b = fit_file(pb);
+    CHECK(a && b);
+    if (a && b) {
+        const fm_model *models[2] = {a, b};
+        fm_connect_pairs *pairs = NULL;
+        fm_error err;
+        CHECK(fm_connect_find_pairs(models, 2, NULL, &pairs, &err) == FM_OK);
+        CHECK(fm_connect_pairs_count(pairs) >= 1);
+        size_t ncurves = 0;
+        for (size_t i = 0; i < fm_connect_pairs_count(pairs); i++) {
+            const fm_connect_pair *p = fm_connect_pairs_get(pairs, i);
+            printf("SM pair %zu.%zu - %zu.%zu: distance %.1f crosses %d, trimmed %.1f crosses %d\n",
+                   p->fault_a, p->sheet_a, p->fault_b, p->sheet_b, p->distance, p->crosses,
+                   p->trimmed_distance, p->trimmed_crosses);
+            fm_connect_curves *c = NULL;
+            CHECK(fm_connect_intersect(a, p->sheet_a, b, p->sheet_b, NULL, &c, &err) == FM_OK);
+            for (size_t k = 0; k < fm_connect_curves_count(c); k++) {
+                const fm_connect_curve_info *in = fm_connect_curve_get_info(c, k);
+                printf("  curve %zu: %zu points, length %.0f, angle %.1f..%.1f, roles %d %d, "
+                       "max dist %.2e %.2e, fallback %zu\n",
+                       k, in->npoints, in->length, in->min_angle, in->max_angle, in->side[0].role,
+                       in->side[1].role, in->max_dist[0], in->max_dist[1], in->fallback_points);
+                CHECK(in->unconverged == 0);
+            }
+            ncurves += fm_connect_curves_count(c);
+            check_points_on_surfaces(c, a, p->sheet_a, b, p->sheet_b, 1.0);
+            fm_connect_curves_destroy(c);
+        }
+        CHECK(ncurves >= 1);
+        fm_connect_pairs_destroy(pairs);
+    }
+    fm_model_destroy(a);
+    fm_model_destroy(b);
+}
+
+int main(void)
+{
+    static const fm_test_case cases[] = {
+        FM_CASE(test_planes_90),
+        FM_CASE(test_planes_10),
+        FM_CASE(test_synth),
+        FM_CASE(test_cfm_santa_monica),
+    };
+    int rc = fm_test_run(cases, sizeof cases / sizeof cases[0]);
+    if (rc == 0 && cfm_skipped)
+        return FM_TEST_SKIP;
+    return rc;
+}
