@@ -188,7 +188,8 @@ static fm_status solve_all(fm_fit_spd *spd, fm_fit_surface *s, const double *rhs
 }
 
 fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_fit_pmesh *pm, double lambda,
-                                    int chord_passes, const char *name, fm_error *err)
+                                    int chord_passes, double *plain, const char *name,
+                                    fm_error *err)
 {
     double t0 = fm_fit_now();
     int p = s->p, W = 2 * p + 1;
@@ -246,6 +247,8 @@ fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_fit_pmesh *pm, d
     st = fm_fit_spd_factor(n, colptr, rowind, val, &spd, name, err);
     if (st == FM_OK)
         st = solve_all(spd, s, q.rhs, n, name, err);
+    if (st == FM_OK && plain)
+        memcpy(plain, s->coef, (size_t)s->ncomp * n * sizeof *plain);
     double t2 = fm_fit_now();
     s->stats.time_solve += t2 - t1;
     /* The matrix does not change with the heights: each chord pass is one

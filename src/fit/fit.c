@@ -11,6 +11,10 @@
  * solver's memory, not the geometry, is the limit. */
 #define HARD_MAX_COEF ((size_t)4000000)
 
+/* Below this smallest n.w (facets steeper than 73 degrees to the plane) a
+ * height field is also fitted as a parametric surface (fm_fit.h). */
+#define STEEP_DOT 0.3
+
 void fm_fit_options_default(fm_fit_options *opt)
 {
     memset(opt, 0, sizeof *opt);
@@ -22,10 +26,11 @@ void fm_fit_options_default(fm_fit_options *opt)
     opt->max_control_points = 40000;
     opt->target_rms = 4.0;
     opt->target_max = 50.0;
-    opt->max_refinements = 1;
+    opt->max_refinements = 3;
     opt->smoothing = 0.0;
     opt->smoothing_wavelength = 1.0;
     opt->chord_passes = 1;
+    opt->chord_weight = 0.75;
     opt->closest_point_stats = 1;
 }
 
@@ -96,7 +101,7 @@ static size_t spans_for(double width, double s)
 
 typedef struct sample_err {
     const fm_fit_surface *s;
-    int chord;
+    double chord; /* share of the chord term in the fitted values */
     double sum_w, sum_we2;
 } sample_err;
 
@@ -107,8 +112,7 @@ static void add_sample_error(void *ctx, const fm_fit_sample *smp)
     for (int c = 0; c < e->s->ncomp; c++) {
         double d5[5];
         double d = smp->val[c] - fm_fit_component(e->s, c, smp->u, smp->v, d5);
-        if (e->chord)
-            d -= smp->chord[0] * d5[2] + 2 * smp->chord[1] * d5[3] + smp->chord[2] * d5[4];
+        d -= e->chord * (smp->chord[0] * d5[2] + 2 * smp->chord[1] * d5[3] + smp->chord[2] * d5[4]);
         e2 += d * d;
     }
     e->sum_w += smp->weight;
@@ -151,7 +155,7 @@ static void quick_errors(const fm_fit_surface *s, const fm_fit_pmesh *pm, const 
 }
 
 static fm_status compute_stats(fm_fit_surface *s, const fm_fit_pmesh *pm, const double *local,
-                               const unsigned char *used, int closest, int chord)
+                               const unsigned char *used, int closest, double chord)
 {
     fm_fit_stats *st = &s->stats;
     double sw2 = 0, sd2 = 0;
@@ -242,10 +246,12 @@ typedef struct work {
     fm_fit_pmesh pm;
     double *local;         /* 3 per vertex: frame coordinates */
     unsigned char *used;
+    double *plain;         /* the solution without chord correction */
 } work;
 
 static void work_free(work *w)
 {
+    free(w->plain);
     free(w->pm.uv);
     free(w->pm.val);
     free(w->local);
@@ -281,8 +287,25 @@ static fm_status parameterize(fm_fit_surface *s, const fm_mesh *sheet, work *w,
             pm->ncomp = 1;
             double proj = s->frame.mean_dot * s->frame.area;
             s->stats.overlap = proj > 0 ? fm_fit_overlap_area(pm) / proj : 0;
-            if (s->stats.overlap > 0)
+            if (s->stats.overlap > 0) {
                 kind = FM_FIT_PARAMETRIC;
+            } else {
+                /* Parts of the sheet that the plane stacks within two edges
+                 * of each other, at heights a spline on knots of about an
+                 * edge cannot switch between (more than half an edge, and
+                 * steeper than twice the steepest facet, plus one). */
+                double md = s->frame.min_dot, e = s->stats.edge_median;
+                double smax = sqrt(fmax(1 - md * md, 0)) / md;
+                pm->val = malloc(nv * sizeof *pm->val);
+                if (!pm->val)
+                    return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory");
+                for (size_t i = 0; i < nv; i++)
+                    pm->val[i] = w->local[3 * i + 2];
+                s->stats.stacked =
+                    fm_fit_stacked_vertices(pm, w->used, 2 * e, 0.5 * e, 2 * smax + 1);
+                free(pm->val);
+                pm->val = NULL;
+            }
         }
     }
     s->kind = kind;
@@ -337,8 +360,8 @@ static fm_status make_starts(fm_fit_surface *s)
     return FM_OK;
 }
 
-fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_surface **out,
-                       fm_error *err)
+static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
+                                fm_fit_surface **out, fm_error *err)
 {
     fm_fit_options defaults;
     if (!opt) {
@@ -362,6 +385,8 @@ fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_s
         return fm_error_set(err, FM_ERR_INVALID, name, 0, "fit: smoothing_wavelength must be > 0");
     if (opt->chord_passes < 0 || opt->chord_passes > 10)
         return fm_error_set(err, FM_ERR_INVALID, name, 0, "fit: chord_passes must be 0..10");
+    if (!(opt->chord_weight >= 0 && opt->chord_weight <= 1))
+        return fm_error_set(err, FM_ERR_INVALID, name, 0, "fit: chord_weight must be in 0..1");
     if (opt->kind < FM_FIT_AUTO || opt->kind > FM_FIT_PARAMETRIC)
         return fm_error_set(err, FM_ERR_INVALID, name, 0, "fit: unknown kind %d", (int)opt->kind);
     if (opt->max_refinements < 0 || opt->max_refinements > 4 || !(opt->target_rms > 0) ||
@@ -441,10 +466,24 @@ fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_s
         lambda = c * c * c * c;
     }
     s->stats.smoothing = lambda;
+    /* A partial chord correction is the blend of the uncorrected and the
+     * corrected solution (the right-hand side is linear in the values).
+     * The refinement judges the corrected one, which passes through the
+     * vertices where the grid can follow the sheet: the offset the blend
+     * leaves at the vertices is meant, not a sign of too coarse a grid. */
+    int blend = opt->chord_passes > 0 && opt->chord_weight < 1;
+    double prev_rms = INFINITY;
     for (int pass = 0;; pass++) {
         st = make_grid(s, sp, ext, opt->extend, name, err);
+        if (st == FM_OK && blend) {
+            free(w.plain);
+            w.plain = malloc((size_t)s->ncomp * s->nu * s->nv * sizeof *w.plain);
+            if (!w.plain)
+                st = fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory");
+        }
         if (st == FM_OK)
-            st = fm_fit_solve_coefficients(s, &w.pm, lambda, opt->chord_passes, name, err);
+            st = fm_fit_solve_coefficients(s, &w.pm, lambda, opt->chord_passes, w.plain, name,
+                                           err);
         if (st != FM_OK)
             return fail(s, &w, st);
         for (size_t i = 0; i < (size_t)s->ncomp * s->nu * s->nv; i++)
@@ -460,14 +499,32 @@ fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_s
         quick_errors(s, &w.pm, w.local, w.used, &rms, &max);
         if (rms <= opt->target_rms && max <= opt->target_max)
             break;
-        if (grid_size(0.5 * sp, ext, opt->extend, p) > opt->max_control_points)
+        /* Near the targets one halving is worth its cost; a sheet whose
+         * RMS is still twice the target may halve again, and on up to twice
+         * the budget (a single far vertex, a flap of a triangle or two, is
+         * not worth a grid four times as large). */
+        int far = rms > 2 * opt->target_rms;
+        /* ... and only while halving pays: a sheet whose misfit is not at
+         * the scale of the knots (a fold of a few triangles, a distorted
+         * map) gains nothing from a finer grid but its cost. */
+        if (pass >= 1 && (!far || rms > 0.8 * prev_rms))
+            break;
+        prev_rms = rms;
+        size_t budget = far ? 2 * opt->max_control_points : opt->max_control_points;
+        if (grid_size(0.5 * sp, ext, opt->extend, p) > budget)
             break;
         sp *= 0.5;
+    }
+    if (blend) {
+        double cw = opt->chord_weight;
+        for (size_t i = 0; i < (size_t)s->ncomp * s->nu * s->nv; i++)
+            s->coef[i] = cw * s->coef[i] + (1 - cw) * w.plain[i];
     }
     if (s->kind == FM_FIT_PARAMETRIC && make_starts(s) != FM_OK)
         return fail(s, &w, fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory"));
     double t_solved = fm_fit_now();
-    compute_stats(s, &w.pm, w.local, w.used, opt->closest_point_stats, opt->chord_passes > 0);
+    compute_stats(s, &w.pm, w.local, w.used, opt->closest_point_stats,
+                  opt->chord_passes > 0 ? opt->chord_weight : 0.0);
     double t_end = fm_fit_now();
     fm_fit_stats *fs = &s->stats;
     fs->time_frame = t_frame - t_start;
@@ -475,5 +532,45 @@ fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_s
     fs->time_total = t_end - t_start;
     work_free(&w);
     *out = s;
+    return FM_OK;
+}
+
+/* How far a fit is from its targets: the worse of the vertex RMS and
+ * largest distance, each over its target (true distances when measured). */
+static double fit_score(const fm_fit_stats *st, const fm_fit_options *opt)
+{
+    double rms = st->rms_dist > 0 ? st->rms_dist : st->rms_w;
+    double max = st->max_dist > 0 ? st->max_dist : st->max_w;
+    return fmax(rms / opt->target_rms, max / opt->target_max);
+}
+
+fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_surface **out,
+                       fm_error *err)
+{
+    fm_fit_options defaults;
+    if (!opt) {
+        fm_fit_options_default(&defaults);
+        opt = &defaults;
+    }
+    fm_status st = fit_sheet_kind(sheet, opt, out, err);
+    if (st != FM_OK || opt->kind != FM_FIT_AUTO || (*out)->kind != FM_FIT_HEIGHT_FIELD ||
+        !((*out)->frame.min_dot < STEEP_DOT || (*out)->stats.stacked > 0) ||
+        fit_score(&(*out)->stats, opt) <= 1)
+        return st;
+    /* A steep or stacked height field that misses the targets (see
+     * fm_fit.h): the parametric kind too, and the closer of the two to the
+     * targets. */
+    fm_fit_options po = *opt;
+    po.kind = FM_FIT_PARAMETRIC;
+    fm_fit_surface *alt = NULL;
+    fm_error e2;
+    if (fit_sheet_kind(sheet, &po, &alt, &e2) != FM_OK)
+        return FM_OK;
+    if (fit_score(&alt->stats, opt) < fit_score(&(*out)->stats, opt)) {
+        fm_fit_surface_destroy(*out);
+        *out = alt;
+    } else {
+        fm_fit_surface_destroy(alt);
+    }
     return FM_OK;
 }

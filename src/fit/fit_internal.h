@@ -142,14 +142,23 @@ fm_status fm_fit_convex_map(const fm_mesh *sheet, double *uv, const char *name, 
  * sheet the map folds over another part. */
 double fm_fit_overlap_area(const fm_fit_pmesh *pm);
 
+/* Vertices (of those marked used) with a vertex within `radius` in the
+ * plane whose height (pm->val, one per vertex) differs by more than min_dh
+ * and more than `slope` times their distance there: parts of the sheet
+ * that the projection stacks close together. */
+size_t fm_fit_stacked_vertices(const fm_fit_pmesh *pm, const unsigned char *used, double radius,
+                               double min_dh, double slope);
+
 /* --- assemble.c / solve.c --- */
 
 /* Fills s->coef by least squares on the samples with the thin-plate
  * smoothing weight lambda; chord_passes more solves with the sample values
- * corrected by the chord term of the previous solution. Adds to the
- * samples count and the assemble and solve times of s->stats. */
+ * corrected by the chord term of the previous solution. When plain is not
+ * NULL it receives the first, uncorrected solution (ncomp nu nv values).
+ * Adds to the samples count and the assemble and solve times of s->stats. */
 fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_fit_pmesh *pm, double lambda,
-                                    int chord_passes, const char *name, fm_error *err);
+                                    int chord_passes, double *plain, const char *name,
+                                    fm_error *err);
 
 /* A factored symmetric positive definite matrix (CHOLMOD). */
 typedef struct fm_fit_spd fm_fit_spd;

@@ -30,8 +30,19 @@
  * A sheet with a few folded triangles (data defects) and no overlap of the
  * conformal map fits as well either way (measured on CFM 5.3); the rule
  * still sends it to the parametric kind, whose parameters stay one-to-one
- * for the trimming curves. fm_fit_sheet_vertex_params gives every sheet
- * vertex's (u, v) in either kind.
+ * for the trimming curves. Two kinds of sheet pass that rule as height
+ * fields and still fit badly as one: a steep sheet (min n.W below 0.3,
+ * facets over 73 degrees to the plane, where a height misfit is more than
+ * three times the distance and the spline must turn almost parallel to W)
+ * and a stacked one (stats.stacked: the plane puts two parts of the sheet
+ * within two median edges of each other at heights that differ by more
+ * than half an edge and by more than 2 s + 1 times their distance there,
+ * s the slope of the steepest facet: a spline on knots of about an edge
+ * cannot switch between them). When such a height field misses the
+ * refinement targets, the sheet is also fitted as the parametric kind,
+ * and the fit closer to the targets (the larger of vertex RMS / target_rms
+ * and largest distance / target_max) is kept. fm_fit_sheet_vertex_params
+ * gives every sheet vertex's (u, v) in either kind.
  *
  * Reference direction W: the unit direction that maximises the smallest
  * n.W over the triangle normals. That optimum is the normalised
@@ -72,7 +83,16 @@
  *    corrugation), and fitting facets would bake that in. After the first
  *    solve each sample height is moved by the second-order chord term
  *    computed from the fit's own curvature, and the system is solved again
- *    with the same factor (chord_passes, default 1).
+ *    with the same factor (chord_passes, default 1). The surface kept is
+ *    the blend chord_weight (0.75) of that solution and 0.25 of the
+ *    uncorrected one (which is what moving the heights by 0.75 of the term
+ *    gives, the system being linear): between the vertices the facets and
+ *    the smooth surface through the vertices are both readings of the
+ *    fault, and the fit is measured against both. On CFM 5.3 at 500 m the
+ *    full term leaves a median per-fault RMS of 1.8 m vertices -> surface
+ *    but 3.3 m surface -> facets; on a smooth synthetic S-fold the surface
+ *    departs from the analytic one by 2.9 m RMS with the full term, 4.2 m
+ *    with 0.75 and 6.4 m with half of it.
  *  - omega_span is the area mean over the span of (1 + |grad h|^2)^(-5/2)
  *    of the facets in it: the height-field energy overstates the bending of
  *    a surface that is steep in the plane by that factor (squared curvature
@@ -97,14 +117,21 @@
  *    the surface are estimated (to its tangent plane at their parameters,
  *    first order, no projection); while their RMS exceeds target_rms
  *    (4 m) or their maximum target_max (50 m), the spacing is halved and
- *    the sheet refitted, at most max_refinements (1) times and only while
- *    the grid stays within max_control_points. Measured on CFM 5.3 at
- *    500 m (bench/bench_fit): knots at 2e leave a median per-fault RMS of
- *    9.6 m (the 500 m meshes carry kinks at the scale of their coarse
- *    originals, which a cubic on 1 km knots cannot follow); at e it is
- *    3.0 m with 91 % of faults within 10 m RMS / 100 m max, and the one
- *    refinement to e/2 of the ~12 % of sheets that miss the targets brings
- *    that to 98 %. An explicit knot_spacing turns the refinement off.
+ *    the sheet refitted: once while the grid stays within
+ *    max_control_points, and again (at most max_refinements (3) halvings
+ *    in all) only while the RMS is still over twice target_rms and the
+ *    last halving cut it by a fifth at least, within twice
+ *    max_control_points: the few sheets that far off are worth a finer
+ *    grid, the many just over the target are not (each halving quadruples
+ *    the grid). These errors are those of the fully chord-corrected
+ *    solution (see chord_weight). Measured on CFM 5.3 at 500 m (bench/bench_fit):
+ *    knots at 2e leave a median per-fault RMS of 9.6 m (the 500 m meshes
+ *    carry kinks at the scale of their coarse originals, which a cubic on
+ *    1 km knots cannot follow); at e it is 3.0 m with 91 % of faults within
+ *    10 m RMS / 100 m max, and the one refinement to e/2 of the ~12 % of
+ *    sheets that miss the targets brings that to 98 %; the further
+ *    halvings take in small cut pieces and large sheets that the budget
+ *    held at e. An explicit knot_spacing turns the refinement off.
  *  - lambda = (beta e / (2 pi))^4 with beta = smoothing_wavelength (1.0).
  *    For dense data this smoothing spline passes a height wave of
  *    wavelength L with gain 1 / (1 + (beta e / L)^4): waves of one edge
@@ -183,10 +210,11 @@ typedef struct fm_fit_options {
     size_t max_control_points; /* bound for the automatic spacing, default 40000 */
     double target_rms;      /* refinement goal for the vertex RMS distance (m), default 4 */
     double target_max;      /* ... and for the largest one (m), default 50 */
-    int max_refinements;    /* halvings of the automatic spacing, 0..4, default 1 */
+    int max_refinements;    /* halvings of the automatic spacing, 0..4, default 3 (see above) */
     double smoothing;       /* lambda (m^4); 0 = automatic (default) */
     double smoothing_wavelength; /* beta of the automatic rule, default 1.0 */
     int chord_passes;       /* refits with chord-corrected sample heights, 0..10; default 1 */
+    double chord_weight;    /* share of the chord correction applied, 0..1; default 0.75 */
     int closest_point_stats; /* 1: also true distances (one projection per vertex); default 1 */
 } fm_fit_options;
 
@@ -216,6 +244,8 @@ typedef struct fm_fit_stats {
     double rms_dist, max_dist;   /* vertices: distance to the closest surface point
                                     (0 when closest_point_stats is off) */
     size_t projection_failures;  /* vertices whose projection did not converge */
+    size_t stacked;              /* height field: vertices the plane stacks near a far
+                                    part of the sheet (see above) */
     double time_frame, time_param, time_assemble, time_solve, time_stats, time_total;
 } fm_fit_stats;
 

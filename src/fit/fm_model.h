@@ -7,7 +7,14 @@
  * sampling of the trimmed surface (for viewing and measuring) and the fit
  * report: distances both ways between the model and the original
  * triangulation, and the deviation of the trimmed outline from the
- * original one. */
+ * original one.
+ *
+ * The trimming curves run through the parameters of the surface points
+ * closest to the boundary vertices, not through the vertices' own
+ * parameters (fm_fit_sheet_vertex_params): where a height field is steep
+ * or a parametric map distorted, the surface point at a vertex's own
+ * parameters lies hundreds of metres from it although the surface passes
+ * within metres, and the outline would follow that offset. */
 #ifndef FM_MODEL_H
 #define FM_MODEL_H
 

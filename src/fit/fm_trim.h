@@ -22,8 +22,16 @@
  * by index), each suppressing weaker candidates closer than one window
  * along the loop. The window defaults to two median point spacings: the
  * smallest that holds a full stair-step on each side. A smooth bend of
- * radius below about window / angle (1.6 km for 500 m points) is, at that
+ * radius below about window / angle (1.9 km for 500 m points) is, at that
  * point density, indistinguishable from a corner and is taken as one.
+ * The turning peaks over a window, and a stair-step next to the apex can
+ * move the peak a vertex off it, where a curve pinned to the wrong vertex
+ * cuts the real apex by most of an edge (110 to 160 m on CFM faults); so
+ * each corner then moves to its apex: of the vertices within half a window,
+ * the one farthest from the chord between the loop points a window before
+ * and after (unless that brings it within half a window of another
+ * corner). 30 degrees: at 35 the bends of 30 to 35 degrees between a
+ * fault's trace and its lateral edges were rounded off by over 100 m.
  *
  * Curves. The loop is split at its corners; each piece is a clamped cubic
  * B-spline whose end points are the corner vertices exactly, so pieces join
@@ -86,7 +94,7 @@ extern "C" {
 typedef struct fm_trim_options {
     const char *name;        /* used as FILE in error messages; may be NULL */
     double tolerance;        /* metres, systematic deviation target; default 50 */
-    double corner_angle;     /* degrees of turning over the window; default 35 */
+    double corner_angle;     /* degrees of turning over the window; default 30 */
     double corner_window;    /* metres each side; 0 = 2 median point spacings (default) */
     double knot_spacing;     /* metres; 0 = knot_factor x median point spacing (default) */
     double knot_factor;      /* default 3.0 */

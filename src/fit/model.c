@@ -387,6 +387,39 @@ static fm_status build_loop_samples(const sheet_model *sm, double spacing, loop_
     return FM_OK;
 }
 
+/* The parameters of the boundary vertices moved to their closest surface
+ * points (see fm_model.h): a vertex's own parameters put it where the fit
+ * is, not where the surface is nearest to it. Across a steep flank of a
+ * height field a small height misfit is a long way along w, and a
+ * parametric fit drifts along itself where its map is distorted (corners
+ * squeezed by the map); a trimming curve through the own parameters then
+ * runs hundreds of metres off the original outline in 3D although the
+ * surface passes within metres of it. Only a projection that converged
+ * and comes closer is taken. */
+static void snap_boundary(const fm_fit_surface *surf, const fm_surface *s, size_t sheet,
+                          double *uv)
+{
+    const fm_mesh *mesh = fm_surface_sheet_mesh(s, sheet);
+    const double *X = fm_mesh_vertices(mesh);
+    const fm_fit_frame *fr = fm_fit_surface_frame(surf);
+    size_t nl = fm_surface_sheet_nloops(s, sheet);
+    for (size_t k = 0; k < nl; k++) {
+        size_t np;
+        const int32_t *lv = fm_surface_sheet_loop(s, sheet, k, &np);
+        for (size_t q = 0; q < np; q++) {
+            double *t = uv + 2 * lv[q], loc[3], P[3], d, w[2] = {t[0], t[1]};
+            fm_fit_frame_to_local(fr, X + 3 * lv[q], loc);
+            fm_fit_local_eval(surf, t[0], t[1], P, NULL);
+            double d0 = sqrt((P[0] - loc[0]) * (P[0] - loc[0]) + (P[1] - loc[1]) * (P[1] - loc[1]) +
+                             (P[2] - loc[2]) * (P[2] - loc[2]));
+            if (fm_fit_project_from(surf, loc, w, P, &d) == FM_OK && fabs(d) < d0) {
+                t[0] = w[0];
+                t[1] = w[1];
+            }
+        }
+    }
+}
+
 static fm_status build_sheet(const char *name, const fm_surface *s, size_t sheet,
                              const fm_model_options *opt, sheet_model *sm, fm_error *err)
 {
@@ -407,6 +440,8 @@ static fm_status build_sheet(const char *name, const fm_surface *s, size_t sheet
     if (!uv)
         return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
     st = fm_fit_sheet_vertex_params(sm->surface, mesh, uv, err);
+    if (st == FM_OK)
+        snap_boundary(sm->surface, s, sheet, uv);
     if (st == FM_OK)
         st = fit_loops(name, s, sheet, uv, &opt->trim, sm, err);
     loop_samples *ls = NULL;

@@ -323,6 +323,11 @@ static int needs_split(const char *name, const fm_mesh *mesh, size_t nloops,
     fm_fit_options o = *fit;
     o.name = name;
     o.closest_point_stats = 0;
+    /* The decision needs the fit at the usual grid, not the best a ring
+     * would get from the further halvings (on the whole ring, at every
+     * level of the recursion). */
+    if (o.max_refinements > 1)
+        o.max_refinements = 1;
     fm_fit_surface *fs = NULL;
     if (fm_fit_sheet(mesh, &o, &fs, &e) != FM_OK)
         return 1;

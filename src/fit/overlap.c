@@ -114,3 +114,75 @@ done:
     free(fill);
     return overlap;
 }
+
+/* A bucket grid of cells of about `radius` finds, for every vertex, the
+ * vertices within `radius` in the plane. */
+size_t fm_fit_stacked_vertices(const fm_fit_pmesh *pm, const unsigned char *used, double radius,
+                               double min_dh, double slope)
+{
+    size_t nv = pm->nv, count = 0;
+    const double *uv = pm->uv, *h = pm->val;
+    if (nv < 2 || !(radius > 0))
+        return 0;
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (size_t i = 0; i < nv; i++)
+        if (used[i])
+            for (int k = 0; k < 2; k++) {
+                lo[k] = fmin(lo[k], uv[2 * i + (size_t)k]);
+                hi[k] = fmax(hi[k], uv[2 * i + (size_t)k]);
+            }
+    double cell = radius;
+    size_t gx = (size_t)ceil((hi[0] - lo[0]) / cell) + 1;
+    size_t gy = (size_t)ceil((hi[1] - lo[1]) / cell) + 1;
+    while (gx * gy > 4 * nv + 16) {
+        cell *= 1.5;
+        gx = (size_t)ceil((hi[0] - lo[0]) / cell) + 1;
+        gy = (size_t)ceil((hi[1] - lo[1]) / cell) + 1;
+    }
+    size_t ncell = gx * gy;
+    size_t *start = calloc(ncell + 1, sizeof *start), *items = malloc(nv * sizeof *items);
+    size_t *fill = malloc(ncell * sizeof *fill), *cellof = malloc(nv * sizeof *cellof);
+    if (!start || !items || !fill || !cellof)
+        goto done;
+    for (size_t i = 0; i < nv; i++) {
+        if (!used[i])
+            continue;
+        size_t cx = (size_t)((uv[2 * i] - lo[0]) / cell);
+        size_t cy = (size_t)((uv[2 * i + 1] - lo[1]) / cell);
+        cellof[i] = cy * gx + cx;
+        start[cellof[i] + 1]++;
+    }
+    for (size_t c = 0; c < ncell; c++)
+        start[c + 1] += start[c];
+    for (size_t c = 0; c < ncell; c++)
+        fill[c] = start[c];
+    for (size_t i = 0; i < nv; i++)
+        if (used[i])
+            items[fill[cellof[i]]++] = i;
+    for (size_t i = 0; i < nv; i++) {
+        if (!used[i])
+            continue;
+        long cx = (long)(cellof[i] % gx), cy = (long)(cellof[i] / gx);
+        int hit = 0;
+        for (long y = cy - 1; y <= cy + 1 && !hit; y++)
+            for (long x = cx - 1; x <= cx + 1 && !hit; x++) {
+                if (x < 0 || y < 0 || x >= (long)gx || y >= (long)gy)
+                    continue;
+                size_t c = (size_t)y * gx + (size_t)x;
+                for (size_t k = start[c]; k < start[c + 1] && !hit; k++) {
+                    size_t j = items[k];
+                    double d = hypot(uv[2 * j] - uv[2 * i], uv[2 * j + 1] - uv[2 * i + 1]);
+                    double dh = fabs(h[j] - h[i]);
+                    if (d < radius && dh > min_dh && dh > slope * d)
+                        hit = 1;
+                }
+            }
+        count += (size_t)hit;
+    }
+done:
+    free(start);
+    free(items);
+    free(fill);
+    free(cellof);
+    return count;
+}

@@ -84,6 +84,50 @@ static int cmp_size(const void *pa, const void *pb)
     return (a > b) - (a < b);
 }
 
+/* Where exactly the corner near candidate i is: the turning peaks over a
+ * window, and a stair-step beside the apex can tilt either side's
+ * direction enough to move the peak one vertex off it; a curve pinned
+ * there cuts the real apex by most of an edge. Of the vertices within half
+ * a window of i, the apex is the one farthest from the chord between the
+ * loop points one window before and after i (in i's tangent-plane frame). */
+static size_t locate_apex(const trim_input *in, size_t i, double window)
+{
+    size_t n = in->n;
+    double R[3] = {1, 0, 1};
+    if (in->M) {
+        const double *M = in->M + 3 * i;
+        R[0] = sqrt(M[0]);
+        R[1] = M[1] / R[0];
+        R[2] = sqrt(fmax(M[2] - R[1] * R[1], 1e-18 * M[2]));
+    }
+    double A[2], B[2];
+    trim_input_at(in, in->s[i] - window, A);
+    trim_input_at(in, in->s[i] + window, B);
+    const double *o = in->xy + 2 * i;
+    double a[2] = {R[0] * (A[0] - o[0]) + R[1] * (A[1] - o[1]), R[2] * (A[1] - o[1])};
+    double b[2] = {R[0] * (B[0] - o[0]) + R[1] * (B[1] - o[1]), R[2] * (B[1] - o[1])};
+    double e[2] = {b[0] - a[0], b[1] - a[1]}, l = hypot(e[0], e[1]);
+    if (!(l > 0))
+        return i;
+    size_t best = i;
+    double bestd = -1;
+    double L = in->s[n];
+    for (long off = -(long)n / 2; off <= (long)n / 2; off++) {
+        size_t j = (size_t)(((long)i + off + (long)n) % (long)n);
+        double ds = fabs(in->s[j] - in->s[i]);
+        if (fmin(ds, L - ds) > 0.5 * window)
+            continue;
+        double x[2] = {R[0] * (in->xy[2 * j] - o[0]) + R[1] * (in->xy[2 * j + 1] - o[1]),
+                       R[2] * (in->xy[2 * j + 1] - o[1])};
+        double d = fabs(e[0] * (x[1] - a[1]) - e[1] * (x[0] - a[0])) / l;
+        if (d > bestd + 1e-9 * l || (fabs(d - bestd) <= 1e-9 * l && j == i)) {
+            bestd = d;
+            best = j;
+        }
+    }
+    return best;
+}
+
 fm_status trim_find_corners(const trim_input *in, double window, double angle,
                             size_t **corners, size_t *ncorners)
 {
@@ -119,8 +163,21 @@ fm_status trim_find_corners(const trim_input *in, double window, double angle,
         if (keep)
             out[k++] = cand[c].index;
     }
-    free(cand);
+    /* Each corner onto its apex, unless that brings it within half a
+     * window of another (the pieces between corners keep a few points). */
+    for (size_t a = 0; a < k; a++) {
+        size_t j = locate_apex(in, out[a], window);
+        int ok = 1;
+        for (size_t b = 0; b < k && ok; b++) {
+            double d = fabs(in->s[j] - in->s[out[b]]);
+            if (b != a && fmin(d, L - d) < 0.5 * window)
+                ok = 0;
+        }
+        if (ok)
+            out[a] = j;
+    }
     qsort(out, k, sizeof *out, cmp_size);
+    free(cand);
     *corners = out;
     *ncorners = k;
     return FM_OK;

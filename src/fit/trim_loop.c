@@ -10,7 +10,7 @@ void fm_trim_options_default(fm_trim_options *opt)
 {
     memset(opt, 0, sizeof *opt);
     opt->tolerance = 50;
-    opt->corner_angle = 35;
+    opt->corner_angle = 30;
     opt->corner_window = 0;
     opt->knot_spacing = 0;
     opt->knot_factor = 3.0;
