@@ -174,6 +174,9 @@ typedef struct cdt_refiner {
     double size, bad_len;     /* target, and the longest edge allowed */
     double cos_min;           /* cosine of the smallest angle allowed */
     double tan_half;          /* tan(min_angle / 2), for off-centres */
+    double aniso2;            /* max_anisotropy squared, 0: no clamp */
+    double min_len;           /* min_length resolved, 0: none */
+    int auto_cap;             /* max_points is the automatic one */
     cdt_heap_item *heap;
     size_t nheap, heapcap;
     cdt_seg_item *segq;
@@ -189,7 +192,8 @@ typedef struct cdt_quality {
     double lmax, lmin;        /* longest and shortest edge */
     double cos_min;           /* cosine of the smallest angle */
     int shortest;             /* local index of the edge opposite that angle */
-    int bad;                  /* 1 size, 2 angle */
+    int bad;                  /* 1 size, 2 angle: to be fixed */
+    int poor;                 /* bad, or below the angle but under min_length */
     double key;               /* priority: larger first */
     double m[3];              /* the metric used (at the centroid) */
 } cdt_quality;

@@ -13,16 +13,60 @@ typedef struct sheet_ctx {
     double level;
     const dom_seg *segs;  /* per segment id */
     const double *ends;   /* per segment id: its two end points, 4 values */
+    /* How the metric is taken (see domain_triangulate): step > 0, by
+     * central differences over that step in (u, v); iso > 0, the constant
+     * iso I; else the first fundamental form at the point. */
+    double step, iso;
+    double dom[4];        /* the spline's rectangle */
 } sheet_ctx;
 
 static void metric_cb(void *user, const double uv[2], double m[3])
 {
     const sheet_ctx *c = user;
-    double P[3], du[3], dv[3];
-    fm_fit_surface_eval(c->s, uv[0], uv[1], P, du, dv);
+    double du[3], dv[3];
+    if (c->iso > 0) {
+        m[0] = c->iso, m[1] = 0, m[2] = c->iso;
+        return;
+    }
+    if (c->step > 0) {
+        /* Secants over about a size on the surface: wrinkles of the fit
+         * shorter than that average out, as they do in the mesh. */
+        for (int d = 0; d < 2; d++) {
+            double lo[2] = {uv[0], uv[1]}, hi[2] = {uv[0], uv[1]}, a[3], b[3];
+            lo[d] = fmax(uv[d] - c->step, c->dom[2 * d]);
+            hi[d] = fmin(uv[d] + c->step, c->dom[2 * d + 1]);
+            double h = hi[d] - lo[d];
+            if (!(h > 0)) {
+                lo[d] = uv[d] - c->step;
+                hi[d] = uv[d] + c->step;
+                h = 2 * c->step;
+            }
+            fm_fit_surface_eval(c->s, lo[0], lo[1], a, NULL, NULL);
+            fm_fit_surface_eval(c->s, hi[0], hi[1], b, NULL, NULL);
+            double *o = d ? dv : du;
+            for (int k = 0; k < 3; k++)
+                o[k] = (b[k] - a[k]) / h;
+        }
+    } else {
+        double P[3];
+        fm_fit_surface_eval(c->s, uv[0], uv[1], P, du, dv);
+    }
     m[0] = du[0] * du[0] + du[1] * du[1] + du[2] * du[2];
     m[1] = du[0] * dv[0] + du[1] * dv[1] + du[2] * dv[2];
     m[2] = dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2];
+}
+
+/* Metres on the surface per unit of (u, v), along the domain's boundary. */
+static double boundary_scale(const fm_fit_surface *s, const flat_domain *fd)
+{
+    double l3 = 0, l2 = 0;
+    for (size_t k = 0; k < fd->n; k++) {
+        const double *a = fd->uv + 2 * (size_t)fd->seg[2 * k];
+        const double *b = fd->uv + 2 * (size_t)fd->seg[2 * k + 1];
+        l3 += surface_dist(s, a, b);
+        l2 += hypot(b[0] - a[0], b[1] - a[1]);
+    }
+    return l2 > 0 && l3 > 0 && isfinite(l3) ? l3 / l2 : 1;
 }
 
 /* Where along the input segment (as a fraction of its chord) a point of
@@ -115,9 +159,25 @@ fm_status domain_triangulate(const fm_fit_surface *s, const fm_trim_loop *const 
     fm_cdt *cdt = NULL;
     fm_error e2;
     fm_error_clear(&e2);
-    fm_status rc = fm_cdt_create(fd->uv, fd->n, fd->seg, NULL, fd->n, &cdt, &e2);
-    if (rc == FM_OK) {
-        sheet_ctx ctx = {s, loops, level, fd->segs, fd->ends};
+    sheet_ctx ctx = {s, loops, level, fd->segs, fd->ends, 0, 0, {0, 0, 0, 0}};
+    fm_fit_surface_domain(s, ctx.dom);
+    double scale = boundary_scale(s, fd);
+    fm_status rc = FM_OK;
+    /* The surface's own metric first. Where the fit is crumpled (wrinkles
+     * far below the size, so the surface is much longer than the fault) or
+     * folds, refinement under that metric runs into the automatic cap or
+     * ends with many triangles it could not fix; then the metric of
+     * secants a size long is tried, and last a constant one (a mesh even
+     * in (u, v)), which always ends at about the points the area calls
+     * for. */
+    for (int mode = 0; mode < 3; mode++) {
+        fm_cdt_destroy(cdt);
+        cdt = NULL;
+        rc = fm_cdt_create(fd->uv, fd->n, fd->seg, NULL, fd->n, &cdt, &e2);
+        if (rc != FM_OK)
+            break;
+        ctx.step = mode == 1 ? 0.5 * size / scale : 0;
+        ctx.iso = mode == 2 ? scale * scale : 0;
         fm_cdt_refine_options ro;
         fm_cdt_refine_options_default(&ro);
         ro.size = size;
@@ -126,7 +186,16 @@ fm_status domain_triangulate(const fm_fit_surface *s, const fm_trim_loop *const 
         ro.split = split_cb;
         ro.split_user = &ctx;
         ro.max_points = max_points;
+        /* A parametrisation (over a conformal or convex map) that nearly
+         * folds has a metric close to singular there; beyond this ratio
+         * the mesh in (u, v) cannot follow it anyway. */
+        ro.max_anisotropy = 10;
         rc = fm_cdt_refine(cdt, &ro, &e2);
+        fm_cdt_refine_stats rs;
+        fm_cdt_refine_get_stats(cdt, &rs);
+        size_t ntri = fm_cdt_ntriangles(cdt);
+        if (rc != FM_OK || (!rs.capped && rs.bad_left <= 8 + ntri / 50))
+            break;
     }
     if (rc != FM_OK) {
         /* The triangulation does not know the file: name it here. */

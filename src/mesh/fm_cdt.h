@@ -102,19 +102,43 @@ typedef struct fm_cdt_refine_options {
     const unsigned char *frozen_ids;
     size_t nfrozen;
     /* Cap on the total number of points; 0: automatic, 16 times the
-     * points the metric area and boundary length call for, plus slack. */
+     * points the metric area and boundary length call for, plus slack.
+     * Reaching a cap given here is an error; reaching the automatic one
+     * ends refinement early (stats.capped), the mesh valid and its bad
+     * triangles counted: a metric the refiner cannot satisfy costs quality,
+     * never the result. */
     size_t max_points;
+    /* Largest ratio of the metric's principal stretches (square root of
+     * the ratio of its eigenvalues) that refinement takes as it is; a
+     * metric more anisotropic than this, or positive semi-definite only
+     * within rounding (a surface whose parametrisation folds or pinches),
+     * has its small eigenvalue raised to match. Near such a point the
+     * diametral ellipses of segments and the circumcentres of triangles
+     * reach arbitrarily far in (u, v), so splits chase the point for ever.
+     * 0: no clamp (then a metric that is not positive definite is an
+     * error). */
+    double max_anisotropy;
+    /* Smallest edge length refinement works at, in the metric: a triangle
+     * whose edges are all shorter is not refined for its angles, a
+     * sub-segment shorter is not split for encroachment, and a point
+     * closer than half of it to a vertex of its cavity is not inserted.
+     * This bounds refinement where the input or a varying metric forces
+     * small features (such triangles are counted in bad_left). 0:
+     * automatic, size / 16; negative: none. */
+    double min_length;
 } fm_cdt_refine_options;
 
 /* size 0 (must be set), min_angle 30, no metric, no callback, nothing
- * frozen, automatic max_points. */
+ * frozen, automatic max_points, no anisotropy clamp, automatic
+ * min_length. */
 void fm_cdt_refine_options_default(fm_cdt_refine_options *o);
 
 /* Refines the domain: inserts points until every triangle is within size
  * and angle (apex triangles exempt from the angle), or nothing more may be
  * inserted. Points are only ever inserted inside the domain or on its
- * segments. FM_ERR_INVALID for bad options or when max_points would be
- * exceeded; FM_ERR_NUMERIC for a metric that is not positive definite. On
+ * segments. FM_ERR_INVALID for bad options or when a max_points given
+ * would be exceeded; FM_ERR_NUMERIC for a metric that is not positive
+ * definite (and cannot be clamped, see max_anisotropy). On
  * error the triangulation stays valid (partly refined) and the results
  * below describe it. May be called again, e.g. with a smaller size. */
 fm_status fm_cdt_refine(fm_cdt *t, const fm_cdt_refine_options *opt, fm_error *err);
@@ -140,11 +164,15 @@ const int32_t *fm_cdt_edges(const fm_cdt *t);
 const int32_t *fm_cdt_edge_ids(const fm_cdt *t);
 
 /* What the last fm_cdt_refine did: points inserted inside and on segments,
- * candidate points rejected (frozen segments, no valid place), and
- * triangles still bad at the end (above 1.3 size or below the angle,
- * apex triangles not counted). */
+ * candidate points rejected (frozen segments, no valid place, below
+ * min_length), triangles still bad at the end (above 1.4 size or below the
+ * angle, apex triangles not counted), metric evaluations clamped
+ * (max_anisotropy), and capped = 1 when the automatic max_points ended
+ * refinement early. */
 typedef struct fm_cdt_refine_stats {
     size_t inserted_interior, inserted_segment, rejected, bad_left;
+    size_t clamped;
+    int capped;
 } fm_cdt_refine_stats;
 void fm_cdt_refine_get_stats(const fm_cdt *t, fm_cdt_refine_stats *st);
 

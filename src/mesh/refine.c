@@ -28,6 +28,8 @@ void fm_cdt_refine_options_default(fm_cdt_refine_options *o)
     o->frozen_ids = NULL;
     o->nfrozen = 0;
     o->max_points = 0;
+    o->max_anisotropy = 0;
+    o->min_length = 0;
 }
 
 static int heap_less(const cdt_heap_item *a, const cdt_heap_item *b)
@@ -143,14 +145,38 @@ static int32_t blocking_segment(const struct fm_cdt *t, const double g[2], const
     return first;
 }
 
+/* A cap the caller gave is an error; the automatic one ends refinement
+ * where it is (the mesh stays valid, its bad triangles are counted). */
 static int32_t max_points_error(cdt_refiner *r)
 {
-    if (r->st == FM_OK)
+    if (r->auto_cap)
+        r->t->stats.capped = 1;
+    else if (r->st == FM_OK)
         r->st = fm_error_set(r->err, FM_ERR_INVALID, NULL, 0,
                              "refinement reached max_points (%zu points): the size is too "
                              "small for the domain, or refinement does not end",
                              r->max_points);
     return -1;
+}
+
+/* 1 if p lies closer than min_length / 2 (in the metric m) to a vertex of
+ * the gathered cavity. Under a metric that is nearly constant over the
+ * cavity a new point keeps a circumradius from every vertex; one this
+ * close comes from a metric varying faster than the mesh can follow, and
+ * inserting it would start a cascade. */
+static int too_close(const cdt_refiner *r, const double p[2], const double m[3])
+{
+    const struct fm_cdt *t = r->t;
+    double lim = 0.25 * r->min_len * r->min_len;
+    if (!(lim > 0))
+        return 0;
+    for (size_t k = 0; k < t->nbnd; k++) {
+        const double *a = cdt_p(t, cdt_org(t, t->bnde[k]));
+        double dx = a[0] - p[0], dy = a[1] - p[1];
+        if (m[0] * dx * dx + 2 * m[1] * dx * dy + m[2] * dy * dy < lim)
+            return 1;
+    }
+    return 0;
 }
 
 /* Splits the sub-segments in pairs[from ..]; the triangle that asked is
@@ -161,7 +187,7 @@ static void split_for(cdt_refiner *r, int32_t tri, size_t from)
     struct fm_cdt *t = r->t;
     uint32_t stamp = t->stamp[tri];
     int done = 0;
-    while (t->npairs > from && r->st == FM_OK) {
+    while (t->npairs > from && r->st == FM_OK && !t->stats.capped) {
         cdt_pair pr = t->pairs[--t->npairs];
         if (t->np - CDT_NSUPER >= r->max_points) {
             max_points_error(r);
@@ -268,6 +294,10 @@ star:;
         split_for(r, tri, from);
         return;
     }
+    if (too_close(r, p, q.m)) {
+        t->stats.rejected++;
+        return;
+    }
     if (t->np - CDT_NSUPER >= r->max_points) {
         max_points_error(r);
         return;
@@ -321,7 +351,7 @@ static size_t count_bad(cdt_refiner *r)
     size_t n = 0;
     for (size_t k = 0; k < r->t->nt; k++) {
         cdt_quality q;
-        if (r->t->region[k] == 1 && cdt_quality_eval(r, (int32_t)k, &q) == 0 && q.bad)
+        if (r->t->region[k] == 1 && cdt_quality_eval(r, (int32_t)k, &q) == 0 && q.poor)
             n++;
     }
     return n;
@@ -351,6 +381,15 @@ fm_status fm_cdt_refine(fm_cdt *t, const fm_cdt_refine_options *opt, fm_error *e
     double ang = (opt->min_angle > 1 ? opt->min_angle : 1) * pi / 180;
     r.cos_min = opt->min_angle > 0 ? cos(opt->min_angle * pi / 180) : 2;
     r.tan_half = tan(0.5 * ang);
+    if (!(opt->max_anisotropy >= 0) || !(opt->min_length == opt->min_length))
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0,
+                            "fm_cdt_refine: max_anisotropy must be >= 0 and min_length a number");
+    r.aniso2 = opt->max_anisotropy > 0 ? fmax(opt->max_anisotropy, 1.0) : 0;
+    r.aniso2 *= r.aniso2;
+    r.min_len = opt->min_length == 0 ? opt->size / 16 : opt->min_length > 0 ? opt->min_length : 0;
+    if (!isfinite(r.min_len))
+        r.min_len = 0;
+    r.auto_cap = opt->max_points == 0;
     t->stats = (fm_cdt_refine_stats){0};
     r.st = cdt_apex_init(&r);
     if (r.st == FM_OK)
@@ -360,10 +399,13 @@ fm_status fm_cdt_refine(fm_cdt *t, const fm_cdt_refine_options *opt, fm_error *e
     for (size_t k = 0; k < t->nt && r.st == FM_OK; k++)
         touch(t, (int32_t)k);
     size_t iter = 0, iter_cap = 16 * r.max_points + 100000;
-    while (r.st == FM_OK) {
+    while (r.st == FM_OK && !t->stats.capped) {
         if (++iter > iter_cap) {
-            r.st = fm_error_set(err, FM_ERR_NUMERIC, NULL, 0,
-                                "refinement did not end after %zu steps", iter_cap);
+            if (r.auto_cap)
+                t->stats.capped = 1;
+            else
+                r.st = fm_error_set(err, FM_ERR_NUMERIC, NULL, 0,
+                                    "refinement did not end after %zu steps", iter_cap);
             break;
         }
         if (r.nsegq) {

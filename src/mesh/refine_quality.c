@@ -7,6 +7,37 @@
 
 #include "cdt_internal.h"
 
+/* Raises the small eigenvalue of m to at least the large one / a2. m must
+ * be finite with a positive trace; 0 when nothing changed. */
+static int clamp_anisotropy(double m[3], double a2)
+{
+    double E = m[0], F = m[1], G = m[2];
+    double h = 0.5 * (E + G), d = hypot(0.5 * (E - G), F);
+    double l1 = h + d;
+    /* The small eigenvalue from the determinant where that keeps digits. */
+    double det = E * G - F * F;
+    double l2 = det > 0 ? det / l1 : h - d;
+    double want = l1 / a2;
+    if (l2 >= want)
+        return 0;
+    /* Unit eigenvector of l2: perpendicular to that of l1, taken from the
+     * better conditioned row of M - l1 I. */
+    double vx, vy;
+    if (fabs(E - l1) >= fabs(G - l1))
+        vx = E - l1, vy = F;
+    else
+        vx = F, vy = G - l1;
+    double n = hypot(vx, vy);
+    if (!(n > 0))
+        return 0; /* m a multiple of I: l2 == l1, not here */
+    vx /= n, vy /= n;
+    double dl = want - l2;
+    m[0] = E + dl * vx * vx;
+    m[1] = F + dl * vx * vy;
+    m[2] = G + dl * vy * vy;
+    return 1;
+}
+
 int cdt_metric(cdt_refiner *r, const double uv[2], double m[3])
 {
     if (!r->o->metric) {
@@ -14,6 +45,13 @@ int cdt_metric(cdt_refiner *r, const double uv[2], double m[3])
         return 0;
     }
     r->o->metric(r->o->metric_user, uv, m);
+    /* Semi-definite within rounding (a Gram matrix of nearly parallel
+     * derivatives) can be clamped; indefinite cannot. */
+    double tr = m[0] + m[2];
+    if (r->aniso2 > 0 && isfinite(m[0]) && isfinite(m[1]) && isfinite(m[2]) && tr > 0 &&
+        m[0] >= 0 && m[2] >= 0 && m[0] * m[2] - m[1] * m[1] >= -1e-12 * tr * tr &&
+        clamp_anisotropy(m, r->aniso2))
+        r->t->stats.clamped++;
     if (isfinite(m[0]) && isfinite(m[1]) && isfinite(m[2]) && m[0] > 0 && m[2] > 0 &&
         m[0] * m[2] - m[1] * m[1] > 0)
         return 0;
@@ -55,14 +93,21 @@ int cdt_quality_eval(cdt_refiner *r, int32_t tri, cdt_quality *q)
     q->shortest = s;
     q->cos_min = (lj + lk - l2[s]) / (2 * sqrt(lj * lk));
     q->bad = 0;
+    q->poor = 0;
     q->key = 0;
     if (q->lmax > r->bad_len) {
-        q->bad = 1;
+        q->bad = q->poor = 1;
         q->key = 2 + q->lmax / r->size;
     } else if (q->cos_min > r->cos_min && q->lmax > 1e-3 * r->size &&
                !cdt_apex_exempt(r, v[(s + 1) % 3], v[(s + 2) % 3])) {
-        q->bad = 2;
-        q->key = 1 + q->cos_min;
+        /* Below min_length the angle is left: what makes a triangle that
+         * small is a feature of the input or of the metric, and chasing
+         * its angle is how refinement fails to end. */
+        q->poor = 2;
+        if (!(q->lmax < r->min_len)) {
+            q->bad = 2;
+            q->key = 1 + q->cos_min;
+        }
     }
     return 0;
 }

@@ -169,6 +169,17 @@ int cdt_split_subsegment(cdt_refiner *r, int32_t a, int32_t b)
         r->t->stats.rejected++;
         return 0;
     }
+    /* Pieces below min_length / 2 would only feed a cascade. */
+    if (r->min_len > 0) {
+        double mm[3], dx = pb[0] - pa[0], dy = pb[1] - pa[1];
+        double mid0[2] = {0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])};
+        if (cdt_metric(r, mid0, mm))
+            return 0;
+        if (mm[0] * dx * dx + 2 * mm[1] * dx * dy + mm[2] * dy * dy < r->min_len * r->min_len) {
+            r->t->stats.rejected++;
+            return 0;
+        }
+    }
     double f = split_fraction(r, a, b);
     double cand[3][2];
     int nc = 0;

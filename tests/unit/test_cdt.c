@@ -846,6 +846,93 @@ static void test_max_points(void)
     free(d);
 }
 
+/* The first fundamental form of S = (u - v, b^3), b = u + v - 0.1: singular
+ * along the diagonal b = 0 (its null direction along the diagonal's
+ * normal), sheared everywhere. */
+static void metric_fold(void *user, const double uv[2], double m[3])
+{
+    (void)user;
+    double b = uv[0] + uv[1] - 0.1, c = 3 * b * b;
+    m[0] = 1 + c * c, m[1] = -1 + c * c, m[2] = 1 + c * c;
+}
+
+/* Nearly singular near the line v = 0.3 (S = (u, (v - 0.3)^3)): the
+ * diametral ellipses of segments crossing it reach arbitrarily far. */
+static void metric_pinch(void *user, const double uv[2], double m[3])
+{
+    (void)user;
+    double w = uv[1] - 0.3;
+    m[0] = 1, m[1] = 0, m[2] = 9 * w * w * w * w;
+}
+
+static void test_degenerate_metric(void)
+{
+    domain *d = malloc(sizeof *d);
+    square(d, 1);
+    fm_cdt_metric_fn fs[2] = {metric_fold, metric_pinch};
+    for (int k = 0; k < 2; k++) {
+        fm_error err;
+        fm_cdt *t = make(d, &err);
+        CHECK(t != NULL);
+        if (!t)
+            break;
+        fm_cdt_refine_options o;
+        fm_cdt_refine_options_default(&o);
+        o.size = 0.05;
+        o.metric = fs[k];
+        o.max_anisotropy = 10;
+        CHECK_EQ(fm_cdt_refine(t, &o, &err), FM_OK);
+        validate(t, d, 0);
+        fm_cdt_refine_stats st;
+        fm_cdt_refine_get_stats(t, &st);
+        printf("degenerate metric %d: %zu points, %zu triangles, %zu clamped, %zu bad left, "
+               "capped %d\n",
+               k, fm_cdt_npoints(t), fm_cdt_ntriangles(t), st.clamped, st.bad_left, st.capped);
+        CHECK(st.clamped > 0);
+        CHECK_EQ(st.capped, 0);
+        /* About area / size^2 in the clamped metric, not a cascade. */
+        CHECK(fm_cdt_npoints(t) < 20000);
+        fm_cdt_destroy(t);
+    }
+    free(d);
+}
+
+/* The automatic cap ends refinement without an error: a metric that grows
+ * without bound towards a corner asks for ever more points there. */
+static void metric_blowup(void *user, const double uv[2], double m[3])
+{
+    (void)user;
+    double r2 = uv[0] * uv[0] + uv[1] * uv[1];
+    double s = 1 / (r2 * r2 + 1e-300);
+    m[0] = s, m[1] = 0, m[2] = s;
+}
+
+static void test_auto_cap(void)
+{
+    domain *d = malloc(sizeof *d);
+    square(d, 1);
+    fm_error err;
+    fm_cdt *t = make(d, &err);
+    CHECK(t != NULL);
+    if (t) {
+        fm_cdt_refine_options o;
+        fm_cdt_refine_options_default(&o);
+        o.size = 0.5;
+        o.metric = metric_blowup;
+        o.min_length = -1; /* no floor: nothing else stops it */
+        CHECK_EQ(fm_cdt_refine(t, &o, &err), FM_OK);
+        validate(t, d, 0);
+        fm_cdt_refine_stats st;
+        fm_cdt_refine_get_stats(t, &st);
+        printf("blow-up metric: %zu points, capped %d, %zu bad left\n", fm_cdt_npoints(t),
+               st.capped, st.bad_left);
+        CHECK_EQ(st.capped, 1);
+        CHECK(st.bad_left > 0);
+        fm_cdt_destroy(t);
+    }
+    free(d);
+}
+
 static void bad_metric(void *user, const double uv[2], double m[3])
 {
     (void)user;
@@ -910,4 +997,5 @@ FM_TEST_MAIN(FM_CASE(test_square), FM_CASE(test_hole), FM_CASE(test_nested),
              FM_CASE(test_lshape), FM_CASE(test_small_angles), FM_CASE(test_collinear),
              FM_CASE(test_stars), FM_CASE(test_stretched_metric), FM_CASE(test_frozen),
              FM_CASE(test_split_callback), FM_CASE(test_deterministic),
-             FM_CASE(test_max_points), FM_CASE(test_bad_input))
+             FM_CASE(test_max_points), FM_CASE(test_degenerate_metric),
+             FM_CASE(test_auto_cap), FM_CASE(test_bad_input))
