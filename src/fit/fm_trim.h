@@ -63,8 +63,18 @@
  * and the tent would see half a step). Where it exceeds `tolerance`, the
  * spans holding those points are halved if they are at least two point
  * spacings long; where a flagged span is already that short, the piece's
- * mu drops once to 1/4. The piece is refitted, at most `max_refinements`
- * times. Shorter spans or less smoothing would let the curve follow the
+ * mu drops once to 1/4. With `max_deviation` > 0, spans holding a point
+ * further than that from the curve are flagged too; a span flagged only
+ * for that may be halved down to half a point spacing, so knots come in
+ * around a single far point (a spike or a bend next to a corner, where the
+ * systematic measure is not taken) while the rest of the piece keeps its
+ * knots and smoothing (less smoothing over the whole piece made the curves
+ * wiggle instead). Such a round is kept only if the piece's largest
+ * deviation both ways (max_dev, max_curve_dev) does not grow; else the
+ * piece returns to the knots before it and stops. On the CFM 500 m set
+ * this took 5 faults' outlines from 105 to 135 m to below 100 m. The piece
+ * is refitted, at most `max_refinements` times. Shorter spans (for the
+ * systematic deviation) or less smoothing would let the curve follow the
  * stair-steps, which this measure cannot see: so a tolerance below what
  * the stair-steps allow ends with within_tolerance = 0, not with a curve
  * that wiggles.

@@ -107,9 +107,15 @@ fm_status trim_fit_piece(const trim_input *in, trim_piece *pc, double beta, cons
 
 /* --- trim_measure.c --- */
 
-/* Deviations of the fitted piece; flag[s] = 1 for spans holding a point
- * whose tent-averaged signed deviation (half-width H) exceeds tol, or
- * (raw_tol > 0) whose own distance exceeds raw_tol. */
+/* Why a span is flagged for refinement: the systematic deviation, or only
+ * single points further than max_deviation. */
+#define TRIM_FLAG_SYSTEMATIC 1
+#define TRIM_FLAG_RAW 2
+
+/* Deviations of the fitted piece; flag[s] gets TRIM_FLAG_SYSTEMATIC for
+ * spans holding a point whose tent-averaged signed deviation (half-width
+ * H) exceeds tol, TRIM_FLAG_RAW (raw_tol > 0) for those holding a point
+ * whose own distance exceeds raw_tol. */
 fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, double tol,
                              double raw_tol, unsigned char *flag);
 /* Distance from p to the segment a-b, in the form M (NULL: identity). */

@@ -103,24 +103,38 @@ static fm_status piece_init(const trim_input *in, trim_piece *pc, int periodic, 
 }
 
 /* Halves flagged spans of two point spacings or more (shorter spans would
- * let the curve follow single stair-steps). When a flagged span is already
- * that short, the piece's smoothing goes down to a quarter instead: for the
- * whole piece, as smoothing that varies from span to span shrinks curves
- * unevenly and puts point-to-point wiggles into the fit. Returns -1 when
- * out of memory, else whether anything changed. */
+ * let the curve follow single stair-steps). A span flagged only because
+ * single points lie further than max_deviation (a bend or a spike sharper
+ * than the knots, next to a corner) may go down to half a point spacing: the
+ * knots come in there alone, where the systematic measure sees nothing to
+ * follow, and the rest of the piece keeps its smoothing. When a flagged
+ * span is already that short, the piece's smoothing goes down to a quarter
+ * instead: for the whole piece, as smoothing that varies from span to span
+ * shrinks curves unevenly and puts point-to-point wiggles into the fit.
+ * Returns -1 when out of memory, else whether anything changed. */
 /* One step down: below it the curve starts to pass stair-steps through. */
 #define TRIM_MU_MIN 0.25
-static int refine(trim_piece *pc, const unsigned char *flag, double spacing)
+/* Shortest span that a flag may still halve. */
+static double min_span(unsigned char flag, double spacing)
+{
+    return flag & TRIM_FLAG_SYSTEMATIC ? 2 * spacing : 0.5 * spacing;
+}
+
+static int refine(trim_piece *pc, const unsigned char *flag, double spacing, int *short_split)
 {
     size_t N = pc->nspans, M = N;
     int stuck = 0;
+    *short_split = 0;
     for (size_t s = 0; s < N; s++) {
         if (!flag[s])
             continue;
-        if (pc->brk[s + 1] - pc->brk[s] >= 2 * spacing)
+        double h = pc->brk[s + 1] - pc->brk[s];
+        if (h >= min_span(flag[s], spacing)) {
             M++;
-        else
+            *short_split |= h < 2 * spacing;
+        } else {
             stuck = 1;
+        }
     }
     int changed = 0;
     if (stuck && pc->mu > TRIM_MU_MIN) {
@@ -136,7 +150,7 @@ static int refine(trim_piece *pc, const unsigned char *flag, double spacing)
     for (size_t s = 0; s < N; s++) {
         double a = pc->brk[s], b = pc->brk[s + 1];
         brk[k++] = a;
-        if (flag[s] && b - a >= 2 * spacing)
+        if (flag[s] && b - a >= min_span(flag[s], spacing))
             brk[k++] = 0.5 * (a + b);
     }
     brk[M] = pc->len;
@@ -146,10 +160,18 @@ static int refine(trim_piece *pc, const unsigned char *flag, double spacing)
     return 1;
 }
 
+/* Spans below two point spacings (only for points further than
+ * max_deviation) can let the curve swing out between the points it now
+ * follows: such a round is kept only if the piece's largest deviation both
+ * ways (points to curve, curve to polyline) does not grow; otherwise the
+ * piece goes back to the knots and smoothing before it and stops there. */
 static fm_status fit_piece(const trim_input *in, trim_piece *pc, double beta,
                            const fm_trim_options *o, fm_error *err)
 {
     unsigned char *flag = NULL;
+    double *saved = NULL, saved_mu = 0, prev_worst = 0;
+    size_t saved_n = 0;
+    int guard = 0, restored = 0;
     fm_status st = FM_OK;
     for (int round = 0;; round++) {
         st = trim_fit_piece(in, pc, beta, o->name, err);
@@ -158,21 +180,50 @@ static fm_status fit_piece(const trim_input *in, trim_piece *pc, double beta,
         unsigned char *f = realloc(flag, pc->nspans);
         if (!f || trim_measure_piece(in, pc, 2 * in->spacing, o->tolerance, o->max_deviation, f) != FM_OK) {
             free(f ? f : flag);
+            free(saved);
             return fm_error_set(err, FM_ERR_NOMEM, o->name, 0, "trim: out of memory (measure)");
         }
         flag = f;
+        if (restored)
+            break;
+        double worst = fmax(pc->max_dev, pc->max_curve_dev);
+        if (guard && worst > prev_worst) {
+            free(pc->brk);
+            pc->brk = saved;
+            pc->nspans = saved_n;
+            pc->mu = saved_mu;
+            saved = NULL;
+            restored = 1;
+            pc->rounds = round - 1;
+            continue;
+        }
+        free(saved);
+        saved = NULL;
+        guard = 0;
         int raw_ok = !(o->max_deviation > 0) || pc->max_dev <= o->max_deviation;
         if ((pc->max_sys <= o->tolerance && raw_ok) || round >= o->max_refinements)
             break;
-        int changed = refine(pc, flag, in->spacing);
+        saved = malloc((pc->nspans + 1) * sizeof *saved);
+        if (!saved) {
+            st = fm_error_set(err, FM_ERR_NOMEM, o->name, 0, "trim: out of memory (refine)");
+            break;
+        }
+        memcpy(saved, pc->brk, (pc->nspans + 1) * sizeof *saved);
+        saved_n = pc->nspans;
+        saved_mu = pc->mu;
+        int short_split = 0;
+        int changed = refine(pc, flag, in->spacing, &short_split);
         if (changed < 0) {
             st = fm_error_set(err, FM_ERR_NOMEM, o->name, 0, "trim: out of memory (refine)");
             break;
         }
         if (!changed)
             break;
+        guard = short_split;
+        prev_worst = worst;
         pc->rounds = round + 1;
     }
+    free(saved);
     free(flag);
     return st;
 }

@@ -201,7 +201,7 @@ fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, dou
     if (raw_tol > 0)
         for (size_t j = 0; j < m; j++)
             if (fabs(r[j]) > raw_tol)
-                flag[trim_span(pc, pc->t[j])] = 1;
+                flag[trim_span(pc, pc->t[j])] |= TRIM_FLAG_RAW;
     for (size_t j = 0; j < m; j++) {
         /* Near a corner the tent would hold the corner, which carries no
          * stair-step, and one step without its partner: the average would
@@ -212,7 +212,7 @@ fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, dou
         double f = fabs(tent_average(pc, r, j, H));
         pc->max_sys = fmax(pc->max_sys, f);
         if (f > tol)
-            flag[trim_span(pc, pc->t[j])] = 1;
+            flag[trim_span(pc, pc->t[j])] |= TRIM_FLAG_SYSTEMATIC;
     }
     free(r);
     double R = 2 * H + hmax;

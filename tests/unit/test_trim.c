@@ -518,6 +518,42 @@ static void test_refinement(void)
     fm_trim_loop_destroy(loop);
 }
 
+/* ---- a single point far off, next to a corner ---- */
+
+/* The roof box with the third vertex of the bottom edge pulled 400 m out,
+ * next to a corner, where the systematic measure is not taken: only
+ * max_deviation asks for knots there, and they come in around the point
+ * alone (a few spans), not as less smoothing over the piece. (Here one
+ * halving is enough; on the CFM the spans flagged only by max_deviation
+ * may go below two point spacings, see trim_loop.c.) */
+static void test_spike(void)
+{
+    double uv[2 * 200];
+    size_t n = make_roof(uv);
+    uv[2 * 2 + 1] = -400;
+    fm_trim_options opt;
+    fm_trim_options_default(&opt);
+    fm_trim_loop *plain = NULL, *raw = NULL;
+    fm_error err;
+    CHECK_EQ(fm_trim_fit(uv, n, &opt, &plain, &err), FM_OK);
+    opt.max_deviation = 80;
+    CHECK_EQ(fm_trim_fit(uv, n, &opt, &raw, &err), FM_OK);
+    if (!plain || !raw) {
+        fm_trim_loop_destroy(plain);
+        fm_trim_loop_destroy(raw);
+        return;
+    }
+    const fm_trim_stats *sp = fm_trim_loop_stats(plain), *sr = fm_trim_loop_stats(raw);
+    printf("spike 400 m by a corner: max_dev %.1f m (%zu spans), with max_deviation 80: %.1f m "
+           "(%zu spans, %d rounds)\n",
+           sp->max_dev, sp->spans, sr->max_dev, sr->spans, sr->refinements);
+    CHECK(sp->max_dev > 150);
+    CHECK(sr->max_dev <= 80);
+    CHECK(sr->spans <= sp->spans + 8);
+    fm_trim_loop_destroy(plain);
+    fm_trim_loop_destroy(raw);
+}
+
 /* ---- degenerate input ---- */
 
 static void expect_invalid(const double *uv, size_t n, const fm_trim_options *opt)
@@ -763,4 +799,4 @@ static void test_metric(void)
 
 FM_TEST_MAIN(FM_CASE(test_rectangle), FM_CASE(test_circle), FM_CASE(test_trace),
              FM_CASE(test_orientation), FM_CASE(test_determinism), FM_CASE(test_refinement),
-             FM_CASE(test_degenerate), FM_CASE(test_metric))
+             FM_CASE(test_spike), FM_CASE(test_degenerate), FM_CASE(test_metric))
