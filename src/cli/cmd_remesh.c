@@ -184,6 +184,24 @@ static fault_result *new_result(run_state *rs)
     return r;
 }
 
+/* What a user should look at before trusting a meshed fault: the figures
+ * of the check that the mesh issue bounds, when this fault breaks them.
+ * Writes up to two messages into w (each up to 160 bytes); returns the
+ * count. Nodes of an extended top lie off the original by design. */
+static int fault_warnings(const fault_result *r, char w[2][160])
+{
+    int n = 0;
+    if (r->fid.max > 100.0 && r->ms.extended == 0)
+        snprintf(w[n++], 160,
+                 "nodes up to %.0f m from the original surface (the fitted surface departs from it)",
+                 r->fid.max);
+    size_t loose = r->q.below_20 - r->q.below_20_forced;
+    if (loose > 0)
+        snprintf(w[n++], 160, "%zu triangles under 20 degrees away from sharp outline corners",
+                 loose);
+    return n;
+}
+
 static void print_fault(const fault_result *r, double H)
 {
     if (strcmp(r->status, "ok")) {
@@ -197,6 +215,10 @@ static void print_fault(const fault_result *r, double H)
            100.0 * (double)r->q.below_30 / (double)(r->q.triangles ? r->q.triangles : 1),
            100.0 * (double)r->q.edges_in_band / (double)(r->q.edges ? r->q.edges : 1), r->fid.rms,
            r->fid.max, r->ms.cut ? "  cut" : "");
+    char w[2][160];
+    int nw = fault_warnings(r, w);
+    for (int k = 0; k < nw; k++)
+        printf("    warning: %s\n", w[k]);
     (void)H;
 }
 
@@ -379,6 +401,13 @@ static void json_fault(fm_json *j, const fault_result *r, double H)
         fm_json_kv_int(j, "sheets", (int64_t)r->sheets);
         fm_json_kv_int(j, "triangles", (int64_t)r->q.triangles);
         fm_json_kv_int(j, "nodes", (int64_t)r->q.nodes);
+        char w[2][160];
+        int nw = fault_warnings(r, w);
+        fm_json_key(j, "warnings");
+        fm_json_begin_array(j);
+        for (int k = 0; k < nw; k++)
+            fm_json_string(j, w[k]);
+        fm_json_end_array(j);
         fm_json_kv_number(j, "area_m2", r->q.area);
         json_quality(j, r, H);
         fm_json_key(j, "fidelity");
@@ -434,7 +463,7 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     fm_json_end_object(&j);
     fm_json_key(&j, "faults");
     fm_json_begin_array(&j);
-    size_t tris = 0, below30 = 0, below20 = 0, forced = 0, edges = 0, band = 0, ok = 0;
+    size_t tris = 0, below30 = 0, below20 = 0, forced = 0, edges = 0, band = 0, ok = 0, warned = 0;
     double worst_dist = 0, zmax = -INFINITY;
     for (size_t i = 0; i < rs->nres; i++) {
         const fault_result *r = &rs->res[i];
@@ -442,6 +471,8 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
         if (!r->status || strcmp(r->status, "ok"))
             continue;
         ok++;
+        char w[2][160];
+        warned += fault_warnings(r, w) > 0;
         tris += r->q.triangles;
         below30 += r->q.below_30;
         below20 += r->q.below_20;
@@ -457,6 +488,7 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     fm_json_kv_int(&j, "faults", (int64_t)rs->nres);
     fm_json_kv_int(&j, "meshed", (int64_t)ok);
     fm_json_kv_int(&j, "failed", rs->failed);
+    fm_json_kv_int(&j, "meshed_with_warnings", (int64_t)warned);
     fm_json_kv_int(&j, "triangles", (int64_t)tris);
     fm_json_kv_int(&j, "triangles_below_30_deg", (int64_t)below30);
     fm_json_kv_int(&j, "triangles_below_20_deg", (int64_t)below20);
@@ -468,10 +500,11 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     fm_json_end_object(&j);
     fm_json_end_object(&j);
     if (!cli->quiet)
-        printf("faults %zu, meshed %zu, failed %ld; triangles %zu, below 30 deg %.3f%%, below 20 "
-               "deg %zu (%zu at sharp corners), edges in [0.7, 1.4] H %.2f%%, worst node "
-               "distance %.1f m\n",
-               rs->nres, ok, rs->failed, tris, tris ? 100.0 * (double)below30 / (double)tris : 0,
+        printf("faults %zu, meshed %zu (%zu with warnings), failed %ld; triangles %zu, below 30 deg "
+               "%.3f%%, below 20 deg %zu (%zu at sharp corners), edges in [0.7, 1.4] H %.2f%%, "
+               "worst node distance %.1f m\n",
+               rs->nres, ok, warned, rs->failed, tris,
+               tris ? 100.0 * (double)below30 / (double)tris : 0,
                below20, forced, edges ? 100.0 * (double)band / (double)edges : 0, worst_dist);
     return fm_atomic_commit(af, err);
 }
