@@ -128,7 +128,7 @@ int main(int argc, char **argv)
         for (int r = 0; r < repeat; r++) {
             fm_cdt *t = NULL;
             fm_error err;
-            double t0 = bench_now();
+            double t0 = fm_clock_seconds();
             fm_status st = fm_cdt_create(uv, np, seg, NULL, np, &t, &err);
             fm_cdt_refine_options o;
             fm_cdt_refine_options_default(&o);
@@ -136,7 +136,7 @@ int main(int argc, char **argv)
             o.metric = bc->metric;
             if (st == FM_OK)
                 st = fm_cdt_refine(t, &o, &err);
-            double dt = bench_now() - t0;
+            double dt = fm_clock_seconds() - t0;
             if (st != FM_OK) {
                 fprintf(stderr, "%s: %s\n", bc->name, err.message);
                 fm_cdt_destroy(t);

@@ -1,4 +1,4 @@
-/* Pieces shared by the benchmarks: the clock and the list of .ts files of a
+/* Pieces shared by the benchmarks: the clock (fm_clock.h) and the list of .ts files of a
  * folder, in name order so that runs are comparable. */
 #ifndef FM_BENCH_COMMON_H
 #define FM_BENCH_COMMON_H
@@ -7,14 +7,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
-static inline double bench_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "fm_clock.h"
 
 static int bench_by_name(const void *a, const void *b)
 {

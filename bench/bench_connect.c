@@ -34,7 +34,7 @@ int main(int argc, char **argv)
     }
     fm_model **models = calloc(np, sizeof *models);
     size_t nm = 0, failed = 0, sheets = 0;
-    double t0 = bench_now();
+    double t0 = fm_clock_seconds();
     for (size_t i = 0; i < np; i++) {
         if (match && !strstr(paths[i], match))
             continue;
@@ -57,7 +57,7 @@ int main(int argc, char **argv)
         fm_surface_destroy(s);
         fm_tsurf_free_all(objs, nobj);
     }
-    double t1 = bench_now();
+    double t1 = fm_clock_seconds();
     printf("fit: %zu faults (%zu sheets), %zu failed, %.1f s\n", nm, sheets, failed, t1 - t0);
 
     fm_connect_pairs *keep = NULL;
@@ -67,12 +67,12 @@ int main(int argc, char **argv)
         o.distance = pass ? 2000.0 : 1000.0;
         fm_connect_pairs *pairs = NULL;
         fm_error err;
-        double a = bench_now();
+        double a = fm_clock_seconds();
         if (fm_connect_find_pairs((const fm_model *const *)models, nm, &o, &pairs, &err) != FM_OK) {
             fprintf(stderr, "%s\n", err.message);
             return 1;
         }
-        double b = bench_now();
+        double b = fm_clock_seconds();
         size_t n = fm_connect_pairs_count(pairs), cross = 0, tcross = 0, tnear = 0, fpairs = 0;
         size_t last_a = (size_t)-1, last_b = (size_t)-1;
         for (size_t i = 0; i < n; i++) {
@@ -97,7 +97,7 @@ int main(int argc, char **argv)
             fm_connect_pairs_destroy(pairs);
     }
 
-    double a = bench_now();
+    double a = fm_clock_seconds();
     size_t ncurves = 0, npoints = 0, fallback = 0, unconverged = 0, closed = 0, with_curve = 0;
     size_t gaps = 0, overshoots = 0;
     double maxd = 0, minang = 90, length = 0;
@@ -129,7 +129,7 @@ int main(int argc, char **argv)
         }
         fm_connect_curves_destroy(c);
     }
-    double b = bench_now();
+    double b = fm_clock_seconds();
     printf("curves (D = 1000): %zu pairs with curves, %zu curves (%zu closed), %zu points, "
            "%.0f km; sides: %zu gap, %zu overshoot; max |S - xyz| %.2e m; smallest angle %.2f "
            "deg; fallback %zu, unconverged %zu; %.2f s\n",

@@ -77,33 +77,33 @@ static int run_file(const char *path, fault *f, totals *tot, int per_sheet,
     fm_tsurf **objs = NULL;
     size_t nobj = 0;
     fm_error err;
-    double t0 = bench_now();
+    double t0 = fm_clock_seconds();
     if (fm_tsurf_read_file(path, &objs, &nobj, &err) != FM_OK) {
         fprintf(stderr, "bench_fit: %s\n", err.message);
         return -1;
     }
-    double t1 = bench_now();
+    double t1 = fm_clock_seconds();
     tot->read += t1 - t0;
     const char *base = strrchr(path, '/');
     f->name = strdup(base ? base + 1 : path);
     size_t sheet_no = 0;
     for (size_t o = 0; o < nobj; o++) {
-        double ta = bench_now();
+        double ta = fm_clock_seconds();
         fm_surface *surf = NULL;
         if (fm_repair(fm_tsurf_mesh(objs[o]), NULL, &surf, &err) != FM_OK) {
             fprintf(stderr, "bench_fit: %s: repair: %s\n", path, err.message);
             fm_tsurf_free_all(objs, nobj);
             return -1;
         }
-        tot->repair += bench_now() - ta;
+        tot->repair += fm_clock_seconds() - ta;
         for (size_t k = 0; k < fm_surface_nsheets(surf); k++, sheet_no++) {
             const fm_mesh *sheet = fm_surface_sheet_mesh(surf, k);
             fm_fit_options opt = *base_opt;
             opt.name = f->name;
             fm_fit_surface *fs = NULL;
-            double tb = bench_now();
+            double tb = fm_clock_seconds();
             fm_status st = fm_fit_sheet(sheet, &opt, &fs, &err);
-            double dt = bench_now() - tb;
+            double dt = fm_clock_seconds() - tb;
             tot->fit += dt;
             f->time += dt;
             f->sheets++;
@@ -206,7 +206,7 @@ int main(int argc, char **argv)
     totals tot;
     memset(&tot, 0, sizeof tot);
     size_t nf = 0, failures = 0;
-    double t_start = bench_now();
+    double t_start = fm_clock_seconds();
     for (size_t i = 0; i < n; i++) {
         if ((match && !strstr(paths[i], match)) || (every > 1 && i % (size_t)every != 0))
             continue;
@@ -219,7 +219,7 @@ int main(int argc, char **argv)
         failures += faults[nf].failed;
         nf++;
     }
-    double t_all = bench_now() - t_start;
+    double t_all = fm_clock_seconds() - t_start;
 
     size_t within = 0;
     double *rms = malloc((nf ? nf : 1) * sizeof *rms), *mx = malloc((nf ? nf : 1) * sizeof *mx);

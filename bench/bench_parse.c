@@ -70,18 +70,18 @@ int main(int argc, char **argv)
         return 1;
     int timed = repeats > 1 ? repeats - 1 : 1;
     long long bytes = 0;
-    double best = 1e300, t0 = bench_now();
+    double best = 1e300, t0 = fm_clock_seconds();
     for (int r = 0; r < timed; r++) {
-        double t = bench_now();
+        double t = fm_clock_seconds();
         long long b = pass(paths, n, &tris);
         if (b < 0)
             return 1;
-        t = bench_now() - t;
+        t = fm_clock_seconds() - t;
         if (t < best)
             best = t;
         bytes += b;
     }
-    double secs = bench_now() - t0;
+    double secs = fm_clock_seconds() - t0;
     double mb = (double)bytes / 1e6;
     printf("folder      %s\n", dir);
     printf("files       %zu x %d passes (%zu triangles per pass)\n", n, timed, tris);

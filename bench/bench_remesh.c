@@ -89,9 +89,9 @@ static void mesh_sizes(const fm_model *model, const fm_mesh *orig, const char *n
         fm_remesh_stats ms;
         fm_error err;
         fm_error_clear(&err);
-        double t0 = bench_now();
+        double t0 = fm_clock_seconds();
         fm_status rc = fm_remesh_model(model, &mo, &mesh, &ms, &err);
-        double t1 = bench_now();
+        double t1 = fm_clock_seconds();
         st[k].mesh += t1 - t0;
         fr->t_mesh[k] += t1 - t0;
         if (rc != FM_OK) {
@@ -123,7 +123,7 @@ static void mesh_sizes(const fm_model *model, const fm_mesh *orig, const char *n
             fprintf(stderr, "bench_remesh: %s: check failed\n", name);
         }
         fm_closest_tree_destroy(tree);
-        st[k].check += bench_now() - t1;
+        st[k].check += fm_clock_seconds() - t1;
         fm_mesh_destroy(mesh);
     }
 }
@@ -135,12 +135,12 @@ static int run_file(const char *path, fault_run *fr, totals *tot, size_totals *s
     size_t nobj = 0;
     fm_error err;
     fm_error_clear(&err);
-    double t0 = bench_now();
+    double t0 = fm_clock_seconds();
     if (fm_tsurf_read_file(path, &objs, &nobj, &err) != FM_OK) {
         fprintf(stderr, "bench_remesh: %s\n", err.message);
         return -1;
     }
-    tot->read += bench_now() - t0;
+    tot->read += fm_clock_seconds() - t0;
     const char *base = strrchr(path, '/');
     fr->name = strdup(base ? base + 1 : path);
     for (size_t o = 0; o < nobj; o++) {
@@ -148,10 +148,10 @@ static int run_file(const char *path, fault_run *fr, totals *tot, size_totals *s
         fr->in_triangles += fm_mesh_ntriangles(orig);
         tot->in_triangles += fm_mesh_ntriangles(orig);
         tot->objects++;
-        double ta = bench_now();
+        double ta = fm_clock_seconds();
         fm_surface *surf = NULL;
         fm_status rc = fm_repair(orig, NULL, &surf, &err);
-        double tb = bench_now();
+        double tb = fm_clock_seconds();
         tot->repair += tb - ta;
         fm_model *model = NULL;
         if (rc == FM_OK) {
@@ -159,7 +159,7 @@ static int run_file(const char *path, fault_run *fr, totals *tot, size_totals *s
             fm_model_options_default(&mo);
             rc = fm_model_build(path, surf, &mo, &model, &err);
         }
-        tot->fit += bench_now() - tb;
+        tot->fit += fm_clock_seconds() - tb;
         if (rc != FM_OK) {
             fprintf(stderr, "bench_remesh: %s\n", err.message);
             tot->fit_failed++;
@@ -283,7 +283,7 @@ int main(int argc, char **argv)
     totals tot;
     memset(&tot, 0, sizeof tot);
     size_t nf = 0;
-    double t_start = bench_now();
+    double t_start = fm_clock_seconds();
     for (size_t i = 0; i < n; i++) {
         if ((match && !strstr(paths[i], match)) || (every > 1 && i % (size_t)every != 0))
             continue;
@@ -298,7 +298,7 @@ int main(int argc, char **argv)
         }
         nf++;
     }
-    double wall = bench_now() - t_start;
+    double wall = fm_clock_seconds() - t_start;
     double shared = tot.read + tot.repair + tot.fit;
 
     printf("\nfolder %s: %zu files, %zu objects, %zu input triangles\n", dir, nf, tot.objects,

@@ -17,23 +17,7 @@ import meshio
 import numpy as np
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-
-def read_ts(path):
-    pos, tris = {}, []
-    with open(path, "rb") as f:
-        for raw in f.read().decode("latin-1").splitlines():
-            t = raw.split()
-            if not t:
-                continue
-            if t[0] in ("VRTX", "PVRTX"):
-                pos[int(t[1])] = [float(v) for v in t[2:5]]
-            elif t[0] in ("ATOM", "PATOM"):
-                pos[int(t[1])] = pos[int(t[2])]
-            elif t[0] == "TRGL":
-                tris.append([int(v) for v in t[1:4]])
-    ids = sorted(pos)
-    index = {k: i for i, k in enumerate(ids)}
-    return np.array([pos[k] for k in ids]), np.array([[index[v] for v in t] for t in tris])
+from plot_fit import read_ts  # the same TSurf reading as the fit pictures
 
 
 def names_of(m):

@@ -6,13 +6,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <pthread.h>
 #include <unistd.h>
 
 #include "cli.h"
 #include "fm_atomic.h"
 #include "fm_check.h"
+#include "fm_clock.h"
 #include "fm_closest.h"
 #include "fm_faultset_write.h"
 #include "fm_json.h"
@@ -43,13 +43,6 @@ typedef struct fault_result {
     double fitted_area;  /* trimmed fitted surface (below sea level when cut), m^2 */
     double t_fit, t_mesh, t_check;
 } fault_result;
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static char *dup_str(const char *s)
 {
@@ -130,11 +123,11 @@ static fm_status remesh_fault(const remesh_cli *cli, const char *path, const fm_
 {
     fm_surface *surf = NULL;
     fm_model *model = NULL;
-    double t0 = now();
+    double t0 = fm_clock_seconds();
     fm_status st = fm_repair(orig, &cli->repair, &surf, err);
     if (st == FM_OK)
         st = fm_model_build(path, surf, &cli->model, &model, err);
-    double t1 = now();
+    double t1 = fm_clock_seconds();
     r->t_fit = t1 - t0;
     if (st == FM_OK) {
         fm_remesh_options mo = cli->mesh;
@@ -143,7 +136,7 @@ static fm_status remesh_fault(const remesh_cli *cli, const char *path, const fm_
         r->sheets = fm_model_nsheets(model);
         r->fitted_area = fitted_area(model, cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level);
     }
-    double t2 = now();
+    double t2 = fm_clock_seconds();
     r->t_mesh = t2 - t1;
     if (st == FM_OK && fm_mesh_ntriangles(*fault) > 0) {
         fm_closest_tree *tree = fm_closest_tree_create(orig, err);
@@ -154,7 +147,7 @@ static fm_status remesh_fault(const remesh_cli *cli, const char *path, const fm_
             fm_error_set(err, st, path, 0, "out of memory");
         fm_closest_tree_destroy(tree);
     }
-    r->t_check = now() - t2;
+    r->t_check = fm_clock_seconds() - t2;
     fm_model_destroy(model);
     fm_surface_destroy(surf);
     return st;

@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "fm_clock.h"
 #include "fm_closest.h"
 #include "fm_connect.h"
 
@@ -72,6 +73,5 @@ int cn_edge_crosses_triangle(const double *p, const double *q, int64_t ip, int64
 /* Any intersection between two triangles (no perturbation needed: a touch counts). */
 int cn_triangles_intersect(const double *const a[3], const double *const b[3]);
 
-double cn_now(void);
 
 #endif

@@ -217,7 +217,7 @@ fm_status fm_connect_find_pairs(const fm_model *const *models, size_t n,
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
     }
     fm_status st = FM_OK;
-    double t0 = cn_now();
+    double t0 = fm_clock_seconds();
     size_t built = 0, maxcells = 0;
     for (size_t i = 0; i < n && st == FM_OK; i++) {
         if (!models[i])
@@ -233,7 +233,7 @@ fm_status fm_connect_find_pairs(const fm_model *const *models, size_t n,
         }
     }
     p->stats.sheets = built;
-    double t1 = cn_now();
+    double t1 = fm_clock_seconds();
     p->stats.time_sample = t1 - t0;
     unsigned char *sel_a = malloc(maxcells ? maxcells : 1), *sel_b = malloc(maxcells ? maxcells : 1);
     if (st == FM_OK && (!sel_a || !sel_b))
@@ -243,9 +243,9 @@ fm_status fm_connect_find_pairs(const fm_model *const *models, size_t n,
         for (size_t j = i + 1; j < built && st == FM_OK; j++) {
             if (sh[i].fault == sh[j].fault || !sh[i].nactive || !sh[j].nactive)
                 continue;
-            double c0 = cn_now();
+            double c0 = fm_clock_seconds();
             int near = boxes_near(&sh[i], &sh[j], o.distance);
-            tc += cn_now() - c0;
+            tc += fm_clock_seconds() - c0;
             if (!near)
                 continue;
             p->stats.candidates++;
@@ -257,7 +257,7 @@ fm_status fm_connect_find_pairs(const fm_model *const *models, size_t n,
                 st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
         }
     p->stats.time_candidates = tc;
-    p->stats.time_measure = cn_now() - t1 - tc;
+    p->stats.time_measure = fm_clock_seconds() - t1 - tc;
     free(sel_a);
     free(sel_b);
     for (size_t i = 0; i < built; i++)

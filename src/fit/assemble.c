@@ -3,6 +3,7 @@
  * that stencil (one dense row of offsets per coefficient, upper half only)
  * and only then laid out in compressed columns for the solver. */
 #include "fit_internal.h"
+#include "fm_clock.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -191,7 +192,7 @@ fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_fit_pmesh *pm, d
                                     int chord_passes, double *plain, const char *name,
                                     fm_error *err)
 {
-    double t0 = fm_fit_now();
+    double t0 = fm_clock_seconds();
     int p = s->p, W = 2 * p + 1;
     size_t n = s->nu * s->nv, WW = (size_t)W * (size_t)W;
     size_t nspans = s->nsu * s->nsv;
@@ -242,26 +243,26 @@ fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_fit_pmesh *pm, d
     colptr[n] = nnz;
     free(q.A);
     q.A = NULL;
-    double t1 = fm_fit_now();
+    double t1 = fm_clock_seconds();
     s->stats.time_assemble += t1 - t0;
     st = fm_fit_spd_factor(n, colptr, rowind, val, &spd, name, err);
     if (st == FM_OK)
         st = solve_all(spd, s, q.rhs, n, name, err);
     if (st == FM_OK && plain)
         memcpy(plain, s->coef, (size_t)s->ncomp * n * sizeof *plain);
-    double t2 = fm_fit_now();
+    double t2 = fm_clock_seconds();
     s->stats.time_solve += t2 - t1;
     /* The matrix does not change with the heights: each chord pass is one
      * more right-hand side for the same factor. */
     for (int pass = 0; pass < chord_passes && st == FM_OK; pass++) {
-        double ta = fm_fit_now();
+        double ta = fm_clock_seconds();
         memset(q.rhs, 0, (size_t)s->ncomp * n * sizeof *q.rhs);
         chord_rhs cr = {s, q.rhs, n};
         fm_fit_sample_sheet(pm, max_side, add_sample_rhs, &cr);
-        double tb = fm_fit_now();
+        double tb = fm_clock_seconds();
         st = solve_all(spd, s, q.rhs, n, name, err);
         s->stats.time_assemble += tb - ta;
-        s->stats.time_solve += fm_fit_now() - tb;
+        s->stats.time_solve += fm_clock_seconds() - tb;
     }
 done:
     fm_fit_spd_destroy(spd);

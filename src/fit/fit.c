@@ -1,5 +1,6 @@
 /* fm_fit_sheet: frame, grid, least squares, statistics. */
 #include "fit_internal.h"
+#include "fm_clock.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -273,7 +274,7 @@ static fm_status parameterize(fm_fit_surface *s, const fm_mesh *sheet, work *w,
     fm_fit_pmesh *pm = &w->pm;
     size_t nv = pm->nv;
     const char *name = opt->name;
-    double t0 = fm_fit_now();
+    double t0 = fm_clock_seconds();
     for (size_t i = 0; i < nv; i++) {
         pm->uv[2 * i] = w->local[3 * i];
         pm->uv[2 * i + 1] = w->local[3 * i + 1];
@@ -341,7 +342,7 @@ static fm_status parameterize(fm_fit_surface *s, const fm_mesh *sheet, work *w,
         for (size_t i = 0; i < nv; i++)
             pm->val[i] = w->local[3 * i + 2];
     }
-    s->stats.time_param = fm_fit_now() - t0;
+    s->stats.time_param = fm_clock_seconds() - t0;
     return FM_OK;
 }
 
@@ -397,7 +398,7 @@ static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
     if (opt->knot_spacing == 0 && opt->max_control_points < (size_t)(p + 1) * (size_t)(p + 1))
         return fm_error_set(err, FM_ERR_INVALID, name, 0, "fit: max_control_points too small");
 
-    double t_start = fm_fit_now();
+    double t_start = fm_clock_seconds();
     work w;
     memset(&w, 0, sizeof w);
     fm_fit_surface *s = calloc(1, sizeof *s);
@@ -414,7 +415,7 @@ static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
     s->p = p;
     s->stats.degree = p;
     s->stats.triangles = fm_mesh_ntriangles(sheet);
-    double t_frame = fm_fit_now();
+    double t_frame = fm_clock_seconds();
 
     const double *X = fm_mesh_vertices(sheet);
     const int32_t *T = fm_mesh_triangles(sheet);
@@ -522,10 +523,10 @@ static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
     }
     if (s->kind == FM_FIT_PARAMETRIC && make_starts(s) != FM_OK)
         return fail(s, &w, fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory"));
-    double t_solved = fm_fit_now();
+    double t_solved = fm_clock_seconds();
     compute_stats(s, &w.pm, w.local, w.used, opt->closest_point_stats,
                   opt->chord_passes > 0 ? opt->chord_weight : 0.0);
-    double t_end = fm_fit_now();
+    double t_end = fm_clock_seconds();
     fm_fit_stats *fs = &s->stats;
     fs->time_frame = t_frame - t_start;
     fs->time_stats = t_end - t_solved;

@@ -173,7 +173,5 @@ fm_status fm_fit_spd_solve(fm_fit_spd *f, const double *b, double *x, const char
                            fm_error *err);
 void fm_fit_spd_destroy(fm_fit_spd *f);
 
-/* --- time.c --- */
-double fm_fit_now(void);
 
 #endif

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "fit_internal.h"
+#include "fm_clock.h"
 #include "fm_closest.h"
 #include "fm_sort.h"
 #include "model_internal.h"
@@ -423,7 +424,7 @@ static void snap_boundary(const fm_fit_surface *surf, const fm_surface *s, size_
 static fm_status build_sheet(const char *name, const fm_surface *s, size_t sheet,
                              const fm_model_options *opt, sheet_model *sm, fm_error *err)
 {
-    double t0 = fm_fit_now();
+    double t0 = fm_clock_seconds();
     const fm_mesh *mesh = fm_surface_sheet_mesh(s, sheet);
     sm->report.vertices = fm_mesh_nvertices(mesh);
     sm->report.triangles = fm_mesh_ntriangles(mesh);
@@ -457,7 +458,7 @@ static fm_status build_sheet(const char *name, const fm_surface *s, size_t sheet
     }
     loop_samples_free(ls, sm->nloops);
     free(uv);
-    sm->report.time = fm_fit_now() - t0;
+    sm->report.time = fm_clock_seconds() - t0;
     return st;
 }
 

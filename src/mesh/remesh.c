@@ -3,8 +3,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "fm_clock.h"
 #include "remesh_internal.h"
 
 void fm_remesh_options_default(fm_remesh_options *opt)
@@ -15,13 +15,6 @@ void fm_remesh_options_default(fm_remesh_options *opt)
     opt->top_extend = 2000;
     opt->sea_level = 0;
     opt->optimise_passes = 6;
-}
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static fm_status build_domain(const fm_fit_surface *s, const fm_trim_loop *const *loops,
@@ -54,7 +47,7 @@ fm_status fm_remesh_sheet(const fm_fit_surface *s, const fm_trim_loop *const *lo
                           size_t nloops, const fm_remesh_options *opt, int32_t tag,
                           fm_mesh **out, double **uv_out, fm_remesh_stats *st, fm_error *err)
 {
-    double t0 = now();
+    double t0 = fm_clock_seconds();
     memset(st, 0, sizeof *st);
     *out = NULL;
     if (uv_out)
@@ -169,7 +162,7 @@ done:
     free(xyz);
     free(fixed);
     free(tri);
-    st->time = now() - t0;
+    st->time = fm_clock_seconds() - t0;
     if (rc != FM_OK) {
         fm_mesh_destroy(mesh);
         return rc;
