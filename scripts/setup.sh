@@ -5,6 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake      # C17 compiler, CMake
   libsuitesparse-dev         # CHOLMOD: sparse least squares of the surface fit
+  libopenblas0-serial        # single-threaded optimised BLAS for CHOLMOD's supernodal factor
   liblapacke-dev             # LAPACKE: banded least squares of the trimming curves
   python3                    # Debian's interpreter for the independent test checks
   python3-meshio python3-gmsh  # real readers of our outputs (VTU, MSH, IGES) in the tests

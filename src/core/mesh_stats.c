@@ -37,11 +37,24 @@ static double angle_at(const double *p, const double *q, const double *r)
     return atan2(norm3(n), d) * RAD2DEG;
 }
 
+/* The smallest angle faces the shortest side: one atan2, not three (the
+ * mesh optimiser calls this for every flip and collapse it considers). */
 double fm_triangle_min_angle(const double *a, const double *b, const double *c)
 {
-    double A = angle_at(a, b, c), B = angle_at(b, c, a), C = angle_at(c, a, b);
-    double m = A < B ? A : B;
-    m = m < C ? m : C;
+    double u[3], v[3], w[3];
+    sub3(b, c, u); /* opposite a */
+    sub3(c, a, v); /* opposite b */
+    sub3(a, b, w); /* opposite c */
+    double la = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+    double lb = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    double lc = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    double m;
+    if (la <= lb && la <= lc)
+        m = angle_at(a, b, c);
+    else if (lb <= lc)
+        m = angle_at(b, c, a);
+    else
+        m = angle_at(c, a, b);
     return isfinite(m) ? m : 0.0;
 }
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include <cholmod.h>
+#include <omp.h>
 
 struct fm_fit_spd {
     cholmod_common c;
@@ -46,10 +47,16 @@ fm_status fm_fit_spd_factor(size_t n, const size_t *colptr, const size_t *rowind
     cholmod_start(&f->c);
     /* Library code never prints: CHOLMOD reports through c.status only. */
     f->c.print = 0;
-    /* Simplicial LDL': no BLAS calls, so results do not depend on which BLAS
-     * (or how many of its threads) the machine has; with the reference BLAS
-     * it is also the faster choice for these 2D stencil matrices. */
-    f->c.supernodal = CHOLMOD_SIMPLICIAL;
+    /* Supernodal LL': the dense blocks of a 2D stencil's separators go to
+     * BLAS (setup.sh installs Debian's single-threaded OpenBLAS; with it the
+     * factorization is about twice as fast as the simplicial one). CHOLMOD
+     * would also open an OpenMP team of 4 per supernode: on these systems
+     * the team costs more than it saves, it would compete with the threads
+     * that fit faults side by side, and one thread per solve keeps the
+     * result independent of how many run. No active parallel levels makes
+     * every team (of this thread) a team of one. */
+    f->c.supernodal = CHOLMOD_SUPERNODAL;
+    omp_set_max_active_levels(0);
     fm_status st = FM_OK;
     cholmod_sparse *A = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &f->c);
     if (!A) {
@@ -70,6 +77,21 @@ fm_status fm_fit_spd_factor(size_t n, const size_t *colptr, const size_t *rowind
         goto done;
     }
     cholmod_factorize(A, f->L, &f->c);
+    if (f->c.status == CHOLMOD_NOT_POSDEF && f->L->is_super) {
+        /* Rounding can leave a pivot of a nearly singular system (a margin
+         * the smoothing alone holds) just under zero, which LL' refuses;
+         * the simplicial LDL' carries such a pivot through, as the whole
+         * fit did before the supernodal factorization. */
+        cholmod_free_factor(&f->L, &f->c);
+        f->c.status = CHOLMOD_OK;
+        f->c.supernodal = CHOLMOD_SIMPLICIAL;
+        f->L = cholmod_analyze(A, &f->c);
+        if (!f->L || f->c.status < CHOLMOD_OK) {
+            st = cholmod_failure(&f->c, "analysis", name, err);
+            goto done;
+        }
+        cholmod_factorize(A, f->L, &f->c);
+    }
     if (f->c.status == CHOLMOD_NOT_POSDEF || f->L->minor < n) {
         st = fm_error_set(err, FM_ERR_NUMERIC, name, 0,
                           "fit: normal equations not positive definite (column %zu of %zu); "
