@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <pthread.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -276,6 +277,7 @@ static void process_file(const remesh_cli *cli, file_job *job)
 typedef struct pool {
     const remesh_cli *cli;
     file_job *jobs;
+    const size_t *order; /* the order jobs are handed out in */
     size_t n, next;
     pthread_mutex_t mu;
 } pool;
@@ -289,14 +291,53 @@ static void *worker(void *arg)
         pthread_mutex_unlock(&p->mu);
         if (i >= p->n)
             return NULL;
-        process_file(p->cli, &p->jobs[i]);
+        process_file(p->cli, &p->jobs[p->order ? p->order[i] : i]);
     }
+}
+
+typedef struct job_key {
+    long long bytes;
+    size_t index;
+} job_key;
+
+static int larger_first(const void *a, const void *b)
+{
+    const job_key *x = a, *y = b;
+    if (x->bytes != y->bytes)
+        return x->bytes < y->bytes ? 1 : -1;
+    return (x->index > y->index) - (x->index < y->index);
+}
+
+/* Largest files first: a large fault started last would keep one thread
+ * busy while the others idle (longest-processing-time-first scheduling).
+ * Which thread meshes a fault never changes its result, and results are
+ * merged in input order, so the order is free. */
+static size_t *schedule(const file_job *jobs, size_t n)
+{
+    size_t *order = malloc((n ? n : 1) * sizeof *order);
+    job_key *key = malloc((n ? n : 1) * sizeof *key);
+    if (!order || !key) {
+        free(key);
+        free(order);
+        return NULL; /* input order then */
+    }
+    for (size_t i = 0; i < n; i++) {
+        struct stat sb;
+        key[i].bytes = stat(jobs[i].path, &sb) == 0 ? (long long)sb.st_size : 0;
+        key[i].index = i;
+    }
+    qsort(key, n, sizeof *key, larger_first);
+    for (size_t i = 0; i < n; i++)
+        order[i] = key[i].index;
+    free(key);
+    return order;
 }
 
 /* Runs the jobs on cli->jobs threads (the calling one included). */
 static void run_jobs(const remesh_cli *cli, file_job *jobs, size_t n)
 {
-    pool p = {cli, jobs, n, 0, PTHREAD_MUTEX_INITIALIZER};
+    size_t *order = schedule(jobs, n);
+    pool p = {cli, jobs, order, n, 0, PTHREAD_MUTEX_INITIALIZER};
     size_t nt = cli->jobs > 1 ? (size_t)cli->jobs - 1 : 0;
     pthread_t *th = nt ? calloc(nt, sizeof *th) : NULL;
     size_t started = 0;
@@ -309,6 +350,7 @@ static void run_jobs(const remesh_cli *cli, file_job *jobs, size_t n)
     for (size_t k = 0; k < started; k++)
         pthread_join(th[k], NULL);
     free(th);
+    free(order);
 }
 
 /* Merges a job's faults into the run, in order. */
