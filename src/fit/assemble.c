@@ -213,7 +213,11 @@ fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_fit_pmesh *pm, d
     double *val = malloc(cap * sizeof *val);
     fm_fit_spd *spd = NULL;
     fm_status st = FM_OK;
-    double max_side = s->s;
+    /* Facets up to one and a half spans long are sampled whole: on a third
+     * of the CFM 500 m set, splitting every facet longer than one span
+     * took 2.5 times as long to assemble for the same per-fault RMS and
+     * max (median 1.88 vs 1.86 m, the same faults within 10/100 m). */
+    double max_side = 1.5 * s->s;
     if (!q.A || !q.rhs || !q.span_area || !q.span_bend || !colptr || !rowind || !val) {
         st = fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory (%zu coefficients)", n);
         goto done;

@@ -8,7 +8,7 @@
 /* Symmetric 3-point rule of degree 2, barycentrics (2/3, 1/6, 1/6): with
  * knots about two edges apart a span holds some ten triangles, and the
  * 6-point degree-4 rule was measured to change fit errors by under 3 %
- * at twice the cost. Triangles longer than a knot span are split first. */
+ * at twice the cost. Triangles longer than max_side are split first. */
 #define NORBITS 1
 static const double RULE_A[NORBITS] = {1.0 / 6.0};
 static const double RULE_W[NORBITS] = {1.0 / 3.0};
