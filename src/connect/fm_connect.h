@@ -179,6 +179,58 @@ const double *fm_connect_curve_flap(const fm_connect_curves *c, size_t i, int si
 /* Per point: crossing angle of the two surfaces (degrees, 0..90). */
 const double *fm_connect_curve_angles(const fm_connect_curves *c, size_t i);
 
+/* ---- Near-duplicates ----
+ *
+ * A fault that repeats another over much of its area (a historical-rupture
+ * composite over its section faults, an alternative representation) is not
+ * joined to it: one of the two is kept. Overlap is measured on the sampled
+ * trimmed surfaces (fm_model_samples): the share of a fault's area whose
+ * sample triangles have their centroid within `tolerance` of the other
+ * fault's samples. A pair is a duplicate when the larger of its two shares
+ * reaches `min_share`. Rule: FM_CONNECT_KEEP_SMALLER (default) gives up the
+ * larger fault of the pair, which keeps the section faults and drops the
+ * composites over them; FM_CONNECT_KEEP_LARGER the opposite. Equal areas:
+ * the later fault (higher index) goes. Pairs decide in order of their
+ * larger share, strongest first; a pair one of whose faults has already
+ * been given up decides nothing (the other stays unless a pair of its own
+ * drops it). */
+typedef enum fm_connect_keep {
+    FM_CONNECT_KEEP_SMALLER = 0,
+    FM_CONNECT_KEEP_LARGER = 1
+} fm_connect_keep;
+
+typedef struct fm_connect_duplicate_options {
+    double tolerance;     /* m; default 50 */
+    double min_share;     /* in (0, 1]; default 0.5 */
+    fm_connect_keep keep;
+} fm_connect_duplicate_options;
+
+void fm_connect_duplicate_options_default(fm_connect_duplicate_options *opt);
+
+typedef struct fm_connect_duplicate {
+    size_t dropped, kept; /* fault indices: the one the rule gives up, the other */
+    double share[2];      /* share of the dropped [0] and kept [1] fault's area within
+                             the tolerance of the other */
+    double area[2];       /* sampled trimmed areas (m^2), dropped [0] and kept [1] */
+    int decided;          /* 1: this pair gave up `dropped`; 0: an earlier pair had
+                             already given up one of the two */
+} fm_connect_duplicate;
+
+/* Overlap of two faults (all their sheets): share[0] of a's area lies within
+ * tolerance of b, share[1] of b's within tolerance of a; area[] their
+ * sampled areas. */
+fm_status fm_connect_overlap(const fm_model *a, const fm_model *b, double tolerance,
+                             double share[2], double area[2], fm_error *err);
+
+/* The duplicate pairs among the fault pairs of `pairs` (from
+ * fm_connect_find_pairs on the same models) whose trimmed surfaces come
+ * within the tolerance, in the order they were decided; *out is malloc'ed
+ * (free it), NULL when there are none. opt may be NULL. */
+fm_status fm_connect_find_duplicates(const fm_model *const *models, size_t n,
+                                     const fm_connect_pairs *pairs,
+                                     const fm_connect_duplicate_options *opt,
+                                     fm_connect_duplicate **out, size_t *nout, fm_error *err);
+
 #ifdef __cplusplus
 }
 #endif

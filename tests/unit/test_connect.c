@@ -1,6 +1,7 @@
 /* Neighbours and intersection curves (src/connect): fitted planes crossing
  * at 90 and 10 degrees against the analytic line, the synthetic system's
- * T-junction gap and overshoot, and two crossing CFM faults. */
+ * T-junction gap and overshoot, near-duplicate faults, and two crossing
+ * CFM faults. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,6 +29,24 @@ static fm_mesh *vertical_plane(double az_deg, double half, double zbot, double h
             double t = -half + 2 * half * i / ns, z = zbot * j / nz;
             fm_mesh_add_vertex(m, X0 + t * c, Y0 + t * s, z);
         }
+    for (int j = 0; j < nz; j++)
+        for (int i = 0; i < ns; i++) {
+            int32_t a = j * (ns + 1) + i, b = a + 1, d = a + ns + 1, e = d + 1;
+            fm_mesh_add_triangle(m, a, b, e, 0);
+            fm_mesh_add_triangle(m, a, e, d, 0);
+        }
+    return m;
+}
+
+/* Part t in [t0, t1] of a vertical plane like vertical_plane's (az 0:
+ * along x), moved `off` metres along y. */
+static fm_mesh *plane_part(double t0, double t1, double off, double zbot, double h)
+{
+    fm_mesh *m = fm_mesh_create();
+    int ns = (int)ceil((t1 - t0) / h), nz = (int)ceil(-zbot / h);
+    for (int j = 0; j <= nz; j++)
+        for (int i = 0; i <= ns; i++)
+            fm_mesh_add_vertex(m, X0 + t0 + (t1 - t0) * i / ns, Y0 + off, zbot * j / nz);
     for (int j = 0; j < nz; j++)
         for (int i = 0; i < ns; i++) {
             int32_t a = j * (ns + 1) + i, b = a + 1, d = a + ns + 1, e = d + 1;
@@ -290,12 +309,69 @@ static void test_cfm_santa_monica(void)
     fm_model_destroy(b);
 }
 
+/* A composite over two section faults 20 m beside it, and a fault that
+ * crosses all three: the composite (or, keeping the larger, the sections)
+ * is given up, the crossing fault is no duplicate. */
+static void test_duplicates(void)
+{
+    fm_mesh *meshes[4] = {plane_part(-8000, 8000, 0, -6000, 500),
+                          plane_part(-8000, 0, 20, -6000, 500),
+                          plane_part(0, 8000, 20, -6000, 500),
+                          vertical_plane(90.0, 5000, -6000, 500)};
+    const char *names[4] = {"composite", "section west", "section east", "crossing"};
+    fm_model *models[4];
+    for (int k = 0; k < 4; k++) {
+        models[k] = fit_mesh(names[k], meshes[k]);
+        fm_mesh_destroy(meshes[k]);
+        CHECK(models[k] != NULL);
+        if (!models[k])
+            return;
+    }
+    fm_error err;
+    double share[2], area[2];
+    CHECK(fm_connect_overlap(models[1], models[0], 50, share, area, &err) == FM_OK);
+    CHECK(share[0] > 0.95);                     /* the section lies on the composite */
+    CHECK(share[1] > 0.4 && share[1] < 0.6);    /* half of the composite on the section */
+    CHECK(fabs(area[0] - 8000.0 * 6000) < 0.02 * 8000.0 * 6000);
+    CHECK(fm_connect_overlap(models[0], models[3], 50, share, area, &err) == FM_OK);
+    CHECK(share[0] < 0.02 && share[1] < 0.02);  /* a crossing shares a line, no area */
+
+    fm_connect_pairs *pairs = NULL;
+    CHECK(fm_connect_find_pairs((const fm_model *const *)models, 4, NULL, &pairs, &err) == FM_OK);
+    for (int keep = 0; keep < 2 && pairs; keep++) {
+        fm_connect_duplicate_options o;
+        fm_connect_duplicate_options_default(&o);
+        o.keep = keep ? FM_CONNECT_KEEP_LARGER : FM_CONNECT_KEEP_SMALLER;
+        fm_connect_duplicate *d = NULL;
+        size_t nd = 0;
+        CHECK(fm_connect_find_duplicates((const fm_model *const *)models, 4, pairs, &o, &d, &nd,
+                                         &err) == FM_OK);
+        int dropped[4] = {0, 0, 0, 0};
+        for (size_t k = 0; k < nd; k++) {
+            CHECK(d[k].dropped != 3 && d[k].kept != 3);
+            if (d[k].decided)
+                dropped[d[k].dropped]++;
+        }
+        if (keep == 0) {
+            CHECK(nd == 2); /* composite with each section */
+            CHECK(dropped[0] == 1 && dropped[1] == 0 && dropped[2] == 0);
+        } else {
+            CHECK(dropped[0] == 0 && dropped[1] == 1 && dropped[2] == 1);
+        }
+        free(d);
+    }
+    fm_connect_pairs_destroy(pairs);
+    for (int k = 0; k < 4; k++)
+        fm_model_destroy(models[k]);
+}
+
 int main(void)
 {
     static const fm_test_case cases[] = {
         FM_CASE(test_planes_90),
         FM_CASE(test_planes_10),
         FM_CASE(test_synth),
+        FM_CASE(test_duplicates),
         FM_CASE(test_cfm_santa_monica),
     };
     int rc = fm_test_run(cases, sizeof cases / sizeof cases[0]);
