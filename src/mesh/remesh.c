@@ -25,6 +25,10 @@ static fm_status build_domain(const fm_fit_surface *s, const fm_trim_loop *const
     fm_status rc = domain_sample(s, loops, nloops, opt->size, &d0, err, opt->name);
     if (rc != FM_OK)
         return rc;
+    if (domain_split_sags(s, loops, &d0, opt->size)) {
+        domain_free(&d0);
+        return fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
+    }
     domain_despike(s, &d0, 30.0);
     if (opt->top == FM_TOP_EXTEND) {
         rc = domain_extend_top(s, &d0, opt->sea_level, opt->top_extend, opt->size, &st->extended,

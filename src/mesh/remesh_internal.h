@@ -53,6 +53,12 @@ fm_status domain_sample(const fm_fit_surface *s, const fm_trim_loop *const *loop
                         size_t nloops, double h, remesh_domain *out, fm_error *err,
                         const char *name);
 
+/* Splits every trimming-curve segment whose curve strays more than a
+ * tenth of h from its chord in 3D, at the farthest point (domain_sag.c);
+ * -1 when memory ran out. */
+int domain_split_sags(const fm_fit_surface *s, const fm_trim_loop *const *loops,
+                      remesh_domain *d, double h);
+
 /* 1 if segments (a, b) and (c, d) cross, touch or overlap (exact). */
 int segments_cross(const double *a, const double *b, const double *c, const double *d);
 
