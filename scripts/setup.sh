@@ -5,7 +5,8 @@ set -euo pipefail
 packages=(
   build-essential cmake      # C17 compiler, CMake
   libsuitesparse-dev         # CHOLMOD: sparse least squares of the surface fit
-  libopenblas0-serial        # single-threaded optimised BLAS for CHOLMOD's supernodal factor
+  libopenblas0-pthread       # thread-safe optimised BLAS for CHOLMOD's supernodal factor
+                             # (run on one thread per fault, see src/fit/solve.c)
   liblapacke-dev             # LAPACKE: banded least squares of the trimming curves
   python3                    # Debian's interpreter for the independent test checks
   python3-meshio python3-gmsh  # real readers of our outputs (VTU, MSH, IGES) in the tests

@@ -1,8 +1,11 @@
 /* The one place that talks to CHOLMOD: factor a sparse SPD matrix once,
  * solve with it as often as needed. */
+#define _GNU_SOURCE /* RTLD_DEFAULT */
 #include "fit_internal.h"
 
+#include <dlfcn.h>
 #include <limits.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -31,6 +34,23 @@ static fm_status cholmod_failure(const cholmod_common *c, const char *what, cons
                         name, 0, "fit: CHOLMOD %s failed (status %d)", what, c->status);
 }
 
+/* Debian's OpenBLAS builds are either thread-safe and multi-threaded
+ * (libopenblas0-pthread, which setup.sh installs) or single-threaded but
+ * unsafe to call from several threads at once (libopenblas0-serial: faults
+ * fitted side by side then corrupt each other's buffers). So the
+ * thread-safe build is told to use one thread, which also keeps results
+ * independent of the machine's core count. Looked up at run time: the
+ * reference BLAS, or another, simply has no such function. */
+static void one_blas_thread(void)
+{
+    void (*set)(int);
+    *(void **)&set = dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
+    if (set)
+        set(1);
+}
+
+static pthread_once_t blas_once = PTHREAD_ONCE_INIT;
+
 fm_status fm_fit_spd_factor(size_t n, const size_t *colptr, const size_t *rowind,
                             const double *values, fm_fit_spd **out, const char *name,
                             fm_error *err)
@@ -48,7 +68,7 @@ fm_status fm_fit_spd_factor(size_t n, const size_t *colptr, const size_t *rowind
     /* Library code never prints: CHOLMOD reports through c.status only. */
     f->c.print = 0;
     /* Supernodal LL': the dense blocks of a 2D stencil's separators go to
-     * BLAS (setup.sh installs Debian's single-threaded OpenBLAS; with it the
+     * BLAS (OpenBLAS on one thread, see one_blas_thread; with it the
      * factorization is about twice as fast as the simplicial one). CHOLMOD
      * would also open an OpenMP team of 4 per supernode: on these systems
      * the team costs more than it saves, it would compete with the threads
@@ -57,6 +77,7 @@ fm_status fm_fit_spd_factor(size_t n, const size_t *colptr, const size_t *rowind
      * every team (of this thread) a team of one. */
     f->c.supernodal = CHOLMOD_SUPERNODAL;
     omp_set_max_active_levels(0);
+    pthread_once(&blas_once, one_blas_thread);
     fm_status st = FM_OK;
     cholmod_sparse *A = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &f->c);
     if (!A) {

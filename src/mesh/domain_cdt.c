@@ -194,7 +194,13 @@ fm_status domain_triangulate(const fm_fit_surface *s, const fm_trim_loop *const 
         fm_cdt_refine_stats rs;
         fm_cdt_refine_get_stats(cdt, &rs);
         size_t ntri = fm_cdt_ntriangles(cdt);
-        if (rc != FM_OK || (!rs.capped && rs.bad_left <= 8 + ntri / 50))
+        /* A metric that varies faster than the size (a steep height field
+         * whose fine knots wrinkle its slope) makes the angle refinement
+         * cascade: the mesh ends well below the cap but with many times
+         * the points the area calls for, nearly all of them removed again
+         * by the collapses, which leaves short edges behind. */
+        int swollen = ntri > 12 * rs.expected_points + 200;
+        if (rc != FM_OK || (!rs.capped && !swollen && rs.bad_left <= 8 + ntri / 50))
             break;
     }
     if (rc != FM_OK) {

@@ -173,6 +173,9 @@ typedef struct fm_cdt_refine_stats {
     size_t inserted_interior, inserted_segment, rejected, bad_left;
     size_t clamped;
     int capped;
+    /* Points the metric area and the boundary length call for at the size
+     * (an equilateral mesh): how many a run that ends well comes near. */
+    size_t expected_points;
 } fm_cdt_refine_stats;
 void fm_cdt_refine_get_stats(const fm_cdt *t, fm_cdt_refine_stats *st);
 

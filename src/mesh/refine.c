@@ -312,8 +312,8 @@ star:;
     t->stats.inserted_interior++;
 }
 
-/* Points the metric area and boundary length call for, times 16, with
- * slack for small domains. */
+/* Points the metric area and boundary length call for (in the stats), and
+ * the automatic cap: 16 times that, with slack for small domains. */
 static size_t auto_max_points(cdt_refiner *r)
 {
     const struct fm_cdt *t = r->t;
@@ -341,6 +341,9 @@ static size_t auto_max_points(cdt_refiner *r)
         }
     }
     double s = r->size;
+    /* An equilateral mesh of side s has 2 / (sqrt 3 s^2) points per area. */
+    double called = 1.1547 * area / (s * s) + perim / s;
+    r->t->stats.expected_points = called < 1e15 ? (size_t)called : (size_t)1e15;
     double n = (double)(t->np - CDT_NSUPER) + 16 * (area / (s * s) + perim / s) + 10000;
     double lim = (double)(INT32_MAX / 8);
     return n < lim ? (size_t)n : (size_t)lim;
@@ -392,8 +395,10 @@ fm_status fm_cdt_refine(fm_cdt *t, const fm_cdt_refine_options *opt, fm_error *e
     r.auto_cap = opt->max_points == 0;
     t->stats = (fm_cdt_refine_stats){0};
     r.st = cdt_apex_init(&r);
-    if (r.st == FM_OK)
-        r.max_points = opt->max_points ? opt->max_points : auto_max_points(&r);
+    if (r.st == FM_OK) {
+        size_t cap = auto_max_points(&r); /* also the stats' expected points */
+        r.max_points = opt->max_points ? opt->max_points : cap;
+    }
     t->touch = touch;
     t->touch_user = &r;
     for (size_t k = 0; k < t->nt && r.st == FM_OK; k++)

@@ -59,6 +59,8 @@ endif()
 # distances to the original TSurf) and cross-checks report.json; skipped
 # (77) without Debian's python3-meshio, python3-gmsh or the CFM.
 #  - remesh_cli: exit codes, a bad file among good ones, atomic outputs.
+#  - cfm_remesh_jobs_identical: every 12th CFM 500 m fault remeshed with
+#    -j 1, -j 2 and -j 2 again gives byte-identical outputs.
 #  - remesh_demo: `faultmesh demo` (MSH 4.1, top cut) and `demo
 #    --msh-version 2.2 --top keep` with every criterion asserted, and two
 #    runs byte-identical.
@@ -70,6 +72,10 @@ endif()
 add_test(NAME remesh_cli
   COMMAND bash ${FM_TOOLS}/remesh_cli_test.sh $<TARGET_FILE:faultmesh_cli> ${CMAKE_CURRENT_SOURCE_DIR}/data
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_cli)
+add_test(NAME cfm_remesh_jobs_identical
+  COMMAND bash ${FM_TOOLS}/remesh_jobs_check.sh $<TARGET_FILE:faultmesh_cli>
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_remesh_jobs ${FM_CFM_DIR}/CFM5.3/500m 12)
+set_tests_properties(cfm_remesh_jobs_identical PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
 set(FM_CFM_REMESH_CRITERIA "failures,min-angle-30,edge-band,top" CACHE STRING
     "check_remesh.py criteria asserted by cfm_remesh_500m_1000")
 option(FM_CFM_REMESH_ALL_CRITERIA
