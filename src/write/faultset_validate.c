@@ -6,17 +6,9 @@
 #include <string.h>
 
 #include "faultset_internal.h"
+#include "fm_dtoa.h"
 
-size_t fs_format_double(char *buf, double v)
-{
-    int n = 0;
-    for (int prec = 15; prec <= 17; prec++) {
-        n = snprintf(buf, 32, "%.*g", prec, v);
-        if (strtod(buf, NULL) == v)
-            break;
-    }
-    return (size_t)n;
-}
+size_t fs_format_double(char *buf, double v) { return fm_format_double(buf, v); }
 
 int32_t fs_physical_tag(const fm_faultset *fs, size_t i)
 {
