@@ -7,10 +7,6 @@
 
 #include "fm_faultset_write.h"
 
-/* Shortest of %.15g, %.16g, %.17g that reads back to the same double
- * (C locale); buf must hold 32 bytes. Returns the length. */
-size_t fs_format_double(char *buf, double v);
-
 /* Physical tag of fault i. */
 int32_t fs_physical_tag(const fm_faultset *fs, size_t i);
 

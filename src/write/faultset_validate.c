@@ -6,9 +6,6 @@
 #include <string.h>
 
 #include "faultset_internal.h"
-#include "fm_dtoa.h"
-
-size_t fs_format_double(char *buf, double v) { return fm_format_double(buf, v); }
 
 int32_t fs_physical_tag(const fm_faultset *fs, size_t i)
 {
