@@ -1,6 +1,6 @@
 /* Time of the fault-set writers (fm_faultset_write.h) on a large set.
  *
- *   bench_write [-n REPEATS] [-o OUTDIR] [FOLDER]
+ *   bench_write [-n REPEATS] [-j THREADS] [-o OUTDIR] [FOLDER]
  *
  * Every .ts file of FOLDER (default: the CFM 500 m set) becomes one fault
  * of one set, its objects and parts merged, and vertices with bit-identical
@@ -11,8 +11,9 @@
  * `bench_write /tmp/w_out`. OUTDIR (default /tmp/bench_write) receives
  * mesh.vtu, mesh.msh (4.1), mesh.stl, mesh.obj and ts/NAME.ts.
  *
- * Prints the best wall time of each writer over REPEATS passes (default
- * 3), the whole set and the set's size. */
+ * Prints the best wall and CPU time of each writer over REPEATS passes
+ * (default 3), of all of them in a row, and of fm_faultset_write_all on
+ * 1, 2 and 4 threads (-j N: on N only), with the set's size. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -159,14 +160,16 @@ static const struct {
 int main(int argc, char **argv)
 {
     const char *dir = FM_CFM_DIR "/CFM5.3/500m", *out = "/tmp/bench_write";
-    int repeats = 3;
+    int repeats = 3, jobs = 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "-n") == 0 && i + 1 < argc)
             repeats = atoi(argv[++i]);
+        else if (strcmp(argv[i], "-j") == 0 && i + 1 < argc)
+            jobs = atoi(argv[++i]);
         else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc)
             out = argv[++i];
         else if (argv[i][0] == '-') {
-            fprintf(stderr, "usage: bench_write [-n REPEATS] [-o OUTDIR] [FOLDER]\n");
+            fprintf(stderr, "usage: bench_write [-n REPEATS] [-j THREADS] [-o OUTDIR] [FOLDER]\n");
             return 2;
         } else
             dir = argv[i];
@@ -212,6 +215,33 @@ int main(int argc, char **argv)
     for (size_t w = 0; w < NWRITERS; w++)
         printf("%-11s %6.3f  %6.3f\n", writers[w].name, best[w], cpu[w]);
     printf("all, serial %6.3f  %6.3f\n", best_all, cpu_all);
+
+    char p[5][4096];
+    const char *ext[4] = {"vtu", "msh", "stl", "obj"};
+    for (int k = 0; k < 4; k++)
+        snprintf(p[k], sizeof p[k], "%s/all/mesh.%s", out, ext[k]);
+    snprintf(p[4], sizeof p[4], "%s/all", out);
+    fm_faultset_outputs o = {p[0], p[1], p[2], p[3], FM_MSH_41, p[4]};
+    int threads[3] = {1, 2, 4}, nthreads = 3;
+    if (jobs > 0) {
+        threads[0] = jobs;
+        nthreads = 1;
+    }
+    for (int k = 0; k < nthreads; k++) {
+        double wall = 1e300, c_best = 1e300;
+        for (int r = 0; r < repeats; r++) {
+            double t = fm_clock_seconds(), c = cpu_seconds();
+            if (fm_faultset_write_all(&fs, &o, threads[k], &err) != FM_OK) {
+                fprintf(stderr, "bench_write: %s\n", err.message);
+                return 1;
+            }
+            t = fm_clock_seconds() - t;
+            c = cpu_seconds() - c;
+            wall = t < wall ? t : wall;
+            c_best = c < c_best ? c : c_best;
+        }
+        printf("all, %d thr  %6.3f  %6.3f\n", threads[k], wall, c_best);
+    }
     for (size_t i = 0; i < s.nfaults; i++)
         free(s.names[i]);
     free(s.names);
