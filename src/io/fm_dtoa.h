@@ -4,8 +4,8 @@
  * fm_format_double writes the shortest of printf's %.15g, %.16g and %.17g
  * that reads back as exactly x (C locale) into buf (at least 32 bytes),
  * NUL-terminated, and returns its length. Deterministic, and for UTM
- * coordinates some 15 times faster than printf + strtod (130 against
- * 2200 ns a number; see src/io/tsurf_dtoa.c). The same declaration is in
+ * coordinates about 20 times faster than printf + strtod (see
+ * src/io/tsurf_dtoa.c). The same declaration is in
  * the io stage's private tsurf_lex.h. */
 #ifndef FM_DTOA_H
 #define FM_DTOA_H
