@@ -544,33 +544,23 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     return fm_atomic_commit(af, err);
 }
 
+/* The fault set in every format, the files shared among cli->jobs threads
+ * (the bytes do not depend on how many). */
 static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error *err)
 {
+    if (!rs->nfaults)
+        return FM_OK;
     fm_faultset fs = {rs->set, (const char *const *)rs->names, rs->nfaults, NULL, NULL, 0,
                       cli->crs};
     size_t n = strlen(cli->dir) + 32;
-    char *path = malloc(n);
+    char *path = malloc(4 * n);
     if (!path)
         return fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
-    fm_status st = FM_OK;
-    if (rs->nfaults) {
-        snprintf(path, n, "%s/mesh.vtu", cli->dir);
-        st = fm_faultset_write_vtu(path, &fs, err);
-        if (st == FM_OK) {
-            snprintf(path, n, "%s/mesh.msh", cli->dir);
-            st = fm_faultset_write_msh(path, &fs, cli->msh, err);
-        }
-        if (st == FM_OK) {
-            snprintf(path, n, "%s/mesh.stl", cli->dir);
-            st = fm_faultset_write_stl(path, &fs, err);
-        }
-        if (st == FM_OK) {
-            snprintf(path, n, "%s/mesh.obj", cli->dir);
-            st = fm_faultset_write_obj(path, &fs, err);
-        }
-        if (st == FM_OK)
-            st = fm_faultset_write_tsurf(cli->dir, &fs, err);
-    }
+    const char *ext[4] = {"vtu", "msh", "stl", "obj"};
+    for (int k = 0; k < 4; k++)
+        snprintf(path + (size_t)k * n, n, "%s/mesh.%s", cli->dir, ext[k]);
+    fm_faultset_outputs out = {path, path + n, path + 2 * n, path + 3 * n, cli->msh, cli->dir};
+    fm_status st = fm_faultset_write_all(&fs, &out, cli->jobs, err);
     free(path);
     return st;
 }

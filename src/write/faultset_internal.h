@@ -7,10 +7,6 @@
 
 #include "fm_faultset_write.h"
 
-/* Shortest of %.15g, %.16g, %.17g that reads back to the same double
- * (C locale); buf must hold 32 bytes. Returns the length. */
-size_t fs_format_double(char *buf, double v);
-
 /* Physical tag of fault i. */
 int32_t fs_physical_tag(const fm_faultset *fs, size_t i);
 
@@ -31,5 +27,33 @@ int fs_group_by(const int32_t *key, size_t n, size_t nkeys, size_t **start, size
 /* Start of the last whole UTF-8 character at or before byte n of s (s is
  * valid UTF-8), so cutting there keeps the text valid. */
 size_t fs_utf8_cut(const char *s, size_t n);
+
+/* What writing the TSurf files of a validated set needs, shared by every
+ * thread: file names, triangles grouped by fault. */
+typedef struct fs_tsurf_plan {
+    const fm_faultset *fs;
+    const char *dir;
+    char **files;
+    size_t *tstart, *torder;
+    size_t max_uses; /* 3 x the triangles of the largest fault */
+} fs_tsurf_plan;
+
+/* One thread's scratch: a vertex map of the whole set (-1 between uses),
+ * the vertices of one fault, a path. */
+typedef struct fs_tsurf_scratch {
+    int32_t *map, *used;
+    char *path;
+} fs_tsurf_scratch;
+
+/* Also creates dir. fs_tsurf_plan_free also after a failure. */
+fm_status fs_tsurf_plan_make(fs_tsurf_plan *pl, const char *dir, const fm_faultset *fs,
+                             fm_error *err);
+void fs_tsurf_plan_free(fs_tsurf_plan *pl);
+/* -1 when memory runs out; fs_tsurf_scratch_free also then. */
+int fs_tsurf_scratch_init(fs_tsurf_scratch *sc, const fs_tsurf_plan *pl);
+void fs_tsurf_scratch_free(fs_tsurf_scratch *sc);
+/* Writes the file of fault f (atomic; the error names it). */
+fm_status fs_tsurf_write_fault(const fs_tsurf_plan *pl, size_t f, fs_tsurf_scratch *sc,
+                               fm_error *err);
 
 #endif

@@ -3,61 +3,60 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fm_atomic.h"
+#include "fs_atomic.h"
 #include "faultset_internal.h"
-
-static void put_double(FILE *fp, double v)
-{
-    char buf[32];
-    fwrite(buf, 1, fs_format_double(buf, v), fp);
-}
+#include "fs_out.h"
 
 /* Neither Gmsh (text between the first two quotes) nor meshio (shlex)
  * has an escape the other understands, so the two troublesome bytes are
  * replaced; see the header. */
-static void put_name(FILE *fp, const char *name)
+static void put_name(fs_out *o, const char *name)
 {
     size_t n = strlen(name);
     if (n > FM_MSH_NAME_MAX)
         n = fs_utf8_cut(name, FM_MSH_NAME_MAX);
-    fputc('"', fp);
+    fs_out_char(o, '"');
     for (size_t i = 0; i < n; i++)
-        fputc(name[i] == '"' ? '\'' : name[i] == '\\' ? '/' : name[i], fp);
-    fputs("\"\n", fp);
+        fs_out_char(o, name[i] == '"' ? '\'' : name[i] == '\\' ? '/' : name[i]);
+    fs_out_str(o, "\"\n");
 }
 
-static void put_head(FILE *fp, const fm_faultset *fs, const char *version)
+static void put_head(fs_out *o, const fm_faultset *fs, const char *version)
 {
-    fprintf(fp, "$MeshFormat\n%s 0 8\n$EndMeshFormat\n$PhysicalNames\n%zu\n", version,
-            fs->nfaults);
+    fs_out_printf(o, "$MeshFormat\n%s 0 8\n$EndMeshFormat\n$PhysicalNames\n%zu\n", version,
+                  fs->nfaults);
     for (size_t i = 0; i < fs->nfaults; i++) {
-        fprintf(fp, "2 %d ", (int)fs_physical_tag(fs, i));
-        put_name(fp, fs->names[i]);
+        fs_out_printf(o, "2 %d ", (int)fs_physical_tag(fs, i));
+        put_name(o, fs->names[i]);
     }
-    fputs("$EndPhysicalNames\n", fp);
+    fs_out_str(o, "$EndPhysicalNames\n");
 }
 
-static void put_vertex(FILE *fp, const double *x)
+static void put_vertex(fs_out *o, const double *x)
 {
     for (int d = 0; d < 3; d++) {
         if (d)
-            fputc(' ', fp);
-        put_double(fp, x[d]);
+            fs_out_char(o, ' ');
+        fs_out_double(o, x[d]);
     }
-    fputc('\n', fp);
+    fs_out_char(o, '\n');
 }
 
-static void put_triangle(FILE *fp, const int32_t *t)
+static void put_triangle(fs_out *o, const int32_t *t)
 {
-    fprintf(fp, " %ld %ld %ld\n", (long)t[0] + 1, (long)t[1] + 1, (long)t[2] + 1);
+    for (int k = 0; k < 3; k++) {
+        fs_out_char(o, ' ');
+        fs_out_i64(o, (int64_t)t[k] + 1);
+    }
+    fs_out_char(o, '\n');
 }
 
-static void put_entities(FILE *fp, const fm_faultset *fs, const size_t *tstart,
+static void put_entities(fs_out *o, const fm_faultset *fs, const size_t *tstart,
                          const size_t *torder)
 {
     const double *x = fm_mesh_vertices(fs->mesh);
     const int32_t *tri = fm_mesh_triangles(fs->mesh);
-    fprintf(fp, "$Entities\n0 0 %zu 0\n", fs->nfaults);
+    fs_out_printf(o, "$Entities\n0 0 %zu 0\n", fs->nfaults);
     for (size_t f = 0; f < fs->nfaults; f++) {
         double lo[3], hi[3];
         const double *p0 = x + 3 * (size_t)tri[3 * torder[tstart[f]]];
@@ -71,17 +70,17 @@ static void put_entities(FILE *fp, const fm_faultset *fs, const size_t *tstart,
                     hi[d] = p[d] > hi[d] ? p[d] : hi[d];
                 }
             }
-        fprintf(fp, "%zu", f + 1);
+        fs_out_u64(o, f + 1);
         for (int d = 0; d < 6; d++) {
-            fputc(' ', fp);
-            put_double(fp, d < 3 ? lo[d] : hi[d - 3]);
+            fs_out_char(o, ' ');
+            fs_out_double(o, d < 3 ? lo[d] : hi[d - 3]);
         }
-        fprintf(fp, " 1 %d 0\n", (int)fs_physical_tag(fs, f));
+        fs_out_printf(o, " 1 %d 0\n", (int)fs_physical_tag(fs, f));
     }
-    fputs("$EndEntities\n", fp);
+    fs_out_str(o, "$EndEntities\n");
 }
 
-static void put_41(FILE *fp, const fm_faultset *fs, const size_t *vstart, const size_t *vorder,
+static void put_41(fs_out *o, const fm_faultset *fs, const size_t *vstart, const size_t *vorder,
                    const size_t *tstart, const size_t *torder)
 {
     const double *x = fm_mesh_vertices(fs->mesh);
@@ -94,49 +93,55 @@ static void put_41(FILE *fp, const fm_faultset *fs, const size_t *vstart, const 
         vmin = vorder[i] < vmin ? vorder[i] : vmin;
         vmax = vorder[i] > vmax ? vorder[i] : vmax;
     }
-    put_entities(fp, fs, tstart, torder);
-    fprintf(fp, "$Nodes\n%zu %zu %zu %zu\n", nblocks, nused, vmin + 1, vmax + 1);
+    put_entities(o, fs, tstart, torder);
+    fs_out_printf(o, "$Nodes\n%zu %zu %zu %zu\n", nblocks, nused, vmin + 1, vmax + 1);
     for (size_t f = 0; f < nf; f++) {
         if (vstart[f + 1] == vstart[f])
             continue; /* all its nodes belong to lower faults */
-        fprintf(fp, "2 %zu 0 %zu\n", f + 1, vstart[f + 1] - vstart[f]);
+        fs_out_printf(o, "2 %zu 0 %zu\n", f + 1, vstart[f + 1] - vstart[f]);
+        for (size_t i = vstart[f]; i < vstart[f + 1]; i++) {
+            fs_out_u64(o, vorder[i] + 1);
+            fs_out_char(o, '\n');
+        }
         for (size_t i = vstart[f]; i < vstart[f + 1]; i++)
-            fprintf(fp, "%zu\n", vorder[i] + 1);
-        for (size_t i = vstart[f]; i < vstart[f + 1]; i++)
-            put_vertex(fp, x + 3 * vorder[i]);
+            put_vertex(o, x + 3 * vorder[i]);
     }
     size_t nt = fm_mesh_ntriangles(fs->mesh);
-    fprintf(fp, "$EndNodes\n$Elements\n%zu %zu 1 %zu\n", nf, nt, nt);
+    fs_out_printf(o, "$EndNodes\n$Elements\n%zu %zu 1 %zu\n", nf, nt, nt);
     for (size_t f = 0; f < nf; f++) {
-        fprintf(fp, "2 %zu 2 %zu\n", f + 1, tstart[f + 1] - tstart[f]);
+        fs_out_printf(o, "2 %zu 2 %zu\n", f + 1, tstart[f + 1] - tstart[f]);
         for (size_t i = tstart[f]; i < tstart[f + 1]; i++) {
-            fprintf(fp, "%zu", torder[i] + 1);
-            put_triangle(fp, tri + 3 * torder[i]);
+            fs_out_u64(o, torder[i] + 1);
+            put_triangle(o, tri + 3 * torder[i]);
         }
     }
-    fputs("$EndElements\n", fp);
+    fs_out_str(o, "$EndElements\n");
 }
 
-static void put_22(FILE *fp, const fm_faultset *fs, const int32_t *owner)
+static void put_22(fs_out *o, const fm_faultset *fs, const int32_t *owner)
 {
     const double *x = fm_mesh_vertices(fs->mesh);
     const int32_t *tri = fm_mesh_triangles(fs->mesh), *tag = fm_mesh_tags(fs->mesh);
     size_t nv = fm_mesh_nvertices(fs->mesh), nt = fm_mesh_ntriangles(fs->mesh), nused = 0;
     for (size_t v = 0; v < nv; v++)
         nused += owner[v] >= 0;
-    fprintf(fp, "$Nodes\n%zu\n", nused);
+    fs_out_printf(o, "$Nodes\n%zu\n", nused);
     for (size_t v = 0; v < nv; v++)
         if (owner[v] >= 0) {
-            fprintf(fp, "%zu ", v + 1);
-            put_vertex(fp, x + 3 * v);
+            fs_out_u64(o, v + 1);
+            fs_out_char(o, ' ');
+            put_vertex(o, x + 3 * v);
         }
-    fprintf(fp, "$EndNodes\n$Elements\n%zu\n", nt);
+    fs_out_printf(o, "$EndNodes\n$Elements\n%zu\n", nt);
     for (size_t t = 0; t < nt; t++) {
-        fprintf(fp, "%zu 2 2 %d %ld", t + 1, (int)fs_physical_tag(fs, (size_t)tag[t]),
-                (long)tag[t] + 1);
-        put_triangle(fp, tri + 3 * t);
+        fs_out_u64(o, t + 1);
+        fs_out_str(o, " 2 2 ");
+        fs_out_i64(o, fs_physical_tag(fs, (size_t)tag[t]));
+        fs_out_char(o, ' ');
+        fs_out_i64(o, (int64_t)tag[t] + 1);
+        put_triangle(o, tri + 3 * t);
     }
-    fputs("$EndElements\n", fp);
+    fs_out_str(o, "$EndElements\n");
 }
 
 fm_status fm_faultset_write_msh(const char *path, const fm_faultset *fs, fm_msh_version version,
@@ -158,16 +163,20 @@ fm_status fm_faultset_write_msh(const char *path, const fm_faultset *fs, fm_msh_
     fm_atomic_file *f = NULL;
     if (bad)
         st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
-    else if (!(f = fm_atomic_open(path, err)))
+    else if (!(f = fs_atomic_open(path, err)))
         st = err ? err->code : FM_ERR_IO;
+    fs_out *o = NULL;
+    if (st == FM_OK && !(o = fs_out_open(fm_atomic_stream(f)))) {
+        fm_atomic_abort(f);
+        st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    }
     if (st == FM_OK) {
-        FILE *fp = fm_atomic_stream(f);
-        put_head(fp, fs, version == FM_MSH_41 ? "4.1" : "2.2");
+        put_head(o, fs, version == FM_MSH_41 ? "4.1" : "2.2");
         if (version == FM_MSH_41)
-            put_41(fp, fs, vstart, vorder, tstart, torder);
+            put_41(o, fs, vstart, vorder, tstart, torder);
         else
-            put_22(fp, fs, owner);
-        if (ferror(fp)) {
+            put_22(o, fs, owner);
+        if (fs_out_finish(o) != 0) {
             fm_atomic_abort(f);
             st = fm_error_set(err, FM_ERR_IO, path, 0, "write failed");
         } else {

@@ -1,9 +1,11 @@
-/* Fault set as one GoCAD TSurf per fault, through the io stage's writer. */
+/* Fault set as one GoCAD TSurf per fault, through the io stage's writer:
+ * what all faults share is prepared once (fs_tsurf_plan), then each file
+ * is built and written on its own, on whichever thread takes it. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "fm_atomic.h"
+#include "fs_atomic.h"
 #include "fm_tsurf.h"
 #include "faultset_internal.h"
 
@@ -54,12 +56,10 @@ void fm_faultset_free_file_names(char **names, size_t n)
     free(names);
 }
 
-fm_status fm_faultset_tsurf_file_names(const fm_faultset *fs, char ***out, fm_error *err)
+/* The file names of a validated set. */
+static fm_status file_names(const fm_faultset *fs, char ***out, fm_error *err)
 {
     *out = NULL;
-    fm_status st = fm_faultset_validate(fs, NULL, err);
-    if (st != FM_OK)
-        return st;
     char **names = calloc(fs->nfaults, sizeof *names);
     if (!names)
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
@@ -88,33 +88,53 @@ fm_status fm_faultset_tsurf_file_names(const fm_faultset *fs, char ***out, fm_er
     return FM_OK;
 }
 
-/* Fault f alone, vertices renumbered in mesh order; map is scratch of
- * nvertices entries. */
-static fm_tsurf *build(const fm_faultset *fs, size_t f, int32_t *map)
+fm_status fm_faultset_tsurf_file_names(const fm_faultset *fs, char ***out, fm_error *err)
+{
+    *out = NULL;
+    fm_status st = fm_faultset_validate(fs, NULL, err);
+    return st == FM_OK ? file_names(fs, out, err) : st;
+}
+
+static int by_index(const void *a, const void *b)
+{
+    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* Fault f alone: its triangles (tri[3 * order[i]], i in [t0, t1)) in mesh
+ * order, its vertices renumbered in mesh order. */
+static fm_tsurf *build(const fm_faultset *fs, size_t f, const size_t *order, size_t t0, size_t t1,
+                       fs_tsurf_scratch *sc)
 {
     fm_tsurf *ts = fm_tsurf_create(fs->names[f]);
     if (!ts || fm_tsurf_add_part(ts) < 0) {
         fm_tsurf_destroy(ts);
         return NULL;
     }
-    size_t nv = fm_mesh_nvertices(fs->mesh), nt = fm_mesh_ntriangles(fs->mesh);
     const double *x = fm_mesh_vertices(fs->mesh);
-    const int32_t *tri = fm_mesh_triangles(fs->mesh), *tag = fm_mesh_tags(fs->mesh);
-    for (size_t v = 0; v < nv; v++)
-        map[v] = -1;
-    for (size_t t = 0; t < nt; t++)
-        if ((size_t)tag[t] == f)
-            for (int k = 0; k < 3; k++)
-                map[tri[3 * t + (size_t)k]] = 0;
+    const int32_t *tri = fm_mesh_triangles(fs->mesh);
+    size_t nused = 0;
+    for (size_t i = t0; i < t1; i++)
+        for (int k = 0; k < 3; k++) {
+            int32_t v = tri[3 * order[i] + (size_t)k];
+            if (sc->map[v] < 0) {
+                sc->map[v] = 0;
+                sc->used[nused++] = v;
+            }
+        }
+    qsort(sc->used, nused, sizeof *sc->used, by_index);
     fm_mesh *m = fm_tsurf_mesh_mut(ts);
-    int ok = 1;
-    for (size_t v = 0; v < nv && ok; v++)
-        if (map[v] == 0)
-            ok = (map[v] = fm_mesh_add_vertex(m, x[3 * v], x[3 * v + 1], x[3 * v + 2])) >= 0;
-    for (size_t t = 0; t < nt && ok; t++)
-        if ((size_t)tag[t] == f)
-            ok = fm_mesh_add_triangle(m, map[tri[3 * t]], map[tri[3 * t + 1]],
-                                      map[tri[3 * t + 2]], 0) >= 0;
+    int ok = fm_mesh_reserve(m, nused, t1 - t0) == FM_OK;
+    for (size_t i = 0; i < nused && ok; i++) {
+        const double *p = x + 3 * (size_t)sc->used[i];
+        ok = (sc->map[sc->used[i]] = fm_mesh_add_vertex(m, p[0], p[1], p[2])) >= 0;
+    }
+    for (size_t i = t0; i < t1 && ok; i++) {
+        const int32_t *t = tri + 3 * order[i];
+        ok = fm_mesh_add_triangle(m, sc->map[t[0]], sc->map[t[1]], sc->map[t[2]], 0) >= 0;
+    }
+    for (size_t i = 0; i < nused; i++) /* clean for the next fault */
+        sc->map[sc->used[i]] = -1;
     if (!ok) {
         fm_tsurf_destroy(ts);
         return NULL;
@@ -122,37 +142,76 @@ static fm_tsurf *build(const fm_faultset *fs, size_t f, int32_t *map)
     return ts;
 }
 
-fm_status fm_faultset_write_tsurf(const char *dir, const fm_faultset *fs, fm_error *err)
+fm_status fs_tsurf_plan_make(fs_tsurf_plan *pl, const char *dir, const fm_faultset *fs,
+                             fm_error *err)
 {
-    char **files = NULL;
-    fm_status st = fm_faultset_validate(fs, dir, err);
-    if (st == FM_OK)
-        st = fm_faultset_tsurf_file_names(fs, &files, err);
+    memset(pl, 0, sizeof *pl);
+    pl->fs = fs;
+    pl->dir = dir;
+    fm_status st = file_names(fs, &pl->files, err);
     if (st != FM_OK)
         return st;
-    size_t nv = fm_mesh_nvertices(fs->mesh);
-    fm_tsurf **ts = calloc(fs->nfaults, sizeof *ts);
-    int32_t *map = malloc((nv ? nv : 1) * sizeof *map);
-    char *path = malloc(strlen(dir) + STEM_MAX + 40);
-    if (!ts || !map || !path)
-        st = fm_error_set(err, FM_ERR_NOMEM, dir, 0, "out of memory");
-    /* Every object first: a failure to build one must not leave a
-     * partial set on disk. Building them one at a time would need less
-     * memory, but a fault set is a copy of one mesh at most. */
-    for (size_t f = 0; f < fs->nfaults && st == FM_OK; f++)
-        if (!(ts[f] = build(fs, f, map)))
-            st = fm_error_set(err, FM_ERR_NOMEM, dir, 0, "out of memory");
-    if (st == FM_OK)
-        st = fm_mkdir_p(dir, err);
-    for (size_t f = 0; f < fs->nfaults && st == FM_OK; f++) {
-        sprintf(path, "%s/%s", dir, files[f]);
-        st = fm_tsurf_write_file(path, &ts[f], 1, err);
+    if (fs_group_by(fm_mesh_tags(fs->mesh), fm_mesh_ntriangles(fs->mesh), fs->nfaults,
+                    &pl->tstart, &pl->torder))
+        return fm_error_set(err, FM_ERR_NOMEM, dir, 0, "out of memory");
+    for (size_t f = 0; f < fs->nfaults; f++) {
+        size_t uses = 3 * (pl->tstart[f + 1] - pl->tstart[f]);
+        pl->max_uses = uses > pl->max_uses ? uses : pl->max_uses;
     }
-    for (size_t f = 0; ts && f < fs->nfaults; f++)
-        fm_tsurf_destroy(ts[f]);
-    free(ts);
-    free(map);
-    free(path);
-    fm_faultset_free_file_names(files, fs->nfaults);
+    return fm_mkdir_p(dir, err);
+}
+
+void fs_tsurf_plan_free(fs_tsurf_plan *pl)
+{
+    fm_faultset_free_file_names(pl->files, pl->fs ? pl->fs->nfaults : 0);
+    free(pl->tstart);
+    free(pl->torder);
+    memset(pl, 0, sizeof *pl);
+}
+
+int fs_tsurf_scratch_init(fs_tsurf_scratch *sc, const fs_tsurf_plan *pl)
+{
+    size_t nv = fm_mesh_nvertices(pl->fs->mesh);
+    sc->map = malloc((nv ? nv : 1) * sizeof *sc->map);
+    sc->used = malloc((pl->max_uses ? pl->max_uses : 1) * sizeof *sc->used);
+    sc->path = malloc(strlen(pl->dir) + STEM_MAX + 40);
+    if (!sc->map || !sc->used || !sc->path)
+        return -1;
+    for (size_t v = 0; v < nv; v++)
+        sc->map[v] = -1;
+    return 0;
+}
+
+void fs_tsurf_scratch_free(fs_tsurf_scratch *sc)
+{
+    free(sc->map);
+    free(sc->used);
+    free(sc->path);
+    memset(sc, 0, sizeof *sc);
+}
+
+fm_status fs_tsurf_write_fault(const fs_tsurf_plan *pl, size_t f, fs_tsurf_scratch *sc,
+                               fm_error *err)
+{
+    sprintf(sc->path, "%s/%s", pl->dir, pl->files[f]);
+    fm_tsurf *ts = build(pl->fs, f, pl->torder, pl->tstart[f], pl->tstart[f + 1], sc);
+    if (!ts)
+        return fm_error_set(err, FM_ERR_NOMEM, sc->path, 0, "out of memory");
+    fm_atomic_file *af = fs_atomic_open(sc->path, err);
+    fm_status st = af ? FM_OK : err ? err->code : FM_ERR_IO;
+    if (st == FM_OK)
+        st = fm_tsurf_write_stream(fm_atomic_stream(af), sc->path, &ts, 1, err);
+    if (st == FM_OK)
+        st = fm_atomic_commit(af, err);
+    else
+        fm_atomic_abort(af);
+    fm_tsurf_destroy(ts);
     return st;
+}
+
+fm_status fm_faultset_write_tsurf(const char *dir, const fm_faultset *fs, fm_error *err)
+{
+    fm_faultset_outputs out = {0};
+    out.tsurf_dir = dir;
+    return fm_faultset_write_all(fs, &out, 1, err);
 }

@@ -7,17 +7,6 @@
 
 #include "faultset_internal.h"
 
-size_t fs_format_double(char *buf, double v)
-{
-    int n = 0;
-    for (int prec = 15; prec <= 17; prec++) {
-        n = snprintf(buf, 32, "%.*g", prec, v);
-        if (strtod(buf, NULL) == v)
-            break;
-    }
-    return (size_t)n;
-}
-
 int32_t fs_physical_tag(const fm_faultset *fs, size_t i)
 {
     return fs->physical_tags ? fs->physical_tags[i] : (int32_t)(i + 1);

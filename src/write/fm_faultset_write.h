@@ -120,10 +120,31 @@ fm_status fm_faultset_write_obj(const char *path, const fm_faultset *fs, fm_erro
  * Windows file systems), the name of an earlier fault, "-2", "-3", ... is
  * appended until it does not; ".ts" ends it.
  *
- * Each file is atomic on its own; all objects are built before the first
- * file is written, so bad input writes nothing, but an I/O failure part
- * way leaves the files written before it (complete, and named). */
+ * Each file is atomic on its own and the input is validated before the
+ * first is written, so bad input writes nothing, but running out of memory
+ * or an I/O failure part way leaves the files written before it (complete,
+ * and named). */
 fm_status fm_faultset_write_tsurf(const char *dir, const fm_faultset *fs, fm_error *err);
+
+/* Which outputs fm_faultset_write_all writes; a NULL path skips one. */
+typedef struct fm_faultset_outputs {
+    const char *vtu, *msh, *stl, *obj; /* file paths */
+    fm_msh_version msh_version;
+    const char *tsurf_dir; /* one NAME.ts per fault, as fm_faultset_write_tsurf */
+} fm_faultset_outputs;
+
+/* Every requested output, written as the functions above write them, by
+ * nthreads threads (the calling one included; < 1 means 1): the files
+ * are split among them (each TSurf file is one piece of work) and every
+ * file is byte-identical whatever nthreads. The set is validated once,
+ * before any file is written.
+ *
+ * After a failure no further file is started; those being written are
+ * finished, so every file present is complete and a failing one leaves
+ * nothing. The error returned is that of the first failing file in the
+ * order VTU, MSH, STL, OBJ, TSurf by fault, and names it. */
+fm_status fm_faultset_write_all(const fm_faultset *fs, const fm_faultset_outputs *out,
+                                int nthreads, fm_error *err);
 
 /* The nfaults file names (without directory) fm_faultset_write_tsurf
  * uses, as a malloc'ed array of malloc'ed strings; free with

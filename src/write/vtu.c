@@ -3,12 +3,13 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "fm_atomic.h"
+#include "fs_atomic.h"
+#include "fs_out.h"
 
 /* Base64 of a byte stream, written as it is produced so that large
  * arrays need no second buffer. */
 typedef struct {
-    FILE *fp;
+    fs_out *o;
     unsigned char pending[3];
     int npending;
 } b64;
@@ -18,19 +19,34 @@ static const char B64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0
 static void b64_emit(b64 *b)
 {
     unsigned char *p = b->pending;
-    char out[4];
+    char *out = fs_out_room(b->o, 4);
     out[0] = B64[p[0] >> 2];
     out[1] = B64[((p[0] & 3) << 4) | (b->npending > 1 ? p[1] >> 4 : 0)];
     out[2] = b->npending > 1 ? B64[((p[1] & 15) << 2) | (b->npending > 2 ? p[2] >> 6 : 0)] : '=';
     out[3] = b->npending > 2 ? B64[p[2] & 63] : '=';
-    fwrite(out, 1, 4, b->fp);
+    b->o->n += 4;
     b->npending = 0;
 }
 
 static void b64_put(b64 *b, const void *data, size_t n)
 {
     const unsigned char *s = data;
-    for (size_t i = 0; i < n; i++) {
+    size_t i = 0;
+    while (b->npending && i < n) { /* complete the pending group first */
+        b->pending[b->npending++] = s[i++];
+        if (b->npending == 3)
+            b64_emit(b);
+    }
+    /* Whole groups straight from the data. */
+    for (; i + 3 <= n; i += 3) {
+        char *out = fs_out_room(b->o, 4);
+        out[0] = B64[s[i] >> 2];
+        out[1] = B64[((s[i] & 3) << 4) | s[i + 1] >> 4];
+        out[2] = B64[((s[i + 1] & 15) << 2) | s[i + 2] >> 6];
+        out[3] = B64[s[i + 2] & 63];
+        b->o->n += 4;
+    }
+    for (; i < n; i++) {
         b->pending[b->npending++] = s[i];
         if (b->npending == 3)
             b64_emit(b);
@@ -48,7 +64,7 @@ static void b64_finish(b64 *b)
 
 /* VTK's binary layout: one UInt64 byte count, then the raw array; the
  * project only targets little-endian machines (checked at run time). */
-static void write_binary(FILE *fp, const void *data, size_t nbytes)
+static void write_binary(fs_out *fp, const void *data, size_t nbytes)
 {
     b64 b = {fp, {0}, 0};
     uint64_t header = nbytes;
@@ -57,19 +73,24 @@ static void write_binary(FILE *fp, const void *data, size_t nbytes)
     b64_finish(&b);
 }
 
-static void array_open(FILE *fp, const char *type, const char *name, int ncomp)
+static void array_open(fs_out *fp, const char *type, const char *name, int ncomp)
 {
-    fprintf(fp, "        <DataArray type=\"%s\"", type);
-    if (name)
-        fprintf(fp, " Name=\"%s\"", name);
+    fs_out_str(fp, "        <DataArray type=\"");
+    fs_out_str(fp, type);
+    fs_out_char(fp, '"');
+    if (name) {
+        fs_out_str(fp, " Name=\"");
+        fs_out_str(fp, name);
+        fs_out_char(fp, '"');
+    }
     if (ncomp > 1)
-        fprintf(fp, " NumberOfComponents=\"%d\"", ncomp);
-    fputs(" format=\"binary\">\n          ", fp);
+        fs_out_printf(fp, " NumberOfComponents=\"%d\"", ncomp);
+    fs_out_str(fp, " format=\"binary\">\n          ");
 }
 
-static void array_close(FILE *fp) { fputs("\n        </DataArray>\n", fp); }
+static void array_close(fs_out *fp) { fs_out_str(fp, "\n        </DataArray>\n"); }
 
-static void write_arrays(FILE *fp, const fm_vtu_array *a, size_t na, size_t n)
+static void write_arrays(fs_out *fp, const fm_vtu_array *a, size_t na, size_t n)
 {
     for (size_t i = 0; i < na; i++) {
         int f64 = a[i].type == FM_VTU_FLOAT64;
@@ -87,40 +108,38 @@ static int little_endian(void)
     return c == 1;
 }
 
-static fm_status write_body(FILE *fp, const fm_vtu_content *c, fm_error *err, const char *path)
+static void write_body(fs_out *fp, const fm_vtu_content *c)
 {
     size_t nv = fm_mesh_nvertices(c->mesh), nt = fm_mesh_ntriangles(c->mesh);
-    fputs("<?xml version=\"1.0\"?>\n"
+    fs_out_str(fp, "<?xml version=\"1.0\"?>\n"
           "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-          "header_type=\"UInt64\">\n  <UnstructuredGrid>\n",
-          fp);
+          "header_type=\"UInt64\">\n  <UnstructuredGrid>\n");
     if (c->nfield_strings) {
-        fputs("    <FieldData>\n", fp);
+        fs_out_str(fp, "    <FieldData>\n");
         for (size_t i = 0; i < c->nfield_strings; i++) {
             const fm_vtu_strings *s = &c->field_strings[i];
             size_t total = 0;
             for (size_t k = 0; k < s->count; k++)
                 total += strlen(s->items[k]) + 1;
-            fprintf(fp,
-                    "      <DataArray type=\"UInt8\" Name=\"%s\" NumberOfTuples=\"%zu\" "
-                    "format=\"binary\">\n          ",
-                    s->name, total);
+            fs_out_str(fp, "      <DataArray type=\"UInt8\" Name=\"");
+            fs_out_str(fp, s->name);
+            fs_out_printf(fp, "\" NumberOfTuples=\"%zu\" format=\"binary\">\n          ", total);
             b64 b = {fp, {0}, 0};
             uint64_t header = total;
             b64_put(&b, &header, sizeof header);
             for (size_t k = 0; k < s->count; k++)
                 b64_put(&b, s->items[k], strlen(s->items[k]) + 1);
             b64_finish(&b);
-            fputs("\n      </DataArray>\n", fp);
+            fs_out_str(fp, "\n      </DataArray>\n");
         }
-        fputs("    </FieldData>\n", fp);
+        fs_out_str(fp, "    </FieldData>\n");
     }
-    fprintf(fp, "    <Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n", nv, nt);
-    fputs("      <Points>\n", fp);
+    fs_out_printf(fp, "    <Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n", nv, nt);
+    fs_out_str(fp, "      <Points>\n");
     array_open(fp, "Float64", "Points", 3);
     write_binary(fp, fm_mesh_vertices(c->mesh), nv * 3 * sizeof(double));
     array_close(fp);
-    fputs("      </Points>\n      <Cells>\n", fp);
+    fs_out_str(fp, "      </Points>\n      <Cells>\n");
     array_open(fp, "Int32", "connectivity", 1);
     write_binary(fp, fm_mesh_triangles(c->mesh), nt * 3 * sizeof(int32_t));
     array_close(fp);
@@ -149,21 +168,18 @@ static fm_status write_body(FILE *fp, const fm_vtu_content *c, fm_error *err, co
         b64_finish(&b);
     }
     array_close(fp);
-    fputs("      </Cells>\n", fp);
+    fs_out_str(fp, "      </Cells>\n");
     if (c->npoint_data) {
-        fputs("      <PointData>\n", fp);
+        fs_out_str(fp, "      <PointData>\n");
         write_arrays(fp, c->point_data, c->npoint_data, nv);
-        fputs("      </PointData>\n", fp);
+        fs_out_str(fp, "      </PointData>\n");
     }
     if (c->ncell_data) {
-        fputs("      <CellData>\n", fp);
+        fs_out_str(fp, "      <CellData>\n");
         write_arrays(fp, c->cell_data, c->ncell_data, nt);
-        fputs("      </CellData>\n", fp);
+        fs_out_str(fp, "      </CellData>\n");
     }
-    fputs("    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n", fp);
-    if (ferror(fp))
-        return fm_error_set(err, FM_ERR_IO, path, 0, "write failed");
-    return FM_OK;
+    fs_out_str(fp, "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
 }
 
 fm_status fm_vtu_write(const char *path, const fm_vtu_content *c, fm_error *err)
@@ -171,13 +187,18 @@ fm_status fm_vtu_write(const char *path, const fm_vtu_content *c, fm_error *err)
     if (!little_endian())
         return fm_error_set(err, FM_ERR_INVALID, path, 0,
                             "VTU output needs a little-endian machine");
-    fm_atomic_file *f = fm_atomic_open(path, err);
+    fm_atomic_file *f = fs_atomic_open(path, err);
     if (!f)
         return err ? err->code : FM_ERR_IO;
-    fm_status s = write_body(fm_atomic_stream(f), c, err, path);
-    if (s != FM_OK) {
+    fs_out *o = fs_out_open(fm_atomic_stream(f));
+    if (!o) {
         fm_atomic_abort(f);
-        return s;
+        return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    }
+    write_body(o, c);
+    if (fs_out_finish(o) != 0) {
+        fm_atomic_abort(f);
+        return fm_error_set(err, FM_ERR_IO, path, 0, "write failed");
     }
     return fm_atomic_commit(f, err);
 }

@@ -1,0 +1,57 @@
+#include "fs_out.h"
+
+#include <stdarg.h>
+#include <stdlib.h>
+
+#include "fm_dtoa.h"
+
+fs_out *fs_out_open(FILE *fp)
+{
+    fs_out *o = malloc(sizeof *o);
+    if (o) {
+        o->fp = fp;
+        o->n = 0;
+        o->failed = 0;
+    }
+    return o;
+}
+
+void fs_out_flush(fs_out *o)
+{
+    if (o->n && fwrite(o->buf, 1, o->n, o->fp) != o->n)
+        o->failed = 1;
+    o->n = 0;
+}
+
+int fs_out_finish(fs_out *o)
+{
+    fs_out_flush(o);
+    int bad = o->failed || ferror(o->fp);
+    free(o);
+    return bad ? -1 : 0;
+}
+
+void fs_out_bytes(fs_out *o, const void *p, size_t n)
+{
+    if (n > FS_OUT_BLOCK / 2) { /* large blocks go straight through */
+        fs_out_flush(o);
+        if (fwrite(p, 1, n, o->fp) != n)
+            o->failed = 1;
+        return;
+    }
+    memcpy(fs_out_room(o, n), p, n);
+    o->n += n;
+}
+
+void fs_out_printf(fs_out *o, const char *fmt, ...)
+{
+    char *p = fs_out_room(o, 512);
+    va_list ap;
+    va_start(ap, fmt);
+    int k = vsnprintf(p, 512, fmt, ap);
+    va_end(ap);
+    if (k > 0)
+        o->n += (size_t)k < 512 ? (size_t)k : 511;
+}
+
+void fs_out_double(fs_out *o, double v) { o->n += fm_format_double(fs_out_room(o, 32), v); }

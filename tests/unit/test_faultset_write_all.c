@@ -1,0 +1,187 @@
+/* fm_faultset_write_all: the same bytes as the one-format writers whatever
+ * the thread count, and on failure the first failing file named, no
+ * partial or temporary file, bad input writing nothing. */
+#include <dirent.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "fm_atomic.h"
+#include "fm_faultset_write.h"
+#include "fm_test.h"
+
+#define NFAULTS 7
+
+static const char *const names[NFAULTS] = {"A fault", "B/fault", "c", "d d", "e", "f#", "g"};
+
+/* NFAULTS strips of triangles side by side in x, each sharing its first
+ * column with the strip before it; full-precision coordinates. */
+static fm_mesh *sample_mesh(void)
+{
+    fm_mesh *m = fm_mesh_create();
+    const int cols = 4 * NFAULTS + 1, rows = 6;
+    for (int j = 0; j < rows; j++)
+        for (int i = 0; i < cols; i++)
+            fm_mesh_add_vertex(m, 400000.0 + 997.3 * i / 3.0, 3750000.0 + 13.7 * i + 0.1 * j,
+                               -1234.5 * j / 7.0);
+    for (int j = 0; j + 1 < rows; j++)
+        for (int i = 0; i + 1 < cols; i++) {
+            int32_t a = j * cols + i, f = i / 4;
+            fm_mesh_add_triangle(m, a, a + 1, a + cols, f);
+            fm_mesh_add_triangle(m, a + 1, a + cols + 1, a + cols, f);
+        }
+    return m;
+}
+
+static char *slurp(const char *path, size_t *len)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp)
+        return NULL;
+    fseek(fp, 0, SEEK_END);
+    long n = ftell(fp);
+    fseek(fp, 0, SEEK_SET);
+    char *buf = malloc((size_t)n + 1);
+    if (buf && fread(buf, 1, (size_t)n, fp) != (size_t)n) {
+        free(buf);
+        buf = NULL;
+    }
+    fclose(fp);
+    *len = buf ? (size_t)n : 0;
+    return buf;
+}
+
+static int same_file(const char *a, const char *b)
+{
+    size_t na, nb;
+    char *x = slurp(a, &na), *y = slurp(b, &nb);
+    int same = x && y && na == nb && memcmp(x, y, na) == 0;
+    free(x);
+    free(y);
+    return same;
+}
+
+/* Entries of dir, and how many look like temporaries. */
+static int count_entries(const char *dir, int *temporaries)
+{
+    DIR *d = opendir(dir);
+    int n = 0;
+    *temporaries = 0;
+    if (!d)
+        return -1;
+    for (struct dirent *e; (e = readdir(d));) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        n++;
+        *temporaries += strstr(e->d_name, ".tmp.") != NULL;
+    }
+    closedir(d);
+    return n;
+}
+
+typedef struct paths {
+    char dir[4096], vtu[4200], msh[4200], stl[4200], obj[4200];
+} paths;
+
+static void make_paths(paths *p, const char *name)
+{
+    snprintf(p->dir, sizeof p->dir, "%s/%s", FM_TMP_DIR, name);
+    snprintf(p->vtu, sizeof p->vtu, "%s/mesh.vtu", p->dir);
+    snprintf(p->msh, sizeof p->msh, "%s/mesh.msh", p->dir);
+    snprintf(p->stl, sizeof p->stl, "%s/mesh.stl", p->dir);
+    snprintf(p->obj, sizeof p->obj, "%s/mesh.obj", p->dir);
+    CHECK_EQ(fm_mkdir_p(p->dir, NULL), FM_OK);
+}
+
+static void test_same_bytes(void)
+{
+    fm_mesh *m = sample_mesh();
+    fm_faultset fs = {m, names, NFAULTS, NULL, NULL, 0, "EPSG:26711"};
+    fm_error err;
+    char **files = NULL;
+    CHECK_EQ(fm_faultset_tsurf_file_names(&fs, &files, &err), FM_OK);
+    for (int v = 0; v < 2; v++) {
+        fm_msh_version ver = v ? FM_MSH_22 : FM_MSH_41;
+        paths ref;
+        make_paths(&ref, "fswa_ref");
+        CHECK_EQ(fm_faultset_write_vtu(ref.vtu, &fs, &err), FM_OK);
+        CHECK_EQ(fm_faultset_write_msh(ref.msh, &fs, ver, &err), FM_OK);
+        CHECK_EQ(fm_faultset_write_stl(ref.stl, &fs, &err), FM_OK);
+        CHECK_EQ(fm_faultset_write_obj(ref.obj, &fs, &err), FM_OK);
+        CHECK_EQ(fm_faultset_write_tsurf(ref.dir, &fs, &err), FM_OK);
+        for (int threads = 0; threads <= 5; threads++) {
+            paths p;
+            char name[32];
+            snprintf(name, sizeof name, "fswa_%d_%d", v, threads);
+            make_paths(&p, name);
+            fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, ver, p.dir};
+            CHECK_EQ(fm_faultset_write_all(&fs, &out, threads, &err), FM_OK);
+            CHECK(same_file(ref.vtu, p.vtu));
+            CHECK(same_file(ref.msh, p.msh));
+            CHECK(same_file(ref.stl, p.stl));
+            CHECK(same_file(ref.obj, p.obj));
+            for (size_t f = 0; f < NFAULTS; f++) {
+                char a[4400], b[4400];
+                snprintf(a, sizeof a, "%s/%s", ref.dir, files[f]);
+                snprintf(b, sizeof b, "%s/%s", p.dir, files[f]);
+                CHECK(same_file(a, b));
+            }
+            int tmp;
+            CHECK_EQ(count_entries(p.dir, &tmp), 4 + NFAULTS);
+            CHECK_EQ(tmp, 0);
+        }
+    }
+    fm_faultset_free_file_names(files, NFAULTS);
+    fm_mesh_destroy(m);
+}
+
+/* A directory where mesh.msh should go: MSH fails and is named, the
+ * error is the same on any thread count, nothing partial is left. */
+static void test_blocked(void)
+{
+    fm_mesh *m = sample_mesh();
+    fm_faultset fs = {m, names, NFAULTS, NULL, NULL, 0, NULL};
+    for (int threads = 1; threads <= 4; threads++) {
+        paths p;
+        char name[32];
+        snprintf(name, sizeof name, "fswa_blocked_%d", threads);
+        make_paths(&p, name);
+        CHECK_EQ(fm_mkdir_p(p.msh, NULL), FM_OK);
+        fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, FM_MSH_41, p.dir};
+        fm_error err;
+        fm_error_clear(&err);
+        CHECK_EQ(fm_faultset_write_all(&fs, &out, threads, &err), FM_ERR_IO);
+        CHECK(strstr(err.message, "mesh.msh") != NULL);
+        struct stat st;
+        CHECK(stat(p.msh, &st) == 0 && S_ISDIR(st.st_mode));
+        int tmp;
+        CHECK(count_entries(p.dir, &tmp) >= 1);
+        CHECK_EQ(tmp, 0);
+        /* Every file present is whole: VTU was written first. */
+        size_t n;
+        char *vtu = slurp(p.vtu, &n);
+        CHECK(vtu && n > 20 && memcmp(vtu + n - 11, "</VTKFile>\n", 11) == 0);
+        free(vtu);
+    }
+    fm_mesh_destroy(m);
+}
+
+/* Bad input: nothing at all is written. */
+static void test_invalid(void)
+{
+    fm_mesh *m = sample_mesh();
+    fm_mesh_vertices_mut(m)[7] = NAN;
+    fm_faultset fs = {m, names, NFAULTS, NULL, NULL, 0, NULL};
+    paths p;
+    make_paths(&p, "fswa_invalid");
+    fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, FM_MSH_41, p.dir};
+    fm_error err;
+    CHECK_EQ(fm_faultset_write_all(&fs, &out, 3, &err), FM_ERR_NUMERIC);
+    int tmp;
+    CHECK_EQ(count_entries(p.dir, &tmp), 0);
+    fm_mesh_destroy(m);
+}
+
+FM_TEST_MAIN(FM_CASE(test_same_bytes), FM_CASE(test_blocked), FM_CASE(test_invalid))
