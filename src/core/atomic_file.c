@@ -1,6 +1,7 @@
 #include "fm_atomic.h"
 
 #include <errno.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -12,8 +13,21 @@ struct fm_atomic_file {
     char *tmp;
 };
 
+/* umask can only be read by setting it, which would race with a thread
+ * creating a file at that moment: it is read once, and every later call
+ * (from any thread) uses the copy. */
+static mode_t process_umask;
+static pthread_once_t umask_once = PTHREAD_ONCE_INIT;
+
+static void read_umask(void)
+{
+    process_umask = umask(0);
+    umask(process_umask);
+}
+
 fm_atomic_file *fm_atomic_open(const char *path, fm_error *err)
 {
+    pthread_once(&umask_once, read_umask);
     fm_atomic_file *f = calloc(1, sizeof *f);
     size_t n = strlen(path);
     if (f) {
@@ -42,9 +56,7 @@ fm_atomic_file *fm_atomic_open(const char *path, fm_error *err)
         return NULL;
     }
     /* mkstemp creates 0600; outputs are ordinary files for the user. */
-    mode_t mask = umask(0);
-    umask(mask);
-    (void)fchmod(fd, 0666 & ~mask);
+    (void)fchmod(fd, 0666 & ~process_umask);
     f->fp = fdopen(fd, "wb");
     if (!f->fp) {
         fm_error_set(err, FM_ERR_IO, path, 0, "cannot open stream: %s", strerror(errno));

@@ -16,7 +16,8 @@ extern "C" {
 
 typedef struct fm_atomic_file fm_atomic_file;
 
-/* Opens a temporary file in the directory of path. NULL on failure (err set). */
+/* Opens a temporary file in the directory of path. NULL on failure (err set).
+ * Safe to call from several threads at once (different paths). */
 fm_atomic_file *fm_atomic_open(const char *path, fm_error *err);
 
 /* The stream to write to. */

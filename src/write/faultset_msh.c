@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fs_atomic.h"
+#include "fm_atomic.h"
 #include "faultset_internal.h"
 #include "fs_out.h"
 
@@ -163,7 +163,7 @@ fm_status fm_faultset_write_msh(const char *path, const fm_faultset *fs, fm_msh_
     fm_atomic_file *f = NULL;
     if (bad)
         st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
-    else if (!(f = fs_atomic_open(path, err)))
+    else if (!(f = fm_atomic_open(path, err)))
         st = err ? err->code : FM_ERR_IO;
     fs_out *o = NULL;
     if (st == FM_OK && !(o = fs_out_open(fm_atomic_stream(f)))) {

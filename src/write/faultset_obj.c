@@ -2,7 +2,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "fs_atomic.h"
+#include "fm_atomic.h"
 #include "faultset_internal.h"
 #include "fs_out.h"
 
@@ -59,7 +59,7 @@ fm_status fm_faultset_write_obj(const char *path, const fm_faultset *fs, fm_erro
     if (fs_group_by(fm_mesh_tags(fs->mesh), fm_mesh_ntriangles(fs->mesh), fs->nfaults, &tstart,
                     &torder))
         st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
-    else if (!(f = fs_atomic_open(path, err)))
+    else if (!(f = fm_atomic_open(path, err)))
         st = err ? err->code : FM_ERR_IO;
     fs_out *o = NULL;
     if (st == FM_OK && !(o = fs_out_open(fm_atomic_stream(f)))) {

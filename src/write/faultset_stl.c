@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "fs_atomic.h"
+#include "fm_atomic.h"
 #include "faultset_internal.h"
 #include "fs_out.h"
 
@@ -60,7 +60,7 @@ fm_status fm_faultset_write_stl(const char *path, const fm_faultset *fs, fm_erro
     if (st != FM_OK)
         return st;
     size_t nt = fm_mesh_ntriangles(fs->mesh);
-    fm_atomic_file *f = fs_atomic_open(path, err);
+    fm_atomic_file *f = fm_atomic_open(path, err);
     if (!f)
         return err ? err->code : FM_ERR_IO;
     fs_out *o = fs_out_open(fm_atomic_stream(f));

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fs_atomic.h"
+#include "fm_atomic.h"
 #include "fm_tsurf.h"
 #include "faultset_internal.h"
 
@@ -197,7 +197,7 @@ fm_status fs_tsurf_write_fault(const fs_tsurf_plan *pl, size_t f, fs_tsurf_scrat
     fm_tsurf *ts = build(pl->fs, f, pl->torder, pl->tstart[f], pl->tstart[f + 1], sc);
     if (!ts)
         return fm_error_set(err, FM_ERR_NOMEM, sc->path, 0, "out of memory");
-    fm_atomic_file *af = fs_atomic_open(sc->path, err);
+    fm_atomic_file *af = fm_atomic_open(sc->path, err);
     fm_status st = af ? FM_OK : err ? err->code : FM_ERR_IO;
     if (st == FM_OK)
         st = fm_tsurf_write_stream(fm_atomic_stream(af), sc->path, &ts, 1, err);

@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "fs_atomic.h"
+#include "fm_atomic.h"
 #include "fs_out.h"
 
 /* Base64 of a byte stream, written as it is produced so that large
@@ -187,7 +187,7 @@ fm_status fm_vtu_write(const char *path, const fm_vtu_content *c, fm_error *err)
     if (!little_endian())
         return fm_error_set(err, FM_ERR_INVALID, path, 0,
                             "VTU output needs a little-endian machine");
-    fm_atomic_file *f = fs_atomic_open(path, err);
+    fm_atomic_file *f = fm_atomic_open(path, err);
     if (!f)
         return err ? err->code : FM_ERR_IO;
     fs_out *o = fs_out_open(fm_atomic_stream(f));
