@@ -74,6 +74,10 @@ fm_status fm_mesh_compute_stats(const fm_mesh *m, fm_mesh_stats *st);
 double fm_triangle_area(const double *a, const double *b, const double *c);
 /* Smallest interior angle in degrees (0 for a degenerate triangle). */
 double fm_triangle_min_angle(const double *a, const double *b, const double *c);
+/* Sine of the smallest angle: the same order as fm_triangle_min_angle (the
+ * smallest angle is at most 60 degrees) without its atan2, for code that
+ * only compares triangles (mesh optimisation). 0 for a degenerate one. */
+double fm_triangle_min_angle_sin(const double *a, const double *b, const double *c);
 
 #ifdef __cplusplus
 }

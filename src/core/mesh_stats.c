@@ -58,6 +58,23 @@ double fm_triangle_min_angle(const double *a, const double *b, const double *c)
     return isfinite(m) ? m : 0.0;
 }
 
+double fm_triangle_min_angle_sin(const double *a, const double *b, const double *c)
+{
+    const double *P[3] = {a, b, c};
+    double e[3][3], l[3];
+    for (int i = 0; i < 3; i++) { /* e[i]: the side opposite corner i */
+        sub3(P[(i + 2) % 3], P[(i + 1) % 3], e[i]);
+        l[i] = e[i][0] * e[i][0] + e[i][1] * e[i][1] + e[i][2] * e[i][2];
+    }
+    int k = l[0] <= l[1] && l[0] <= l[2] ? 0 : l[1] <= l[2] ? 1 : 2;
+    /* the angle at corner k lies between the two other sides */
+    const double *u = e[(k + 1) % 3], *v = e[(k + 2) % 3];
+    double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    double den = l[(k + 1) % 3] * l[(k + 2) % 3];
+    double s = den > 0 ? sqrt((n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / den) : 0.0;
+    return isfinite(s) ? fmin(s, 1.0) : 0.0;
+}
+
 static int cmp_u64(const void *a, const void *b)
 {
     uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;

@@ -118,9 +118,10 @@ size_t collapse_short(const double *uv, const double *xyz, const unsigned char *
         if (!ok)
             continue;
         /* the triangles of b that stay, with a in place of b */
-        double before = 180, after = 180;
+        /* smallest angles compared by their sines (see optimise.c) */
+        double before = 1, after = 1;
         for (size_t i = 0; i < nb; i++)
-            before = fmin(before, fm_triangle_min_angle(xyz + 3 * tri[3 * rb[i]],
+            before = fmin(before, fm_triangle_min_angle_sin(xyz + 3 * tri[3 * rb[i]],
                                                         xyz + 3 * tri[3 * rb[i] + 1],
                                                         xyz + 3 * tri[3 * rb[i] + 2]));
         for (size_t i = 0; i < nb && ok; i++) {
@@ -135,9 +136,9 @@ size_t collapse_short(const double *uv, const double *xyz, const unsigned char *
             for (int j = 0; j < 3 && ok; j++)
                 if (n[j] != a && dist3(xyz + 3 * a, xyz + 3 * n[j]) > 1.4 * H)
                     ok = 0;
-            after = fmin(after, fm_triangle_min_angle(xyz + 3 * n[0], xyz + 3 * n[1], xyz + 3 * n[2]));
+            after = fmin(after, fm_triangle_min_angle_sin(xyz + 3 * n[0], xyz + 3 * n[1], xyz + 3 * n[2]));
         }
-        if (!ok || !(after >= fmin(before, 25.0)))
+        if (!ok || !(after >= fmin(before, 0.422618261740699))) /* sin 25 deg */
             continue;
         for (size_t i = 0; i < nb; i++) {
             int32_t *T = tri + 3 * rb[i];

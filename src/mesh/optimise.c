@@ -98,9 +98,13 @@ static fm_status build_adjacency(opt_mesh *m, const int32_t *cons, size_t ncons)
     return FM_OK;
 }
 
-static double min_angle(const opt_mesh *m, int32_t a, int32_t b, int32_t c)
+/* Triangles are compared by the sine of their smallest angle (the same
+ * order as the angle, without an atan2 per triangle considered). */
+#define SIN35 0.573576436351046
+
+static double min_sin(const opt_mesh *m, int32_t a, int32_t b, int32_t c)
 {
-    return fm_triangle_min_angle(m->xyz + 3 * a, m->xyz + 3 * b, m->xyz + 3 * c);
+    return fm_triangle_min_angle_sin(m->xyz + 3 * a, m->xyz + 3 * b, m->xyz + 3 * c);
 }
 
 static void set_back(opt_mesh *m, int32_t t, int32_t from, int32_t to)
@@ -131,9 +135,9 @@ static int try_flip(opt_mesh *m, int32_t t, int i)
     const double *A = m->uv + 2 * a, *B = m->uv + 2 * b, *C = m->uv + 2 * c, *D = m->uv + 2 * d;
     if (fm_orient2d(A, B, D) <= 0 || fm_orient2d(A, D, C) <= 0)
         return 0;
-    double before = fmin(min_angle(m, a, b, c), min_angle(m, d, c, b));
-    double after = fmin(min_angle(m, a, b, d), min_angle(m, a, d, c));
-    if (!(after > before + 1e-6))
+    double before = fmin(min_sin(m, a, b, c), min_sin(m, d, c, b));
+    double after = fmin(min_sin(m, a, b, d), min_sin(m, a, d, c));
+    if (!(after > before + 1e-8))
         return 0;
     int32_t N1 = m->nbr[3 * t + (i + 1) % 3], N2 = m->nbr[3 * t + (i + 2) % 3];
     unsigned char cN1 = m->cons[3 * t + (i + 1) % 3], cN2 = m->cons[3 * t + (i + 2) % 3];
@@ -197,17 +201,17 @@ static fm_status incidence(const opt_mesh *m, size_t **start, int32_t **list)
     return FM_OK;
 }
 
-/* Smallest 3D angle of the triangles around v, and whether all are
- * counter-clockwise in (u, v). */
+/* Smallest 3D angle (its sine) of the triangles around v, and whether all
+ * are counter-clockwise in (u, v). */
 static double ring_quality(const opt_mesh *m, const int32_t *ring, size_t n, int *valid)
 {
-    double q = 180;
+    double q = 1;
     *valid = 1;
     for (size_t k = 0; k < n; k++) {
         const int32_t *T = m->tri + 3 * ring[k];
         if (fm_orient2d(m->uv + 2 * T[0], m->uv + 2 * T[1], m->uv + 2 * T[2]) <= 0)
             *valid = 0;
-        q = fmin(q, min_angle(m, T[0], T[1], T[2]));
+        q = fmin(q, min_sin(m, T[0], T[1], T[2]));
     }
     return q;
 }
@@ -259,7 +263,7 @@ static size_t smooth_pass(opt_mesh *m, const size_t *start, const int32_t *list)
         m->uv[2 * v + 1] = uv[1];
         fm_fit_surface_eval(m->s, uv[0], uv[1], m->xyz + 3 * v, NULL, NULL);
         double after = ring_quality(m, ring, n, &valid);
-        if (valid && (after >= before - 1e-9 || after >= 35.0)) {
+        if (valid && (after >= before - 1e-11 || after >= SIN35)) {
             moved++;
         } else {
             memcpy(m->uv + 2 * v, old_uv, sizeof old_uv);
