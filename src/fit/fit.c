@@ -13,9 +13,6 @@
  * solver's memory, not the geometry, is the limit. */
 #define HARD_MAX_COEF ((size_t)4000000)
 
-/* Below this smallest n.w (facets steeper than 73 degrees to the plane) a
- * height field is also fitted as a parametric surface (fm_fit.h). */
-#define STEEP_DOT 0.3
 
 void fm_fit_options_default(fm_fit_options *opt)
 {
@@ -627,7 +624,7 @@ fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_s
     }
     fm_status st = fit_sheet_kind(sheet, opt, out, err);
     if (st != FM_OK || opt->kind != FM_FIT_AUTO || (*out)->kind != FM_FIT_HEIGHT_FIELD ||
-        !((*out)->frame.min_dot < STEEP_DOT || (*out)->stats.stacked > 0 ||
+        !((*out)->frame.min_dot < FM_FIT_STEEP_DOT || (*out)->stats.stacked > 0 ||
           (*out)->stats.max_border_offset > 2 * opt->target_max) ||
         fit_score(&(*out)->stats, opt) <= 1)
         return st;

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "fit_internal.h"
+#include "fm_sort.h"
 #include "model_internal.h"
 
 /* Nested ring splits, at most: a ring of rings is rarer than a bad sheet. */
@@ -283,6 +284,7 @@ static void pick_rims(const fm_surface *s, size_t sheet, graph *g, size_t *ra, s
  * small pieces whose maps are no better). */
 #define SPLIT_RMS 8.0
 #define SPLIT_MAX 80.0
+#define SPLIT_MIN_TRIANGLES 20
 
 /* A sheet is cut when the fit it would get is not good: no one-to-one
  * plane and a parametric fit that needs the convex map or misses the
@@ -290,7 +292,10 @@ static void pick_rims(const fm_surface *s, size_t sheet, graph *g, size_t *ra, s
 static int needs_split(const char *name, const fm_mesh *mesh, size_t nloops,
                        const fm_fit_options *fit)
 {
-    if (nloops < 1)
+    /* A sheet of a few triangles has no neck worth a cut: its pieces would
+     * be a triangle or two each, fitted no better (a 6-vertex sheet of
+     * Coronado Bank north went from 54 to 121 m off its outline cut). */
+    if (nloops < 1 || fm_mesh_ntriangles(mesh) < SPLIT_MIN_TRIANGLES)
         return 0;
     /* A height field serves: nothing to decide (the cheap test first). */
     fm_fit_frame fr;
@@ -316,8 +321,44 @@ static int needs_split(const char *name, const fm_mesh *mesh, size_t nloops,
             pm.uv[2 * i + 1] = l[1];
         }
         double ov = fm_fit_overlap_area(&pm);
+        /* ... unless the fit turns from it: a steep or stacked height field
+         * that misses its targets is fitted parametric (fm_fit.h), and
+         * such a sheet can be as far from one smooth map as a folded one
+         * (Clark north: strands stacked 30 m apart, 101 m off its outline
+         * whole, 47 m as two disks). */
+        int serves = !(ov > 0) && fr.min_dot >= FM_FIT_STEEP_DOT;
+        if (serves) {
+            double *val = malloc((nv + 1) * sizeof *val);
+            unsigned char *used = calloc(nv + 1, 1);
+            double *len = malloc((3 * pm.nt + 1) * sizeof *len);
+            if (val && used && len) {
+                for (size_t i = 0; i < nv; i++) {
+                    double l[3];
+                    fm_fit_frame_to_local(&fr, X + 3 * i, l);
+                    val[i] = l[2];
+                }
+                size_t nl = 0;
+                for (size_t t = 0; t < pm.nt; t++)
+                    for (int k = 0; k < 3; k++) {
+                        int32_t a = pm.tri[3 * t + k], b = pm.tri[3 * t + (k + 1) % 3];
+                        used[a] = 1;
+                        const double *p = X + 3 * a, *q = X + 3 * b;
+                        double d = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                        (p[2] - q[2]) * (p[2] - q[2]));
+                        if (d > 0)
+                            len[nl++] = d;
+                    }
+                double em = nl ? fm_median(len, nl) : 0;
+                double smax = sqrt(fmax(1 - fr.min_dot * fr.min_dot, 0)) / fr.min_dot;
+                pm.val = val;
+                serves = fm_fit_stacked_vertices(&pm, used, 2 * em, 0.5 * em, 2 * smax + 1) == 0;
+            }
+            free(val);
+            free(used);
+            free(len);
+        }
         free(pm.uv);
-        if (!(ov > 0))
+        if (serves)
             return 0;
     }
     fm_fit_options o = *fit;
