@@ -120,6 +120,12 @@ typedef struct fm_trim_options {
     int max_refinements;     /* 0..30, default 8 */
     double max_deviation;    /* metres; > 0: also refine where a single point is
                                 further than this from the curve; 0 = off (default) */
+    /* Per input point, 1 where the loop has a corner whatever its turning
+     * over the window (where a cut across a sheet meets its outline: the
+     * piece's boundary turns there from the one to the other, often by
+     * less than corner_angle over a window but sharply at the point);
+     * NULL = none (default). Such corners go first and stay where given. */
+    const unsigned char *corner_at;
 } fm_trim_options;
 
 void fm_trim_options_default(fm_trim_options *opt);

@@ -82,9 +82,10 @@ void trim_input_at(const trim_input *in, double s, double p[2]);
 /* --- trim_corners.c --- */
 
 /* Corners (cleaned indices, ascending) into *corners (allocated, n at most
- * in->n); window in metres, angle in radians. */
+ * in->n); window in metres, angle in radians; corner_at (input indices,
+ * may be NULL): forced corners (fm_trim_options). */
 fm_status trim_find_corners(const trim_input *in, double window, double angle,
-                            size_t **corners, size_t *ncorners);
+                            const unsigned char *corner_at, size_t **corners, size_t *ncorners);
 
 /* --- trim_basis.c --- */
 

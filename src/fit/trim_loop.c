@@ -286,7 +286,7 @@ fm_status fm_trim_fit_metric(const double *uv, const double *metric, size_t n,
     size_t *corners = NULL, nc = 0;
     fm_trim_loop *loop = calloc(1, sizeof *loop);
     if (!loop || trim_find_corners(&in, window, o.corner_angle * 3.14159265358979323846 / 180,
-                                   &corners, &nc) != FM_OK) {
+                                   o.corner_at, &corners, &nc) != FM_OK) {
         st = fm_error_set(err, FM_ERR_NOMEM, o.name, 0, "trim: out of memory (corners)");
         goto fail;
     }
