@@ -29,7 +29,7 @@ static void fit_usage(FILE *fp)
             "  --target-rms M       refine the knots of a sheet fitted worse than this RMS (m)\n"
             "  --target-max M       ... or this largest vertex distance (m)\n"
             "  --trim-tol M         outline tolerance (averaged deviation), metres (default 50)\n"
-            "  --trim-max-dev M     refine the outline where one point is farther (default 80)\n"
+            "  --trim-max-dev M     refine the outline where one point is farther (default 50)\n"
             "  --corner-angle DEG   outline corners turn at least this much (default 30)\n");
     fputs(fm_cli_repair_help, fp);
 }

@@ -3,6 +3,7 @@
 #include "fm_clock.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -12,9 +13,6 @@
  * solver's memory, not the geometry, is the limit. */
 #define HARD_MAX_COEF ((size_t)4000000)
 
-/* Below this smallest n.w (facets steeper than 73 degrees to the plane) a
- * height field is also fitted as a parametric surface (fm_fit.h). */
-#define STEEP_DOT 0.3
 
 void fm_fit_options_default(fm_fit_options *opt)
 {
@@ -155,6 +153,69 @@ static void quick_errors(const fm_fit_surface *s, const fm_fit_pmesh *pm, const 
     *max = mx;
 }
 
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* The parameters of the surface point closest to q (frame coordinates),
+ * from its own parameters own, when the projection converges and comes
+ * closer; else own. The trimming curves run through these (model.c), so
+ * the offsets below are taken between them. */
+static void snap_param(const fm_fit_surface *s, const double q[3], const double own[2],
+                       double out[2])
+{
+    double P[3], d;
+    fm_fit_local_eval(s, own[0], own[1], P, NULL);
+    double d0 = sqrt((P[0] - q[0]) * (P[0] - q[0]) + (P[1] - q[1]) * (P[1] - q[1]) +
+                     (P[2] - q[2]) * (P[2] - q[2]));
+    out[0] = own[0];
+    out[1] = own[1];
+    double w[2] = {own[0], own[1]};
+    if (fm_fit_project_from(s, q, w, P, &d) == FM_OK && fabs(d) < d0) {
+        out[0] = w[0];
+        out[1] = w[1];
+    }
+}
+
+/* Largest offset of a boundary edge's midpoint (fm_fit_stats). Boundary
+ * edges are those of one triangle. Returns -1 when out of memory. */
+static double border_offset(const fm_fit_surface *s, const fm_fit_pmesh *pm, const double *local)
+{
+    size_t m = 3 * pm->nt;
+    uint64_t *key = malloc((m ? m : 1) * sizeof *key);
+    if (!key)
+        return -1;
+    for (size_t t = 0; t < pm->nt; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = (uint32_t)pm->tri[3 * t + k], b = (uint32_t)pm->tri[3 * t + (k + 1) % 3];
+            key[3 * t + k] = a < b ? ((uint64_t)a << 32 | b) : ((uint64_t)b << 32 | a);
+        }
+    qsort(key, m, sizeof *key, cmp_u64);
+    double worst = 0;
+    for (size_t i = 0; i < m;) {
+        size_t j = i;
+        while (j < m && key[j] == key[i])
+            j++;
+        if (j - i == 1) {
+            size_t e[2] = {(size_t)(key[i] >> 32), (size_t)(key[i] & 0xffffffffu)};
+            double uv[2][2], P[3], q[3];
+            for (int k = 0; k < 2; k++)
+                snap_param(s, local + 3 * e[k], pm->uv + 2 * e[k], uv[k]);
+            size_t a = e[0], b = e[1];
+            fm_fit_local_eval(s, 0.5 * (uv[0][0] + uv[1][0]), 0.5 * (uv[0][1] + uv[1][1]), P,
+                              NULL);
+            for (int c = 0; c < 3; c++)
+                q[c] = 0.5 * (local[3 * a + c] + local[3 * b + c]) - P[c];
+            worst = fmax(worst, sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]));
+        }
+        i = j;
+    }
+    free(key);
+    return worst;
+}
+
 static fm_status compute_stats(fm_fit_surface *s, const fm_fit_pmesh *pm, const double *local,
                                const unsigned char *used, int closest, double chord)
 {
@@ -185,6 +246,11 @@ static fm_status compute_stats(fm_fit_surface *s, const fm_fit_pmesh *pm, const 
                 st->max_dist = d;
         }
         count++;
+    }
+    if (closest) {
+        st->max_border_offset = border_offset(s, pm, local);
+        if (st->max_border_offset < 0)
+            return FM_ERR_NOMEM;
     }
     st->vertices = count;
     st->rms_w = count ? sqrt(sw2 / (double)count) : 0;
@@ -524,8 +590,9 @@ static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
     if (s->kind == FM_FIT_PARAMETRIC && make_starts(s) != FM_OK)
         return fail(s, &w, fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory"));
     double t_solved = fm_clock_seconds();
-    compute_stats(s, &w.pm, w.local, w.used, opt->closest_point_stats,
-                  opt->chord_passes > 0 ? opt->chord_weight : 0.0);
+    if (compute_stats(s, &w.pm, w.local, w.used, opt->closest_point_stats,
+                      opt->chord_passes > 0 ? opt->chord_weight : 0.0) != FM_OK)
+        return fail(s, &w, fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory"));
     double t_end = fm_clock_seconds();
     fm_fit_stats *fs = &s->stats;
     fs->time_frame = t_frame - t_start;
@@ -542,6 +609,8 @@ static double fit_score(const fm_fit_stats *st, const fm_fit_options *opt)
 {
     double rms = st->rms_dist > 0 ? st->rms_dist : st->rms_w;
     double max = st->max_dist > 0 ? st->max_dist : st->max_w;
+    /* Between the outline's vertices too: the trimming curve runs there. */
+    max = fmax(max, st->max_border_offset);
     return fmax(rms / opt->target_rms, max / opt->target_max);
 }
 
@@ -555,7 +624,8 @@ fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_s
     }
     fm_status st = fit_sheet_kind(sheet, opt, out, err);
     if (st != FM_OK || opt->kind != FM_FIT_AUTO || (*out)->kind != FM_FIT_HEIGHT_FIELD ||
-        !((*out)->frame.min_dot < STEEP_DOT || (*out)->stats.stacked > 0) ||
+        !((*out)->frame.min_dot < FM_FIT_STEEP_DOT || (*out)->stats.stacked > 0 ||
+          (*out)->stats.max_border_offset > 2 * opt->target_max) ||
         fit_score(&(*out)->stats, opt) <= 1)
         return st;
     /* A steep or stacked height field that misses the targets (see

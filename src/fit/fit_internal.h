@@ -11,6 +11,10 @@
 
 #define FM_FIT_MAX_DEGREE 5
 
+/* Below this smallest n.w (facets steeper than 73 degrees to the plane) a
+ * height field is also fitted as a parametric surface (fm_fit.h). */
+#define FM_FIT_STEEP_DOT 0.3
+
 struct fm_fit_surface {
     fm_fit_frame frame;
     fm_fit_stats stats;

@@ -38,11 +38,17 @@
  * within two median edges of each other at heights that differ by more
  * than half an edge and by more than 2 s + 1 times their distance there,
  * s the slope of the steepest facet: a spline on knots of about an edge
- * cannot switch between them). When such a height field misses the
- * refinement targets, the sheet is also fitted as the parametric kind,
- * and the fit closer to the targets (the larger of vertex RMS / target_rms
- * and largest distance / target_max) is kept. fm_fit_sheet_vertex_params
- * gives every sheet vertex's (u, v) in either kind.
+ * cannot switch between them). A third kind is a height field that
+ * strays more than twice target_max from its outline between the
+ * outline's vertices (stats.max_border_offset: a boundary strip nearly
+ * parallel to W, whose projection is too thin for the spline to climb
+ * it; Southern San Cayetano steep, min n.W 0.35, bulged 158 m off a
+ * straight lateral edge whose vertices it passed within 80 m). When such
+ * a height field misses the refinement targets, the sheet is also fitted
+ * as the parametric kind, and the fit closer to the targets (the larger
+ * of vertex RMS / target_rms and of the largest vertex distance and
+ * border offset / target_max) is kept. fm_fit_sheet_vertex_params gives
+ * every sheet vertex's (u, v) in either kind.
  *
  * Reference direction W: the unit direction that maximises the smallest
  * n.W over the triangle normals. That optimum is the normalised
@@ -244,6 +250,12 @@ typedef struct fm_fit_stats {
     double rms_dist, max_dist;   /* vertices: distance to the closest surface point
                                     (0 when closest_point_stats is off) */
     size_t projection_failures;  /* vertices whose projection did not converge */
+    double max_border_offset;    /* largest distance from the midpoint of a boundary
+                                    edge to the surface point midway between the
+                                    closest-point parameters of its ends (0 when
+                                    closest_point_stats is off): how far the surface
+                                    strays from the outline between its vertices,
+                                    where the trimming curve runs */
     size_t stacked;              /* height field: vertices the plane stacks near a far
                                     part of the sheet (see above) */
     double time_frame, time_param, time_assemble, time_solve, time_stats, time_total;

@@ -80,7 +80,8 @@ const double *fm_model_sample_distance(const fm_model *m, size_t sheet);
 
 /* Cuts: a repaired sheet that is a ring (strands that part and rejoin, so
  * that two boundary loops are both outer and no map of it is usable) is
- * cut into disks along polylines of its edges between the two rims, and
+ * cut into disks along polylines of its edges between the two rims (a
+ * disk that still needs it is cut again at its narrowest neck), and
  * each disk is a model sheet of its own (report.repair_sheet names the
  * sheet it came from). Like junctions, the cuts are where the remeshed
  * parts must meet again: each is a 3D polyline (n points, 3 doubles each,

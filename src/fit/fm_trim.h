@@ -71,9 +71,17 @@
  * knots and smoothing (less smoothing over the whole piece made the curves
  * wiggle instead). Such a round is kept only if the piece's largest
  * deviation both ways (max_dev, max_curve_dev) does not grow; else the
- * piece returns to the knots before it and stops. On the CFM 500 m set
- * this took 5 faults' outlines from 105 to 135 m to below 100 m. The piece
- * is refitted, at most `max_refinements` times. Shorter spans (for the
+ * piece returns to the knots before it and goes on splitting only the
+ * span of its farthest point, until that too makes it grow. On the CFM
+ * 500 m set this took 5 faults' outlines from 105 to 135 m to below
+ * 100 m. A piece that still has a point beyond max_deviation is fitted a
+ * second time, flagging in each round only the points within 2/3 of the
+ * largest deviation (the farthest first: splitting the spans of every
+ * point over the limit at once also puts knots beside a spike, and the
+ * round is undone with them all), and the piece with the smaller largest
+ * deviation both ways is kept (a jog needs knots at both its ends at
+ * once, a spike among lesser points needs them at the spike alone). The
+ * piece is refitted, at most `max_refinements` times per fit. Shorter spans (for the
  * systematic deviation) or less smoothing would let the curve follow the
  * stair-steps, which this measure cannot see: so a tolerance below what
  * the stair-steps allow ends with within_tolerance = 0, not with a curve
@@ -112,6 +120,12 @@ typedef struct fm_trim_options {
     int max_refinements;     /* 0..30, default 8 */
     double max_deviation;    /* metres; > 0: also refine where a single point is
                                 further than this from the curve; 0 = off (default) */
+    /* Per input point, 1 where the loop has a corner whatever its turning
+     * over the window (where a cut across a sheet meets its outline: the
+     * piece's boundary turns there from the one to the other, often by
+     * less than corner_angle over a window but sharply at the point);
+     * NULL = none (default). Such corners go first and stay where given. */
+    const unsigned char *corner_at;
 } fm_trim_options;
 
 void fm_trim_options_default(fm_trim_options *opt);

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "fit_internal.h"
+#include "fm_sort.h"
 #include "model_internal.h"
 
 /* Nested ring splits, at most: a ring of rings is rarer than a bad sheet. */
@@ -283,6 +284,7 @@ static void pick_rims(const fm_surface *s, size_t sheet, graph *g, size_t *ra, s
  * small pieces whose maps are no better). */
 #define SPLIT_RMS 8.0
 #define SPLIT_MAX 80.0
+#define SPLIT_MIN_TRIANGLES 20
 
 /* A sheet is cut when the fit it would get is not good: no one-to-one
  * plane and a parametric fit that needs the convex map or misses the
@@ -290,7 +292,10 @@ static void pick_rims(const fm_surface *s, size_t sheet, graph *g, size_t *ra, s
 static int needs_split(const char *name, const fm_mesh *mesh, size_t nloops,
                        const fm_fit_options *fit)
 {
-    if (nloops < 1)
+    /* A sheet of a few triangles has no neck worth a cut: its pieces would
+     * be a triangle or two each, fitted no better (a 6-vertex sheet of
+     * Coronado Bank north went from 54 to 121 m off its outline cut). */
+    if (nloops < 1 || fm_mesh_ntriangles(mesh) < SPLIT_MIN_TRIANGLES)
         return 0;
     /* A height field serves: nothing to decide (the cheap test first). */
     fm_fit_frame fr;
@@ -316,8 +321,44 @@ static int needs_split(const char *name, const fm_mesh *mesh, size_t nloops,
             pm.uv[2 * i + 1] = l[1];
         }
         double ov = fm_fit_overlap_area(&pm);
+        /* ... unless the fit turns from it: a steep or stacked height field
+         * that misses its targets is fitted parametric (fm_fit.h), and
+         * such a sheet can be as far from one smooth map as a folded one
+         * (Clark north: strands stacked 30 m apart, 101 m off its outline
+         * whole, 47 m as two disks). */
+        int serves = !(ov > 0) && fr.min_dot >= FM_FIT_STEEP_DOT;
+        if (serves) {
+            double *val = malloc((nv + 1) * sizeof *val);
+            unsigned char *used = calloc(nv + 1, 1);
+            double *len = malloc((3 * pm.nt + 1) * sizeof *len);
+            if (val && used && len) {
+                for (size_t i = 0; i < nv; i++) {
+                    double l[3];
+                    fm_fit_frame_to_local(&fr, X + 3 * i, l);
+                    val[i] = l[2];
+                }
+                size_t nl = 0;
+                for (size_t t = 0; t < pm.nt; t++)
+                    for (int k = 0; k < 3; k++) {
+                        int32_t a = pm.tri[3 * t + k], b = pm.tri[3 * t + (k + 1) % 3];
+                        used[a] = 1;
+                        const double *p = X + 3 * a, *q = X + 3 * b;
+                        double d = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                        (p[2] - q[2]) * (p[2] - q[2]));
+                        if (d > 0)
+                            len[nl++] = d;
+                    }
+                double em = nl ? fm_median(len, nl) : 0;
+                double smax = sqrt(fmax(1 - fr.min_dot * fr.min_dot, 0)) / fr.min_dot;
+                pm.val = val;
+                serves = fm_fit_stacked_vertices(&pm, used, 2 * em, 0.5 * em, 2 * smax + 1) == 0;
+            }
+            free(val);
+            free(used);
+            free(len);
+        }
         free(pm.uv);
-        if (!(ov > 0))
+        if (serves)
             return 0;
     }
     fm_fit_options o = *fit;
@@ -338,47 +379,127 @@ static int needs_split(const char *name, const fm_mesh *mesh, size_t nloops,
     return bad;
 }
 
-/* The loop of a disk split at its two farthest apart vertices (3D) into
- * two arcs; the middle third (by length) of the first is relabelled nl and
- * returned in src, that of the second nl + 1 (the target). */
-static size_t disk_ends(const fm_surface *s, size_t sheet, const graph *g, int32_t *src)
+/* The cut of a disk at its narrowest neck: the path between two vertices
+ * a, b of its loop (through inside vertices, not along the loop) with the
+ * smallest ratio of its length to the shorter loop arc between a and b.
+ * A strand bent round on itself is cut across its middle (a cut of about
+ * its width against half its perimeter); a part that hangs on the rest by
+ * a narrow strip (a splay folded under its strand, a flap lapping over the
+ * sheet) is cut off at that strip, wherever it lies. Cutting between the
+ * farthest apart vertices instead finds no path where the strip has no
+ * inside vertex, and halving leaves the flap on one of the halves. Every
+ * loop vertex is a source; a search stops once no shorter ratio can come
+ * (the ratio is at least the length over half the perimeter). Fills the
+ * path (from b back to a), or *npath = 0. */
+static fm_status disk_neck(const fm_surface *s, size_t sheet, const graph *g, const bedges *be,
+                           double *dist, int32_t **path, size_t *npath)
 {
-    size_t n, nl = fm_surface_sheet_nloops(s, sheet);
+    size_t n;
     const int32_t *lv = fm_surface_sheet_loop(s, sheet, 0, &n);
+    *path = NULL;
+    *npath = 0;
     if (n < 4)
-        return 0;
-    size_t bi = 0, bj = 1;
-    double best = -1;
-    for (size_t i = 0; i < n; i++)
-        for (size_t j = i + 1; j < n; j++) {
-            double d = edge_len(g, lv[i], lv[j]);
-            if (d > best) {
-                best = d;
-                bi = i;
-                bj = j;
-            }
-        }
-    size_t nsrc = 0;
-    for (int arc = 0; arc < 2; arc++) {
-        size_t from = arc ? bj : bi, to = arc ? bi + n : bj;
-        double len = 0;
-        for (size_t q = from; q < to; q++)
-            len += edge_len(g, lv[q % n], lv[(q + 1) % n]);
-        double at = 0;
-        for (size_t q = from; q <= to; q++) {
-            if (q > from)
-                at += edge_len(g, lv[(q - 1) % n], lv[q % n]);
-            if (at >= len / 3 && at <= 2 * len / 3) {
-                int32_t v = lv[q % n];
-                if (g->loop[v] != 0)
-                    continue;
-                g->loop[v] = (int32_t)(nl + (size_t)arc);
-                if (!arc)
-                    src[nsrc++] = v;
-            }
-        }
+        return FM_OK;
+    double *cum = malloc((n + 1) * sizeof *cum);
+    size_t *pos = malloc((g->nv + 1) * sizeof *pos);
+    int32_t *prev = malloc((g->nv + 1) * sizeof *prev);
+    unsigned char *done = calloc(g->nv + 1, 1);
+    int32_t *touched = malloc((g->nv + 1) * sizeof *touched);
+    heap h = {malloc((g->off[g->nv] + 1) * sizeof(double)),
+              malloc((g->off[g->nv] + 1) * sizeof(int32_t)), 0};
+    fm_status st = FM_OK;
+    if (!cum || !pos || !prev || !done || !touched || !h.d || !h.v) {
+        st = FM_ERR_NOMEM;
+        goto out;
     }
-    return nsrc;
+    cum[0] = 0;
+    for (size_t q = 0; q < n; q++)
+        cum[q + 1] = cum[q] + edge_len(g, lv[q], lv[(q + 1) % n]);
+    for (size_t v = 0; v < g->nv; v++) {
+        dist[v] = INFINITY;
+        prev[v] = -1;
+    }
+    for (size_t q = 0; q < n; q++)
+        pos[lv[q]] = q;
+    double total = cum[n], best = INFINITY;
+    size_t best_a = 0;
+    int32_t best_b = -1;
+    for (int pass = 0; pass < 2; pass++) {
+        /* pass 0 finds the best pair; pass 1 reruns its source for the path */
+        for (size_t qa = pass ? best_a : 0; qa < (pass ? best_a + 1 : n); qa++) {
+            int32_t a = lv[qa];
+            size_t nt = 0;
+            dist[a] = 0;
+            touched[nt++] = a;
+            h.n = 0;
+            heap_push(&h, 0, a);
+            while (h.n) {
+                double d;
+                int32_t x = heap_pop(&h, &d);
+                if (done[x])
+                    continue;
+                done[x] = 1;
+                if (!pass && d >= best * 0.5 * total)
+                    break;
+                if (x != a && g->loop[x] >= 0) {
+                    if (!pass && g->loop[x] == 0) {
+                        double arc = fabs(cum[pos[x]] - cum[qa]);
+                        arc = fmin(arc, total - arc);
+                        if (arc > 0 && d / arc < best) {
+                            best = d / arc;
+                            best_a = qa;
+                            best_b = x;
+                        }
+                    }
+                    continue; /* a cut ends at the loop */
+                }
+                for (size_t k = g->off[x]; k < g->off[x + 1]; k++) {
+                    int32_t y = g->adj[k];
+                    if (done[y] || (g->loop[y] >= 0 && g->loop[y] != 0))
+                        continue;
+                    if (g->loop[x] >= 0 && g->loop[y] >= 0 && is_bedge(be, x, y))
+                        continue;
+                    double nd = d + edge_len(g, x, y);
+                    if (nd < dist[y]) {
+                        if (!isfinite(dist[y]))
+                            touched[nt++] = y;
+                        dist[y] = nd;
+                        prev[y] = x;
+                        heap_push(&h, nd, y);
+                    }
+                }
+            }
+            if (pass && best_b >= 0 && isfinite(dist[best_b])) {
+                size_t m = 0;
+                for (int32_t x = best_b; x >= 0; x = prev[x])
+                    m++;
+                *path = malloc(m * sizeof **path);
+                if (!*path) {
+                    st = FM_ERR_NOMEM;
+                    goto out;
+                }
+                for (int32_t x = best_b; x >= 0; x = prev[x])
+                    (*path)[(*npath)++] = x;
+            }
+            /* reset only what this search touched: n searches stay cheap */
+            for (size_t i = 0; i < nt; i++) {
+                dist[touched[i]] = INFINITY;
+                prev[touched[i]] = -1;
+                done[touched[i]] = 0;
+            }
+        }
+        if (best_b < 0)
+            break;
+    }
+out:
+    free(cum);
+    free(pos);
+    free(prev);
+    free(done);
+    free(touched);
+    free(h.d);
+    free(h.v);
+    return st;
 }
 
 static fm_status add_cut(fm_model_split *sp, const graph *g, const int32_t *path, size_t n,
@@ -524,15 +645,14 @@ static fm_status cut_ring(const fm_surface *s, size_t sheet, size_t repair_sheet
         memcpy(src, A, nsrc * sizeof *src);
         target = (int32_t)rb;
     } else {
-        /* A disk no map serves (a strand bent round on itself): one cut
-         * across its middle. */
-        nsrc = disk_ends(s, sheet, g, src);
-        target = (int32_t)nl + 1;
+        target = -1;
         ra = rb = 0;
     }
 
-    /* First cut: the shortest path between the rims. */
-    fm_status st2 = dijkstra(g, &c.be, src, nsrc, target, NULL, c.dist, &c.p1, &c.n1);
+    /* First cut: the shortest path between the rims, or the neck of a
+     * disk no map serves (disk_neck). */
+    fm_status st2 = ring ? dijkstra(g, &c.be, src, nsrc, target, NULL, c.dist, &c.p1, &c.n1)
+                         : disk_neck(s, sheet, g, &c.be, c.dist, &c.p1, &c.n1);
     /* Second cut: from the half of rim A away from the first cut to rim B,
      * not touching the first cut. */
     unsigned char *blocked = NULL;

@@ -129,7 +129,7 @@ static size_t locate_apex(const trim_input *in, size_t i, double window)
 }
 
 fm_status trim_find_corners(const trim_input *in, double window, double angle,
-                            size_t **corners, size_t *ncorners)
+                            const unsigned char *corner_at, size_t **corners, size_t *ncorners)
 {
     size_t n = in->n;
     double L = in->s[n];
@@ -148,6 +148,8 @@ fm_status trim_find_corners(const trim_input *in, double window, double angle,
         side_direction(in, i, window, -1, el);
         side_direction(in, i, window, +1, er);
         double turn = fabs(atan2(el[0] * er[1] - el[1] * er[0], el[0] * er[0] + el[1] * er[1]));
+        if (corner_at && corner_at[in->orig[i]])
+            turn = 4 + turn; /* above any turning (at most pi): first */
         if (turn >= angle)
             cand[nc++] = (candidate){turn, i};
     }
@@ -166,6 +168,8 @@ fm_status trim_find_corners(const trim_input *in, double window, double angle,
     /* Each corner onto its apex, unless that brings it within half a
      * window of another (the pieces between corners keep a few points). */
     for (size_t a = 0; a < k; a++) {
+        if (corner_at && corner_at[in->orig[out[a]]])
+            continue;
         size_t j = locate_apex(in, out[a], window);
         int ok = 1;
         for (size_t b = 0; b < k && ok; b++) {

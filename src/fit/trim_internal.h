@@ -38,6 +38,7 @@ typedef struct trim_piece {
     int rounds;     /* refinement rounds used */
     /* Measured by trim_measure_piece. */
     double max_dev, sum_dev2, max_curve_dev, max_sys;
+    size_t worst_span; /* the span holding the point at max_dev */
 } trim_piece;
 
 struct fm_trim_loop {
@@ -81,9 +82,10 @@ void trim_input_at(const trim_input *in, double s, double p[2]);
 /* --- trim_corners.c --- */
 
 /* Corners (cleaned indices, ascending) into *corners (allocated, n at most
- * in->n); window in metres, angle in radians. */
+ * in->n); window in metres, angle in radians; corner_at (input indices,
+ * may be NULL): forced corners (fm_trim_options). */
 fm_status trim_find_corners(const trim_input *in, double window, double angle,
-                            size_t **corners, size_t *ncorners);
+                            const unsigned char *corner_at, size_t **corners, size_t *ncorners);
 
 /* --- trim_basis.c --- */
 
@@ -115,9 +117,10 @@ fm_status trim_fit_piece(const trim_input *in, trim_piece *pc, double beta, cons
 /* Deviations of the fitted piece; flag[s] gets TRIM_FLAG_SYSTEMATIC for
  * spans holding a point whose tent-averaged signed deviation (half-width
  * H) exceeds tol, TRIM_FLAG_RAW (raw_tol > 0) for those holding a point
- * whose own distance exceeds raw_tol. */
+ * whose own distance exceeds raw_tol and raw_share times the largest
+ * (raw_share > 0: the farthest points first). */
 fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, double tol,
-                             double raw_tol, unsigned char *flag);
+                             double raw_tol, double raw_share, unsigned char *flag);
 /* Distance from p to the segment a-b, in the form M (NULL: identity). */
 double trim_segment_distance(const double p[2], const double a[2], const double b[2],
                              const double *M);

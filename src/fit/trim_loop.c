@@ -165,20 +165,21 @@ static int refine(trim_piece *pc, const unsigned char *flag, double spacing, int
  * follows: such a round is kept only if the piece's largest deviation both
  * ways (points to curve, curve to polyline) does not grow; otherwise the
  * piece goes back to the knots and smoothing before it and stops there. */
-static fm_status fit_piece(const trim_input *in, trim_piece *pc, double beta,
+static fm_status fit_piece(const trim_input *in, trim_piece *pc, double beta, double raw_share,
                            const fm_trim_options *o, fm_error *err)
 {
     unsigned char *flag = NULL;
     double *saved = NULL, saved_mu = 0, prev_worst = 0;
     size_t saved_n = 0;
-    int guard = 0, restored = 0;
+    int guard = 0, restored = 0, narrow = 0;
     fm_status st = FM_OK;
     for (int round = 0;; round++) {
         st = trim_fit_piece(in, pc, beta, o->name, err);
         if (st != FM_OK)
             break;
         unsigned char *f = realloc(flag, pc->nspans);
-        if (!f || trim_measure_piece(in, pc, 2 * in->spacing, o->tolerance, o->max_deviation, f) != FM_OK) {
+        if (!f || trim_measure_piece(in, pc, 2 * in->spacing, o->tolerance, o->max_deviation,
+                                     raw_share, f) != FM_OK) {
             free(f ? f : flag);
             free(saved);
             return fm_error_set(err, FM_ERR_NOMEM, o->name, 0, "trim: out of memory (measure)");
@@ -193,7 +194,14 @@ static fm_status fit_piece(const trim_input *in, trim_piece *pc, double beta,
             pc->nspans = saved_n;
             pc->mu = saved_mu;
             saved = NULL;
-            restored = 1;
+            /* The round that split every flagged span made the curve swing
+             * out somewhere; the farthest point alone may still be
+             * followed (a spike among points just over max_deviation):
+             * from the knots before, one span at a time, and stop at the
+             * next swing. */
+            restored = narrow;
+            narrow = 1;
+            guard = 0;
             pc->rounds = round - 1;
             continue;
         }
@@ -211,6 +219,10 @@ static fm_status fit_piece(const trim_input *in, trim_piece *pc, double beta,
         memcpy(saved, pc->brk, (pc->nspans + 1) * sizeof *saved);
         saved_n = pc->nspans;
         saved_mu = pc->mu;
+        if (narrow)
+            for (size_t sp = 0; sp < pc->nspans; sp++)
+                if (sp != pc->worst_span)
+                    flag[sp] = 0;
         int short_split = 0;
         int changed = refine(pc, flag, in->spacing, &short_split);
         if (changed < 0) {
@@ -274,7 +286,7 @@ fm_status fm_trim_fit_metric(const double *uv, const double *metric, size_t n,
     size_t *corners = NULL, nc = 0;
     fm_trim_loop *loop = calloc(1, sizeof *loop);
     if (!loop || trim_find_corners(&in, window, o.corner_angle * 3.14159265358979323846 / 180,
-                                   &corners, &nc) != FM_OK) {
+                                   o.corner_at, &corners, &nc) != FM_OK) {
         st = fm_error_set(err, FM_ERR_NOMEM, o.name, 0, "trim: out of memory (corners)");
         goto fail;
     }
@@ -309,9 +321,37 @@ fm_status fm_trim_fit_metric(const double *uv, const double *metric, size_t n,
             st = fm_error_set(err, FM_ERR_NOMEM, o.name, 0, "trim: out of memory (piece)");
             goto fail;
         }
-        st = fit_piece(&in, pc, beta, &o, err);
+        st = fit_piece(&in, pc, beta, 0.0, &o, err);
         if (st != FM_OK)
             goto fail;
+        /* A point still beyond max_deviation: refining the spans of every
+         * point over it at once also moves knots next to the farthest
+         * one, and when the curve then swings out the round is undone with
+         * all its spans (a 160 m spike among 50 m points stayed 120 m
+         * off); refining the farthest points first (those within 2/3 of
+         * the largest deviation) can follow it, but leaves a jog whose two
+         * ends need knots together (a 230 m step, 123 m off). Both, and
+         * the piece closer to the polyline both ways kept. */
+        if (o.max_deviation > 0 && pc->max_dev > o.max_deviation) {
+            trim_piece alt;
+            memset(&alt, 0, sizeof alt);
+            if (piece_init(&in, &alt, nc == 0, first, npts, h0) != FM_OK) {
+                piece_free(&alt);
+                st = fm_error_set(err, FM_ERR_NOMEM, o.name, 0, "trim: out of memory (piece)");
+                goto fail;
+            }
+            st = fit_piece(&in, &alt, beta, 2.0 / 3.0, &o, err);
+            if (st != FM_OK) {
+                piece_free(&alt);
+                goto fail;
+            }
+            if (fmax(alt.max_dev, alt.max_curve_dev) < fmax(pc->max_dev, pc->max_curve_dev)) {
+                piece_free(pc);
+                *pc = alt;
+            } else {
+                piece_free(&alt);
+            }
+        }
         S->spans += pc->nspans;
         S->control_points += pc->nctrl;
         S->refinements = pc->rounds > S->refinements ? pc->rounds : S->refinements;

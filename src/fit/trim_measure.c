@@ -164,7 +164,7 @@ static double curve_to_polyline(const trim_input *in, const trim_piece *pc, doub
 }
 
 fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, double tol,
-                             double raw_tol, unsigned char *flag)
+                             double raw_tol, double raw_share, unsigned char *flag)
 {
     size_t m = pc->npts;
     double *r = malloc(m * sizeof *r);
@@ -177,6 +177,7 @@ fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, dou
         hmax = fmax(hmax, h);
     }
     pc->max_dev = pc->sum_dev2 = pc->max_curve_dev = pc->max_sys = 0;
+    pc->worst_span = 0;
     for (size_t j = 0; j < m; j++) {
         r[j] = 0;
         /* A clamped piece passes through its end points by construction. */
@@ -190,7 +191,10 @@ fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, dou
         double dd[2] = {dx, dy};
         double d = sqrt(trim_norm2(M, dd));
         r[j] = c[1][0] * dy - c[1][1] * dx >= 0 ? d : -d;
-        pc->max_dev = fmax(pc->max_dev, d);
+        if (d > pc->max_dev) {
+            pc->max_dev = d;
+            pc->worst_span = trim_span(pc, pc->t[j]);
+        }
         pc->sum_dev2 += d * d;
     }
     for (size_t s = 0; s < pc->nspans; s++)
@@ -198,10 +202,12 @@ fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, dou
     /* A single point far off: a bend sharper than the knots (rounded off
      * while its residuals still average to zero) or a point next to a
      * corner, where the tent is not taken. */
-    if (raw_tol > 0)
+    if (raw_tol > 0) {
+        double cut = fmax(raw_tol, raw_share * pc->max_dev);
         for (size_t j = 0; j < m; j++)
-            if (fabs(r[j]) > raw_tol)
+            if (fabs(r[j]) > cut)
                 flag[trim_span(pc, pc->t[j])] |= TRIM_FLAG_RAW;
+    }
     for (size_t j = 0; j < m; j++) {
         /* Near a corner the tent would hold the corner, which carries no
          * stair-step, and one step without its partner: the average would

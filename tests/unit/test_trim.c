@@ -554,6 +554,71 @@ static void test_spike(void)
     fm_trim_loop_destroy(raw);
 }
 
+/* ---- forced corners ---- */
+
+/* A 10 x 4 km loop at 500 m points whose bottom edge bends by 20 degrees
+ * at x = 5 km: below corner_angle, so the curve rounds the bend; forced
+ * there with corner_at (where a cut meets or turns along a sheet's
+ * outline), it is a corner and the curve passes through it. */
+static void test_forced_corner(void)
+{
+    double uv[2 * 64];
+    size_t n = 0, kink = 0;
+    double t20 = tan(20 * 3.14159265358979323846 / 180);
+    for (int i = 0; i <= 20; i++) { /* bottom, bending up at i = 10 */
+        double x = 500.0 * i;
+        if (i == 10)
+            kink = n;
+        uv[2 * n] = x;
+        uv[2 * n + 1] = x > 5000 ? (x - 5000) * t20 : 0;
+        n++;
+    }
+    double top = 4000 + 5000 * t20;
+    for (int i = 1; i <= 8; i++) { /* right side */
+        uv[2 * n] = 10000;
+        uv[2 * n + 1] = 5000 * t20 + (top - 5000 * t20) * i / 8;
+        n++;
+    }
+    for (int i = 19; i >= 0; i--) { /* top */
+        uv[2 * n] = 500.0 * i;
+        uv[2 * n + 1] = top;
+        n++;
+    }
+    for (int i = 7; i >= 1; i--) { /* left side */
+        uv[2 * n] = 0;
+        uv[2 * n + 1] = top * i / 8;
+        n++;
+    }
+    fm_trim_options opt;
+    fm_trim_options_default(&opt);
+    fm_trim_loop *plain = NULL, *forced = NULL;
+    fm_error err;
+    CHECK_EQ(fm_trim_fit(uv, n, &opt, &plain, &err), FM_OK);
+    unsigned char at[64] = {0};
+    at[kink] = 1;
+    opt.corner_at = at;
+    CHECK_EQ(fm_trim_fit(uv, n, &opt, &forced, &err), FM_OK);
+    if (!plain || !forced) {
+        fm_trim_loop_destroy(plain);
+        fm_trim_loop_destroy(forced);
+        return;
+    }
+    size_t np, nf;
+    const size_t *cp = fm_trim_loop_corners(plain, &np), *cf = fm_trim_loop_corners(forced, &nf);
+    int has = 0;
+    for (size_t i = 0; i < nf; i++)
+        has |= cf[i] == kink;
+    for (size_t i = 0; i < np; i++)
+        CHECK(cp[i] != kink);
+    printf("20 degree bend: corners %zu, forced %zu; max_dev %.1f -> %.1f m\n", np, nf,
+           fm_trim_loop_stats(plain)->max_dev, fm_trim_loop_stats(forced)->max_dev);
+    CHECK(has);
+    CHECK_EQ(nf, np + 1);
+    CHECK(fm_trim_loop_stats(forced)->max_dev < fm_trim_loop_stats(plain)->max_dev);
+    fm_trim_loop_destroy(plain);
+    fm_trim_loop_destroy(forced);
+}
+
 /* ---- degenerate input ---- */
 
 static void expect_invalid(const double *uv, size_t n, const fm_trim_options *opt)
@@ -799,4 +864,5 @@ static void test_metric(void)
 
 FM_TEST_MAIN(FM_CASE(test_rectangle), FM_CASE(test_circle), FM_CASE(test_trace),
              FM_CASE(test_orientation), FM_CASE(test_determinism), FM_CASE(test_refinement),
-             FM_CASE(test_spike), FM_CASE(test_degenerate), FM_CASE(test_metric))
+             FM_CASE(test_spike), FM_CASE(test_forced_corner), FM_CASE(test_degenerate),
+             FM_CASE(test_metric))
