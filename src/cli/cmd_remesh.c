@@ -679,6 +679,13 @@ static void cli_defaults(remesh_cli *cli)
      * coverage); one subdivision of the sheet's triangles is within a
      * fraction of a percent of two, at a quarter of the cost. */
     cli->model.sample_levels = 1;
+    /* Outline nodes lie on the trimming curves, and on a small fault at H
+     * they are most of the nodes: curves held to 15 m of the published
+     * boundary (30 m at any single point), not the fit's 50 m, keep the
+     * mesh's distance to the original within 10 m RMS on every CFM fault
+     * where the surface allows it (19 faults over at H = 1 km otherwise). */
+    cli->model.trim.tolerance = 15;
+    cli->model.trim.max_deviation = 30;
     fm_remesh_options_default(&cli->mesh);
     cli->msh = FM_MSH_41;
     cli->crs = "EPSG:26711";
