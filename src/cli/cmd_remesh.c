@@ -683,7 +683,7 @@ static void cli_defaults(remesh_cli *cli)
      * they are most of the nodes: curves held to 15 m of the published
      * boundary (30 m at any single point), not the fit's 50 m, keep the
      * mesh's distance to the original within 10 m RMS on every CFM fault
-     * where the surface allows it (19 faults over at H = 1 km otherwise). */
+     * (3 faults over 10 m at H = 1 km with the fit's 50 m, none with these). */
     cli->model.trim.tolerance = 15;
     cli->model.trim.max_deviation = 30;
     fm_remesh_options_default(&cli->mesh);
