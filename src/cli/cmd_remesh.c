@@ -679,6 +679,7 @@ static void cli_defaults(remesh_cli *cli)
      * coverage); one subdivision of the sheet's triangles is within a
      * fraction of a percent of two, at a quarter of the cost. */
     cli->model.sample_levels = 1;
+    cli->model.measure_samples = 0; /* the check measures the mesh itself */
     /* Outline nodes lie on the trimming curves, and on a small fault at H
      * they are most of the nodes: curves held to 15 m of the published
      * boundary (30 m at any single point), not the fit's 50 m, keep the

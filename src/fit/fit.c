@@ -98,26 +98,6 @@ static size_t spans_for(double width, double s)
     return n < 1 ? 1 : (size_t)n;
 }
 
-typedef struct sample_err {
-    const fm_fit_surface *s;
-    double chord; /* share of the chord term in the fitted values */
-    double sum_w, sum_we2;
-} sample_err;
-
-static void add_sample_error(void *ctx, const fm_fit_sample *smp)
-{
-    sample_err *e = ctx;
-    double e2 = 0;
-    for (int c = 0; c < e->s->ncomp; c++) {
-        double d5[5];
-        double d = smp->val[c] - fm_fit_component(e->s, c, smp->u, smp->v, d5);
-        d -= e->chord * (smp->chord[0] * d5[2] + 2 * smp->chord[1] * d5[3] + smp->chord[2] * d5[4]);
-        e2 += d * d;
-    }
-    e->sum_w += smp->weight;
-    e->sum_we2 += smp->weight * e2;
-}
-
 /* Distance from the vertex with frame coordinates q and parameters uv to
  * the tangent plane of the surface point at uv: first order in the fit
  * error, and cheap (no projection); *offset gets the distance to the point
@@ -217,7 +197,7 @@ static double border_offset(const fm_fit_surface *s, const fm_fit_pmesh *pm, con
 }
 
 static fm_status compute_stats(fm_fit_surface *s, const fm_fit_pmesh *pm, const double *local,
-                               const unsigned char *used, int closest, double chord)
+                               const unsigned char *used, int closest)
 {
     fm_fit_stats *st = &s->stats;
     double sw2 = 0, sd2 = 0;
@@ -255,9 +235,6 @@ static fm_status compute_stats(fm_fit_surface *s, const fm_fit_pmesh *pm, const 
     st->vertices = count;
     st->rms_w = count ? sqrt(sw2 / (double)count) : 0;
     st->rms_dist = count ? sqrt(sd2 / (double)count) : 0;
-    sample_err e = {s, chord, 0, 0};
-    fm_fit_sample_sheet(pm, s->s, add_sample_error, &e);
-    st->rms_samples_w = e.sum_w > 0 ? sqrt(e.sum_we2 / e.sum_w) : 0;
     return FM_OK;
 }
 
@@ -590,8 +567,7 @@ static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
     if (s->kind == FM_FIT_PARAMETRIC && make_starts(s) != FM_OK)
         return fail(s, &w, fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory"));
     double t_solved = fm_clock_seconds();
-    if (compute_stats(s, &w.pm, w.local, w.used, opt->closest_point_stats,
-                      opt->chord_passes > 0 ? opt->chord_weight : 0.0) != FM_OK)
+    if (compute_stats(s, &w.pm, w.local, w.used, opt->closest_point_stats) != FM_OK)
         return fail(s, &w, fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory"));
     double t_end = fm_clock_seconds();
     fm_fit_stats *fs = &s->stats;

@@ -245,8 +245,6 @@ typedef struct fm_fit_stats {
     double smoothing;            /* lambda used */
     double rms_w, max_w;         /* vertices: |height - h(u, v)| along w; parametric:
                                     distance to the surface point at their parameters */
-    double rms_samples_w;        /* samples, projected-area weighted, along w, against
-                                    the chord-corrected heights when chord_passes > 0 */
     double rms_dist, max_dist;   /* vertices: distance to the closest surface point
                                     (0 when closest_point_stats is off) */
     size_t projection_failures;  /* vertices whose projection did not converge */

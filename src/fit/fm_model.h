@@ -36,6 +36,10 @@ typedef struct fm_model_options {
     /* Midpoint subdivisions of the sheet's triangles that sample the trimmed
      * surface (each level quarters the triangles); default 2. */
     int sample_levels;
+    /* 1 (default): each sample's distance to the original triangulation is
+     * measured (fm_model_sample_distance, report.from_trimmed_*); 0: not
+     * (NULL and 0 then), for callers that measure their own output. */
+    int measure_samples;
 } fm_model_options;
 
 void fm_model_options_default(fm_model_options *opt);

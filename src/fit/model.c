@@ -41,6 +41,7 @@ void fm_model_options_default(fm_model_options *opt)
      * 160 m spike on CFM 5.3) left at 80 m ended 105 to 125 m off in 3D. */
     opt->trim.max_deviation = 50;
     opt->sample_levels = 2;
+    opt->measure_samples = 1;
 }
 
 static void sheet_free(sheet_model *sm)
@@ -310,7 +311,8 @@ static fm_status measure_outline(const fm_surface *s, size_t sheet, const double
 /* The trimmed surface sampled on the subdivided sheet triangulation, its
  * boundary points moved onto the trimming curves. */
 static fm_status sample_trimmed(const fm_surface *s, size_t sheet, const double *uv,
-                                const loop_samples *ls, int levels, sheet_model *sm)
+                                const loop_samples *ls, int levels, int measure,
+                                sheet_model *sm)
 {
     const fm_mesh *mesh = fm_surface_sheet_mesh(s, sheet);
     size_t nv = fm_mesh_nvertices(mesh), nt = fm_mesh_ntriangles(mesh);
@@ -369,9 +371,14 @@ static fm_status sample_trimmed(const fm_surface *s, size_t sheet, const double 
                              (int32_t)sheet);
     fm_submesh_free(&sub);
 
+    size_t ns = fm_mesh_nvertices(sm->samples);
+    sm->report.samples = ns;
+    if (!measure) {
+        free(on_trim);
+        return FM_OK;
+    }
     /* trimmed surface -> original triangulation */
     fm_closest_tree *tree = fm_closest_tree_create(mesh, NULL);
-    size_t ns = fm_mesh_nvertices(sm->samples);
     sm->sample_dist = malloc((ns ? ns : 1) * sizeof *sm->sample_dist);
     if (!tree || !sm->sample_dist) {
         fm_closest_tree_destroy(tree);
@@ -397,7 +404,6 @@ static fm_status sample_trimmed(const fm_surface *s, size_t sheet, const double 
     }
     free(on_trim);
     fm_closest_tree_destroy(tree);
-    sm->report.samples = ns;
     sm->report.from_trimmed_rms = counted ? sqrt(sum2 / (double)counted) : 0.0;
     sm->report.from_trimmed_max = maxd;
     return FM_OK;
@@ -498,7 +504,7 @@ static fm_status build_sheet(const char *name, const fm_surface *s, size_t sheet
     if (st == FM_OK)
         st = build_loop_samples(sm, spacing, &ls, err, name);
     if (st == FM_OK) {
-        st = sample_trimmed(s, sheet, uv, ls, opt->sample_levels, sm);
+        st = sample_trimmed(s, sheet, uv, ls, opt->sample_levels, opt->measure_samples, sm);
         if (st == FM_OK)
             st = measure_outline(s, sheet, uv, ls, sm);
         if (st != FM_OK)
