@@ -156,7 +156,7 @@ static int run_file(const char *path, fault_run *fr, totals *tot, size_totals *s
         fm_model *model = NULL;
         if (rc == FM_OK) {
             fm_model_options mo;
-            fm_model_options_default(&mo);
+            fm_remesh_model_options_default(&mo); /* as `faultmesh remesh` */
             rc = fm_model_build(path, surf, &mo, &model, &err);
         }
         tot->fit += fm_clock_seconds() - tb;

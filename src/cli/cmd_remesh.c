@@ -674,19 +674,7 @@ static void cli_defaults(remesh_cli *cli)
 {
     memset(cli, 0, sizeof *cli);
     fm_repair_options_default(&cli->repair);
-    fm_model_options_default(&cli->model);
-    /* The samples of the trimmed surface only weigh its area here (for the
-     * coverage); one subdivision of the sheet's triangles is within a
-     * fraction of a percent of two, at a quarter of the cost. */
-    cli->model.sample_levels = 1;
-    cli->model.measure_samples = 0; /* the check measures the mesh itself */
-    /* Outline nodes lie on the trimming curves, and on a small fault at H
-     * they are most of the nodes: curves held to 15 m of the published
-     * boundary (30 m at any single point), not the fit's 50 m, keep the
-     * mesh's distance to the original within 10 m RMS on every CFM fault
-     * (3 faults over 10 m at H = 1 km with the fit's 50 m, none with these). */
-    cli->model.trim.tolerance = 15;
-    cli->model.trim.max_deviation = 30;
+    fm_remesh_model_options_default(&cli->model);
     fm_remesh_options_default(&cli->mesh);
     cli->msh = FM_MSH_41;
     cli->crs = "EPSG:26711";

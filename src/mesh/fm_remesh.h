@@ -61,6 +61,14 @@ typedef struct fm_remesh_options {
 
 void fm_remesh_options_default(fm_remesh_options *opt);
 
+/* The fit options a model meant for this mesher is built with
+ * (fm_model_build): fm_model_options_default, with trimming curves held
+ * closer to the published boundary (outline nodes lie on them, and on a
+ * small fault they are most of the nodes), the trimmed surface sampled one
+ * level only (its area is all a caller weighs) and not measured against
+ * the original (the check measures the mesh itself). */
+void fm_remesh_model_options_default(fm_model_options *opt);
+
 typedef struct fm_remesh_stats {
     size_t points, triangles;
     size_t boundary_points;    /* on trimming curves or the sea-level line */
