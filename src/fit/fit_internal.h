@@ -172,6 +172,14 @@ typedef struct fm_fit_spd fm_fit_spd;
 fm_status fm_fit_spd_factor(size_t n, const size_t *colptr, const size_t *rowind,
                             const double *values, fm_fit_spd **out, const char *name,
                             fm_error *err);
+/* The same with a fill-reducing order given (perm[k]: the k-th unknown to
+ * eliminate), NULL for CHOLMOD's own. */
+fm_status fm_fit_spd_factor_ordered(size_t n, const size_t *colptr, const size_t *rowind,
+                                    const double *values, const int *perm, fm_fit_spd **out,
+                                    const char *name, fm_error *err);
+/* Nested dissection of an nu x nv grid of coefficients (u fastest) whose
+ * stencil reaches p apart: perm of nu nv entries. */
+void fm_fit_grid_order(size_t nu, size_t nv, int p, int *perm);
 /* x = A^-1 b; x may alias b. */
 fm_status fm_fit_spd_solve(fm_fit_spd *f, const double *b, double *x, const char *name,
                            fm_error *err);

@@ -51,9 +51,28 @@ static void one_blas_thread(void)
 
 static pthread_once_t blas_once = PTHREAD_ONCE_INIT;
 
+/* Analysis: with a fill-reducing order of the caller's (perm, n entries),
+ * or CHOLMOD's own (AMD) without. */
+static cholmod_factor *analyze(cholmod_sparse *A, const int *perm, cholmod_common *c)
+{
+    if (!perm)
+        return cholmod_analyze(A, c);
+    c->nmethods = 1;
+    c->method[0].ordering = CHOLMOD_GIVEN;
+    c->postorder = 1;
+    return cholmod_analyze_p(A, (int *)perm, NULL, 0, c);
+}
+
 fm_status fm_fit_spd_factor(size_t n, const size_t *colptr, const size_t *rowind,
                             const double *values, fm_fit_spd **out, const char *name,
                             fm_error *err)
+{
+    return fm_fit_spd_factor_ordered(n, colptr, rowind, values, NULL, out, name, err);
+}
+
+fm_status fm_fit_spd_factor_ordered(size_t n, const size_t *colptr, const size_t *rowind,
+                                    const double *values, const int *perm, fm_fit_spd **out,
+                                    const char *name, fm_error *err)
 {
     *out = NULL;
     size_t nnz = colptr[n];
@@ -92,7 +111,7 @@ fm_status fm_fit_spd_factor(size_t n, const size_t *colptr, const size_t *rowind
         Ai[k] = (int)rowind[k];
         Ax[k] = values[k];
     }
-    f->L = cholmod_analyze(A, &f->c);
+    f->L = analyze(A, perm, &f->c);
     if (!f->L || f->c.status < CHOLMOD_OK) {
         st = cholmod_failure(&f->c, "analysis", name, err);
         goto done;
@@ -106,7 +125,7 @@ fm_status fm_fit_spd_factor(size_t n, const size_t *colptr, const size_t *rowind
         cholmod_free_factor(&f->L, &f->c);
         f->c.status = CHOLMOD_OK;
         f->c.supernodal = CHOLMOD_SIMPLICIAL;
-        f->L = cholmod_analyze(A, &f->c);
+        f->L = analyze(A, perm, &f->c);
         if (!f->L || f->c.status < CHOLMOD_OK) {
             st = cholmod_failure(&f->c, "analysis", name, err);
             goto done;
