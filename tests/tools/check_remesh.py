@@ -39,8 +39,13 @@ Measured per fault and over all faults (3D, from the VTU):
                   crosses sea level has a top edge on z = 0 (its length is
                   printed); (--top keep) every fault whose original rises
                   above sea level still does;
-  - coverage      (--original) mesh area / original area (below sea level
-                  when cut) >= --min-coverage (default 0.97) per fault.
+  - coverage      (--original) nothing of the fault lost: the mesh's extent /
+                  the original's (below sea level when cut) >= --min-coverage
+                  (default 0.97) per fault, extent being area projected on the
+                  original's best-fit plane. The 3D area ratio is printed too:
+                  it also counts relief finer than H, which no mesh at H can
+                  have (a wrinkled original can have 7 % more area than any
+                  smooth surface over the same extent).
 --criteria LIST (comma-separated names above, or "all") asserts those;
 the others are printed only. Without --original the distance and
 coverage figures are not measured.
@@ -233,6 +238,24 @@ def area_below(P, level=0.0):
         for i in range(1, len(poly) - 1):
             out[t] += 0.5 * np.linalg.norm(np.cross(poly[i] - poly[0], poly[i + 1] - poly[0]))
     return out
+
+
+def normals(P):
+    """Unit normals of triangles P (k, 3, 3); zero for degenerate ones."""
+    n = np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0])
+    ln = np.linalg.norm(n, axis=1)
+    return n / np.where(ln > 0, ln, 1.0)[:, None]
+
+
+def plane_normal(P, w):
+    """Normal of the best-fit plane of triangles P, weighted by w (area)."""
+    c = P.mean(axis=1)
+    ws = w.sum()
+    if not ws > 0:
+        return np.array([0.0, 0.0, 1.0])
+    m = (c * w[:, None]).sum(0) / ws
+    d = (c - m) * np.sqrt(w)[:, None]
+    return np.linalg.svd(d, full_matrices=False)[2][2]
 
 
 def point_triangle_d2(p, a, b, c):
@@ -603,6 +626,8 @@ def main():
     F["rms"] = np.full(nf, np.nan)
     F["dmax"] = np.full(nf, np.nan)
     F["orig_area"] = np.full(nf, np.nan)
+    F["extent"] = np.full(nf, np.nan)
+    F["orig_extent"] = np.full(nf, np.nan)
     F["orig_zmax"] = np.full(nf, np.nan)
     if a.original:
         t0 = time.time()
@@ -627,7 +652,12 @@ def main():
             F["rms"][i] = math.sqrt(float(np.mean(d * d))) if len(d) else 0.0
             F["dmax"][i] = float(d.max()) if len(d) else 0.0
             F["orig_zmax"][i] = T[:, :, 2].max()
-            F["orig_area"][i] = (tri_areas(T) if a.top == "keep" else area_below(T)).sum()
+            oa = tri_areas(T) if a.top == "keep" else area_below(T)
+            F["orig_area"][i] = oa.sum()
+            w = plane_normal(T, oa)
+            F["orig_extent"][i] = (oa * np.abs(normals(T) @ w)).sum()
+            M = C[fid == i]
+            F["extent"][i] = (tri_areas(M) * np.abs(normals(M) @ w)).sum()
         print("   %d nodes against %d triangles in %.1f s"
               % (nsampled, sum(len(orig[n]) for n in names if n in orig), time.time() - t0))
 
@@ -710,11 +740,14 @@ def main():
         results.append(("distance-rms", "worst fault %.2f m, median %.2f m (%d over 10 m)"
                         % (rmsmax, np.nanmedian(F["rms"]) if nf else 0, over_rms), "<= 10 m",
                         rmsmax <= 10))
-        cov = F["area"] / F["orig_area"]
+        cov = F["extent"] / F["orig_extent"]
+        cov3 = F["area"] / F["orig_area"]
         low = int(np.sum(cov < a.min_coverage))
-        results.append(("coverage", "area / original%s: min %.3f, median %.3f, max %.3f (%d under)"
+        results.append(("coverage", "extent / original%s: min %.3f, median %.3f, max %.3f (%d under); "
+                        "3D area / original: min %.3f, median %.3f (%d under)"
                         % ("" if a.top == "keep" else " below sea level", np.nanmin(cov),
-                           np.nanmedian(cov), np.nanmax(cov), low),
+                           np.nanmedian(cov), np.nanmax(cov), low, np.nanmin(cov3),
+                           np.nanmedian(cov3), int(np.sum(cov3 < a.min_coverage))),
                         ">= %.2f" % a.min_coverage, low == 0 and not missing))
     else:
         for c in ("distance-max", "distance-rms", "coverage"):
@@ -758,7 +791,7 @@ def main():
             o.append("rms")
         if a.top != "keep" and (F["zmax"][i] > 0 or F["near_miss"][i]):
             o.append("top")
-        if a.original and F["area"][i] / F["orig_area"][i] < a.min_coverage:
+        if a.original and F["extent"][i] / F["orig_extent"][i] < a.min_coverage:
             o.append("cov")
         return o
 
@@ -771,7 +804,7 @@ def main():
             names[i], F["triangles"][i], F["min_angle"][i],
             100 * F["below_30"][i] / max(F["triangles"][i], 1), F["below_20"][i], F["forced"][i],
             100 * F["band"][i] / max(F["edges"][i], 1), F["rms"][i], F["dmax"][i],
-            F["area"][i] / F["orig_area"][i] if a.original else float("nan"),
+            F["extent"][i] / F["orig_extent"][i] if a.original else float("nan"),
             F["top_len"][i] / 1e3, ",".join(outside(i))))
     for f in failed_faults + empty_faults:
         print("%-56.56s %s: %s" % (f.get("name") or f.get("file"), f["status"], f.get("error", "")))
