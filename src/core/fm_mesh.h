@@ -74,6 +74,11 @@ fm_status fm_mesh_compute_stats(const fm_mesh *m, fm_mesh_stats *st);
 double fm_triangle_area(const double *a, const double *b, const double *c);
 /* Smallest interior angle in degrees (0 for a degenerate triangle). */
 double fm_triangle_min_angle(const double *a, const double *b, const double *c);
+/* Angle at p between q - p and r - p, degrees (atan2 of |cross| and dot:
+ * accurate near 0 and 180). */
+double fm_angle_at(const double *p, const double *q, const double *r);
+/* Distance from p to the segment a-b (a point when a == b). */
+double fm_segment_distance3(const double *p, const double *a, const double *b);
 /* Sine of the smallest angle: the same order as fm_triangle_min_angle (the
  * smallest angle is at most 60 degrees) without its atan2, for code that
  * only compares triangles (mesh optimisation). 0 for a degenerate one. */

@@ -25,9 +25,9 @@ double fm_triangle_area(const double *a, const double *b, const double *c)
     return 0.5 * norm3(n);
 }
 
-/* Angle at p between q-p and r-p via atan2(|cross|, dot): accurate for the
- * tiny and near-180 degree angles that acos would round badly. */
-static double angle_at(const double *p, const double *q, const double *r)
+/* atan2(|cross|, dot): accurate for the tiny and near-180 degree angles
+ * that acos would round badly. */
+double fm_angle_at(const double *p, const double *q, const double *r)
 {
     double u[3], v[3];
     sub3(q, p, u);
@@ -35,6 +35,17 @@ static double angle_at(const double *p, const double *q, const double *r)
     double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
     double d = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
     return atan2(norm3(n), d) * RAD2DEG;
+}
+
+double fm_segment_distance3(const double *p, const double *a, const double *b)
+{
+    double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double s = len2 > 0 ? ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1] + (p[2] - a[2]) * d[2]) / len2
+                        : 0.0;
+    s = s < 0 ? 0 : s > 1 ? 1 : s;
+    double e[3] = {a[0] + s * d[0] - p[0], a[1] + s * d[1] - p[1], a[2] + s * d[2] - p[2]};
+    return sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
 }
 
 /* The smallest angle faces the shortest side: one atan2, not three (the
@@ -50,11 +61,11 @@ double fm_triangle_min_angle(const double *a, const double *b, const double *c)
     double lc = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
     double m;
     if (la <= lb && la <= lc)
-        m = angle_at(a, b, c);
+        m = fm_angle_at(a, b, c);
     else if (lb <= lc)
-        m = angle_at(b, c, a);
+        m = fm_angle_at(b, c, a);
     else
-        m = angle_at(c, a, b);
+        m = fm_angle_at(c, a, b);
     return isfinite(m) ? m : 0.0;
 }
 

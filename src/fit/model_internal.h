@@ -36,9 +36,6 @@ typedef struct fm_submesh {
 fm_status fm_submesh_refine(fm_submesh *m, int levels);
 void fm_submesh_free(fm_submesh *m);
 
-/* Distance from p to the 3D segment a-b. */
-double fm_segment_distance3(const double p[3], const double a[3], const double b[3]);
-
 /* --- model_split.c --- */
 
 /* A cut that splits a ring-shaped sheet: a polyline along sheet edges from

@@ -145,14 +145,3 @@ size_t fm_seggrid_nearest(const fm_seggrid *g, const double p[2], double foot[2]
     *t = bt;
     return bi;
 }
-
-double fm_segment_distance3(const double p[3], const double a[3], const double b[3])
-{
-    double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    double len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    double s = len2 > 0 ? ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1] + (p[2] - a[2]) * d[2]) / len2
-                        : 0.0;
-    s = s < 0 ? 0 : s > 1 ? 1 : s;
-    double e[3] = {a[0] + s * d[0] - p[0], a[1] + s * d[1] - p[1], a[2] + s * d[2] - p[2]};
-    return sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-}

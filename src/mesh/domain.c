@@ -33,7 +33,7 @@ dom_loop *domain_add_loop(remesh_domain *d)
     return l;
 }
 
-int loop_push(dom_loop *l, const double uv[2], int level, const dom_seg *seg)
+int loop_insert(dom_loop *l, size_t at, const double uv[2], int level, const dom_seg *seg)
 {
     if (l->n == l->cap) {
         size_t cap = l->cap ? 2 * l->cap : 16;
@@ -50,12 +50,20 @@ int loop_push(dom_loop *l, const double uv[2], int level, const dom_seg *seg)
             return -1;
         l->cap = cap;
     }
-    l->uv[2 * l->n] = uv[0];
-    l->uv[2 * l->n + 1] = uv[1];
-    l->level[l->n] = level;
-    l->seg[l->n] = *seg;
+    memmove(l->uv + 2 * (at + 1), l->uv + 2 * at, 2 * (l->n - at) * sizeof *l->uv);
+    memmove(l->level + at + 1, l->level + at, (l->n - at) * sizeof *l->level);
+    memmove(l->seg + at + 1, l->seg + at, (l->n - at) * sizeof *l->seg);
+    l->uv[2 * at] = uv[0];
+    l->uv[2 * at + 1] = uv[1];
+    l->level[at] = level;
+    l->seg[at] = *seg;
     l->n++;
     return 0;
+}
+
+int loop_push(dom_loop *l, const double uv[2], int level, const dom_seg *seg)
+{
+    return loop_insert(l, l->n, uv, level, seg);
 }
 
 double surface_z(const fm_fit_surface *s, const double uv[2], double level, double grad[2])
@@ -242,10 +250,7 @@ static double node_angle(const fm_fit_surface *s, const dom_loop *l, size_t i)
     fm_fit_surface_eval(s, l->uv[2 * ((i + n - 1) % n)], l->uv[2 * ((i + n - 1) % n) + 1], a, NULL, NULL);
     fm_fit_surface_eval(s, l->uv[2 * i], l->uv[2 * i + 1], b, NULL, NULL);
     fm_fit_surface_eval(s, l->uv[2 * ((i + 1) % n)], l->uv[2 * ((i + 1) % n) + 1], c, NULL, NULL);
-    double u[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]}, v[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
-    double x[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    return atan2(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]),
-                 u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) * (180.0 / 3.14159265358979323846);
+    return fm_angle_at(b, a, c);
 }
 
 void domain_despike(const fm_fit_surface *s, remesh_domain *d, double min_angle)

@@ -8,8 +8,6 @@
  * fault. Refinement cannot repair this: it sees only the chord. Such a
  * segment is split at the curve point farthest from its chord. */
 #include <math.h>
-#include <stdlib.h>
-#include <string.h>
 
 #include "fm_predicates.h"
 #include "remesh_internal.h"
@@ -23,17 +21,6 @@
 #define MIN_TIP 60.0
 /* Curve samples per segment when looking for the farthest point. */
 #define SAG_SAMPLES 32
-
-static double point_segment_dist(const double p[3], const double a[3], const double b[3])
-{
-    double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    double w[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    double f = dd > 0 ? (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd : 0;
-    f = f < 0 ? 0 : f > 1 ? 1 : f;
-    double r[3] = {w[0] - f * d[0], w[1] - f * d[1], w[2] - f * d[2]};
-    return sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-}
 
 static void eval3(const fm_fit_surface *s, const double uv[2], double p[3])
 {
@@ -63,7 +50,7 @@ static double sag_split_t(const fm_fit_surface *s, const fm_trim_loop *const *lo
         double t = sg->ta + (sg->tb - sg->ta) * (double)k / SAG_SAMPLES, uv[2], p[3];
         fm_trim_loop_eval(loops[sg->loop], sg->piece, t, uv, NULL);
         eval3(s, uv, p);
-        double d = point_segment_dist(p, a, b);
+        double d = fm_segment_distance3(p, a, b);
         if (d > best) {
             best = d;
             tbest = t;
@@ -85,40 +72,9 @@ static double sag_split_t(const fm_fit_surface *s, const fm_trim_loop *const *lo
      * triangle of MIN_TIP degrees */
     double p[3];
     eval3(s, uvb, p);
-    double u[3] = {a[0] - p[0], a[1] - p[1], a[2] - p[2]}, v[3] = {b[0] - p[0], b[1] - p[1], b[2] - p[2]};
-    double x[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    double ang = atan2(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]), u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
-    if (ang < MIN_TIP * (3.14159265358979323846 / 180.0))
+    if (fm_angle_at(p, a, b) < MIN_TIP)
         return -1;
     return tbest;
-}
-
-static int loop_insert(dom_loop *l, size_t at, const double uv[2], const dom_seg *sg)
-{
-    if (l->n == l->cap) {
-        size_t cap = l->cap ? 2 * l->cap : 16;
-        double *nuv = realloc(l->uv, 2 * cap * sizeof *nuv);
-        if (nuv)
-            l->uv = nuv;
-        int *nlev = realloc(l->level, cap * sizeof *nlev);
-        if (nlev)
-            l->level = nlev;
-        dom_seg *ns = realloc(l->seg, cap * sizeof *ns);
-        if (ns)
-            l->seg = ns;
-        if (!nuv || !nlev || !ns)
-            return -1;
-        l->cap = cap;
-    }
-    memmove(l->uv + 2 * (at + 1), l->uv + 2 * at, 2 * (l->n - at) * sizeof *l->uv);
-    memmove(l->level + at + 1, l->level + at, (l->n - at) * sizeof *l->level);
-    memmove(l->seg + at + 1, l->seg + at, (l->n - at) * sizeof *l->seg);
-    l->uv[2 * at] = uv[0];
-    l->uv[2 * at + 1] = uv[1];
-    l->level[at] = 0;
-    l->seg[at] = *sg;
-    l->n++;
-    return 0;
 }
 
 int domain_split_sags(const fm_fit_surface *s, const fm_trim_loop *const *loops,
@@ -138,7 +94,7 @@ int domain_split_sags(const fm_fit_surface *s, const fm_trim_loop *const *loops,
             l->seg[i].tb = t;
             double uv[2];
             fm_trim_loop_eval(loops[tail.loop], tail.piece, t, uv, NULL);
-            if (loop_insert(l, i + 1, uv, &tail))
+            if (loop_insert(l, i + 1, uv, 0, &tail))
                 return -1;
         }
     }

@@ -38,6 +38,8 @@ typedef struct remesh_domain {
 
 void domain_free(remesh_domain *d);
 dom_loop *domain_add_loop(remesh_domain *d);
+/* Adds a node before node `at` (at == n: at the end, as loop_push). */
+int loop_insert(dom_loop *l, size_t at, const double uv[2], int level, const dom_seg *seg);
 int loop_push(dom_loop *l, const double uv[2], int level, const dom_seg *seg);
 
 /* Height above sea level (z - level) and its (u, v) gradient. */
