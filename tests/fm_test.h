@@ -55,6 +55,41 @@ typedef struct fm_test_case {
     void (*fn)(void);
 } fm_test_case;
 
+/* The whole file, NUL-terminated (malloc'ed; NULL if it cannot be read);
+ * *len (if not NULL) gets its size. */
+static inline char *fm_test_read_file(const char *path, size_t *len)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp)
+        return NULL;
+    char *buf = NULL;
+    long n = -1;
+    if (fseek(fp, 0, SEEK_END) == 0 && (n = ftell(fp)) >= 0 && fseek(fp, 0, SEEK_SET) == 0)
+        buf = malloc((size_t)n + 1);
+    if (buf && fread(buf, 1, (size_t)n, fp) != (size_t)n) {
+        free(buf);
+        buf = NULL;
+    }
+    fclose(fp);
+    if (buf) {
+        buf[n] = '\0';
+        if (len)
+            *len = (size_t)n;
+    }
+    return buf;
+}
+
+/* 1 when both files can be read and hold the same bytes. */
+static inline int fm_test_same_file(const char *a, const char *b)
+{
+    size_t na = 0, nb = 0;
+    char *x = fm_test_read_file(a, &na), *y = fm_test_read_file(b, &nb);
+    int same = x && y && na == nb && memcmp(x, y, na) == 0;
+    free(x);
+    free(y);
+    return same;
+}
+
 #define FM_TEST_SKIP 77
 
 /* Runs the cases; returns the process exit status. */

@@ -121,28 +121,6 @@ static fm_status write_all(const char *dir, const fm_faultset *fs, fm_error *err
 
 /* ---- helpers ---- */
 
-static char *slurp(const char *path, size_t *len)
-{
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return NULL;
-    fseek(fp, 0, SEEK_END);
-    long n = ftell(fp);
-    fseek(fp, 0, SEEK_SET);
-    char *buf = malloc((size_t)n + 1);
-    if (buf && fread(buf, 1, (size_t)n, fp) != (size_t)n) {
-        free(buf);
-        buf = NULL;
-    }
-    fclose(fp);
-    if (buf) {
-        buf[n] = '\0';
-        if (len)
-            *len = (size_t)n;
-    }
-    return buf;
-}
-
 static void tmp_dir(char *buf, size_t n, const char *name)
 {
     snprintf(buf, n, "%s/%s", FM_TMP_DIR, name);
@@ -200,7 +178,7 @@ static void test_msh41(void)
     tmp_dir(dir, sizeof dir, "fsw_msh41");
     snprintf(path, sizeof path, "%s/a.msh", dir);
     CHECK_EQ(fm_faultset_write_msh(path, &fs, FM_MSH_41, &err), FM_OK);
-    char *buf = slurp(path, NULL), *p = buf, *line;
+    char *buf = fm_test_read_file(path, NULL), *p = buf, *line;
     CHECK(buf != NULL);
     if (!buf) {
         fm_mesh_destroy(m);
@@ -295,7 +273,7 @@ static void test_msh22_and_unused_vertex(void)
     tmp_dir(dir, sizeof dir, "fsw_msh22");
     snprintf(path, sizeof path, "%s/a.msh", dir);
     CHECK_EQ(fm_faultset_write_msh(path, &fs, FM_MSH_22, &err), FM_OK);
-    char *buf = slurp(path, NULL);
+    char *buf = fm_test_read_file(path, NULL);
     CHECK(buf && strstr(buf, "$MeshFormat\n2.2 0 8\n") == buf);
     CHECK(buf && strstr(buf, "$Nodes\n40\n1 400000.1 3750000.3 250.25\n") != NULL);
     CHECK(buf && strstr(buf, "\n41 1 2 3\n") == NULL); /* the unused vertex is left out */
@@ -305,12 +283,12 @@ static void test_msh22_and_unused_vertex(void)
     free(buf);
     snprintf(path, sizeof path, "%s/b.msh", dir);
     CHECK_EQ(fm_faultset_write_msh(path, &fs, FM_MSH_41, &err), FM_OK);
-    buf = slurp(path, NULL);
+    buf = fm_test_read_file(path, NULL);
     CHECK(buf && strstr(buf, "$Nodes\n3 40 1 40\n") != NULL);
     free(buf);
     snprintf(path, sizeof path, "%s/a.obj", dir);
     CHECK_EQ(fm_faultset_write_obj(path, &fs, &err), FM_OK);
-    buf = slurp(path, NULL);
+    buf = fm_test_read_file(path, NULL);
     CHECK(buf && strstr(buf, "\nv 1 2 3\n") != NULL); /* OBJ keeps every vertex */
     free(buf);
     fm_mesh_destroy(m);
@@ -340,7 +318,7 @@ static void test_msh_names(void)
     tmp_dir(dir, sizeof dir, "fsw_names");
     snprintf(path, sizeof path, "%s/a.msh", dir);
     CHECK_EQ(fm_faultset_write_msh(path, &fs, FM_MSH_22, &err), FM_OK);
-    char *buf = slurp(path, NULL);
+    char *buf = fm_test_read_file(path, NULL);
     CHECK(buf && strstr(buf, "\n2 2 \"back/slash 'quoted'\"\n") != NULL);
     char expect[400];
     snprintf(expect, sizeof expect, "\n2 1 \"%.199s\"\n", longname); /* 'a' + 99 x 2 bytes */
@@ -359,7 +337,7 @@ static void test_stl(void)
     snprintf(path, sizeof path, "%s/a.stl", dir);
     CHECK_EQ(fm_faultset_write_stl(path, &fs, &err), FM_OK);
     size_t len = 0;
-    unsigned char *b = (unsigned char *)slurp(path, &len);
+    unsigned char *b = (unsigned char *)fm_test_read_file(path, &len);
     CHECK_EQ(len, 84 + 50 * NT);
     if (!b || len != 84 + 50 * NT) {
         free(b);
@@ -400,7 +378,7 @@ static void test_obj(void)
     tmp_dir(dir, sizeof dir, "fsw_obj");
     snprintf(path, sizeof path, "%s/a.obj", dir);
     CHECK_EQ(fm_faultset_write_obj(path, &fs, &err), FM_OK);
-    char *buf = slurp(path, NULL), *p = buf, *line;
+    char *buf = fm_test_read_file(path, NULL), *p = buf, *line;
     int nv = 0, nf = 0, group = -1, counts[3] = {0, 0, 0};
     CHECK(buf && strstr(buf, "# CRS EPSG:26711\n") != NULL);
     CHECK(buf && strstr(buf, "\ng San_Andreas_fault_(Mojave,_\"south\")_1857\n") != NULL);
@@ -489,16 +467,6 @@ static void test_file_names(void)
     fm_mesh_destroy(m);
 }
 
-static int same_file(const char *a, const char *b)
-{
-    size_t na = 0, nb = 0;
-    char *x = slurp(a, &na), *y = slurp(b, &nb);
-    int same = x && y && na == nb && memcmp(x, y, na) == 0;
-    free(x);
-    free(y);
-    return same;
-}
-
 static void test_deterministic(void)
 {
     fm_mesh *m = sample_mesh();
@@ -524,7 +492,7 @@ static void test_deterministic(void)
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
         snprintf(a, sizeof a, "%s/%s", d1, files[i]);
         snprintf(b, sizeof b, "%s/%s", d2, files[i]);
-        CHECK(same_file(a, b));
+        CHECK(fm_test_same_file(a, b));
     }
     int tmp = 0;
     CHECK_EQ(count_entries(d1, &tmp), 7); /* 6 files and ts/ */

@@ -35,34 +35,6 @@ static fm_mesh *sample_mesh(void)
     return m;
 }
 
-static char *slurp(const char *path, size_t *len)
-{
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return NULL;
-    fseek(fp, 0, SEEK_END);
-    long n = ftell(fp);
-    fseek(fp, 0, SEEK_SET);
-    char *buf = malloc((size_t)n + 1);
-    if (buf && fread(buf, 1, (size_t)n, fp) != (size_t)n) {
-        free(buf);
-        buf = NULL;
-    }
-    fclose(fp);
-    *len = buf ? (size_t)n : 0;
-    return buf;
-}
-
-static int same_file(const char *a, const char *b)
-{
-    size_t na, nb;
-    char *x = slurp(a, &na), *y = slurp(b, &nb);
-    int same = x && y && na == nb && memcmp(x, y, na) == 0;
-    free(x);
-    free(y);
-    return same;
-}
-
 /* Entries of dir, and how many look like temporaries. */
 static int count_entries(const char *dir, int *temporaries)
 {
@@ -118,15 +90,15 @@ static void test_same_bytes(void)
             make_paths(&p, name);
             fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, ver, p.dir};
             CHECK_EQ(fm_faultset_write_all(&fs, &out, threads, &err), FM_OK);
-            CHECK(same_file(ref.vtu, p.vtu));
-            CHECK(same_file(ref.msh, p.msh));
-            CHECK(same_file(ref.stl, p.stl));
-            CHECK(same_file(ref.obj, p.obj));
+            CHECK(fm_test_same_file(ref.vtu, p.vtu));
+            CHECK(fm_test_same_file(ref.msh, p.msh));
+            CHECK(fm_test_same_file(ref.stl, p.stl));
+            CHECK(fm_test_same_file(ref.obj, p.obj));
             for (size_t f = 0; f < NFAULTS; f++) {
                 char a[4400], b[4400];
                 snprintf(a, sizeof a, "%s/%s", ref.dir, files[f]);
                 snprintf(b, sizeof b, "%s/%s", p.dir, files[f]);
-                CHECK(same_file(a, b));
+                CHECK(fm_test_same_file(a, b));
             }
             int tmp;
             CHECK_EQ(count_entries(p.dir, &tmp), 4 + NFAULTS);
@@ -161,7 +133,7 @@ static void test_blocked(void)
         CHECK_EQ(tmp, 0);
         /* Every file present is whole: VTU was written first. */
         size_t n;
-        char *vtu = slurp(p.vtu, &n);
+        char *vtu = fm_test_read_file(p.vtu, &n);
         CHECK(vtu && n > 20 && memcmp(vtu + n - 11, "</VTKFile>\n", 11) == 0);
         free(vtu);
     }

@@ -532,17 +532,6 @@ static void test_untrimmed_face(void)
     free_igs(&g);
 }
 
-static char *slurp(const char *path, size_t *n)
-{
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return NULL;
-    char *buf = malloc(1 << 20);
-    *n = fread(buf, 1, 1 << 20, fp);
-    fclose(fp);
-    return buf;
-}
-
 static void test_deterministic(void)
 {
     char p1[1024], p2[1024];
@@ -558,7 +547,7 @@ static void test_deterministic(void)
     CHECK_EQ(fm_iges_write(p2, faces, 2, NULL, &err), FM_OK);
     unsetenv("SOURCE_DATE_EPOCH");
     size_t n1 = 0, n2 = 0;
-    char *a = slurp(p1, &n1), *b = slurp(p2, &n2);
+    char *a = fm_test_read_file(p1, &n1), *b = fm_test_read_file(p2, &n2);
     CHECK(a && b && n1 == n2 && n1 > 0);
     /* Identical but for the file name and the product ids taken from it. */
     if (a && b && n1 == n2) {
