@@ -66,16 +66,6 @@ static double peak_rss_mb(void)
     return (double)ru.ru_maxrss / 1024.0; /* Linux: kilobytes */
 }
 
-/* CPU seconds of this process: on a shared machine wall time also counts
- * other processes' turns. */
-static double cpu_seconds(void)
-{
-    struct rusage ru;
-    getrusage(RUSAGE_SELF, &ru);
-    return (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec +
-           (double)ru.ru_stime.tv_sec + 1e-6 * (double)ru.ru_stime.tv_usec;
-}
-
 /* Meshes and checks one fitted fault at every size. */
 static void mesh_sizes(const fm_model *model, const fm_mesh *orig, const char *name,
                        size_totals *st, size_t nsizes, fault_run *fr)
@@ -336,7 +326,7 @@ int main(int argc, char **argv)
     }
     printf("\nwall %.2f s (CPU %.2f s) for the whole run (shared stages once, %zu size%s), "
            "peak RSS %.0f MB\n",
-           wall, cpu_seconds(), nsizes, nsizes > 1 ? "s" : "", peak_rss_mb());
+           wall, bench_cpu_seconds(), nsizes, nsizes > 1 ? "s" : "", peak_rss_mb());
     for (size_t i = 0; i < nf; i++)
         free(faults[i].name);
     for (size_t i = 0; i < n; i++)

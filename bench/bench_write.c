@@ -109,15 +109,6 @@ static int load(const char *dir, set *s)
     return s->mesh ? 0 : -1;
 }
 
-/* CPU time of the whole process: with the machine shared, wall time
- * alone says little. */
-static double cpu_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 typedef fm_status (*writer)(const char *out, const fm_faultset *fs, fm_error *err);
 
 static fm_status w_vtu(const char *o, const fm_faultset *fs, fm_error *e)
@@ -196,13 +187,13 @@ int main(int argc, char **argv)
     for (int r = 0; r < repeats; r++) {
         double all = 0, all_cpu = 0;
         for (size_t w = 0; w < NWRITERS; w++) {
-            double t = fm_clock_seconds(), c = cpu_seconds();
+            double t = fm_clock_seconds(), c = bench_cpu_seconds();
             if (writers[w].fn(out, &fs, &err) != FM_OK) {
                 fprintf(stderr, "bench_write: %s\n", err.message);
                 return 1;
             }
             t = fm_clock_seconds() - t;
-            c = cpu_seconds() - c;
+            c = bench_cpu_seconds() - c;
             all += t;
             all_cpu += c;
             best[w] = t < best[w] ? t : best[w];
@@ -230,13 +221,13 @@ int main(int argc, char **argv)
     for (int k = 0; k < nthreads; k++) {
         double wall = 1e300, c_best = 1e300;
         for (int r = 0; r < repeats; r++) {
-            double t = fm_clock_seconds(), c = cpu_seconds();
+            double t = fm_clock_seconds(), c = bench_cpu_seconds();
             if (fm_faultset_write_all(&fs, &o, threads[k], &err) != FM_OK) {
                 fprintf(stderr, "bench_write: %s\n", err.message);
                 return 1;
             }
             t = fm_clock_seconds() - t;
-            c = cpu_seconds() - c;
+            c = bench_cpu_seconds() - c;
             wall = t < wall ? t : wall;
             c_best = c < c_best ? c : c_best;
         }
