@@ -6,6 +6,7 @@
 #include "fm_fit.h"
 #include "fm_mesh.h"
 #include "fm_test.h"
+#include "fm_test_mesh.h"
 
 #include <stdint.h>
 
@@ -70,28 +71,15 @@ static void arc_f(const surf *sf, double s, double t, double out[3])
     out[2] = -t * sin(dip);
 }
 
+static void surf_grid_point(const void *ctx, double s, double t, double p[3])
+{
+    const surf *sf = ctx;
+    sf->f(sf, s, t, p);
+}
+
 static fm_mesh *triangulate(const surf *sf, double h)
 {
-    int ns = (int)ceil(sf->L / h), nt = (int)ceil(sf->D / h);
-    fm_mesh *m = fm_mesh_create();
-    for (int j = 0; j <= nt; j++)
-        for (int i = 0; i <= ns; i++) {
-            double p[3];
-            sf->f(sf, sf->L * i / ns, sf->D * j / nt, p);
-            fm_mesh_add_vertex(m, p[0], p[1], p[2]);
-        }
-    for (int j = 0; j < nt; j++)
-        for (int i = 0; i < ns; i++) {
-            int32_t a = j * (ns + 1) + i, b = a + 1, c = a + ns + 1, d = c + 1;
-            /* Alternate the diagonal so that the mesh has no preferred direction. */
-            if ((i + j) % 2) {
-                fm_mesh_add_triangle(m, a, b, d, 0);
-                fm_mesh_add_triangle(m, a, d, c, 0);
-            } else {
-                fm_mesh_add_triangle(m, a, b, c, 0);
-                fm_mesh_add_triangle(m, b, d, c, 0);
-            }
-        }
+    fm_mesh *m = fm_test_grid_mesh(sf->L, sf->D, h, surf_grid_point, sf);
     /* Orient up (or, vertical, towards +y / +x), as the repair stage would. */
     const double *X = fm_mesh_vertices(m);
     int32_t *T = fm_mesh_triangles_mut(m);

@@ -12,6 +12,7 @@
 #include "fm_remesh.h"
 #include "fm_repair.h"
 #include "fm_test.h"
+#include "fm_test_mesh.h"
 #include "fm_trim.h"
 #include "remesh_internal.h"
 
@@ -64,29 +65,15 @@ static double fault_distance(const fault *f, const double p[3])
     return fabs((p[0] - o[0]) * n[0] + (p[1] - o[1]) * n[1] + (p[2] - o[2]) * n[2]) / nn;
 }
 
-/* Regular triangulation at spacing h with alternating diagonals. */
+static void fault_grid_point(const void *ctx, double s, double t, double p[3])
+{
+    fault_point(ctx, s, t, p);
+}
+
+/* Regular triangulation at spacing h. */
 static fm_mesh *triangulate(const fault *f, double h)
 {
-    int ns = (int)ceil(f->L / h), nt = (int)ceil(f->W / h);
-    fm_mesh *m = fm_mesh_create();
-    for (int j = 0; j <= nt; j++)
-        for (int i = 0; i <= ns; i++) {
-            double p[3];
-            fault_point(f, f->L * i / ns, f->W * j / nt, p);
-            fm_mesh_add_vertex(m, p[0], p[1], p[2]);
-        }
-    for (int j = 0; j < nt; j++)
-        for (int i = 0; i < ns; i++) {
-            int32_t a = j * (ns + 1) + i, b = a + 1, c = a + ns + 1, d = c + 1;
-            if ((i + j) % 2) {
-                fm_mesh_add_triangle(m, a, b, d, 0);
-                fm_mesh_add_triangle(m, a, d, c, 0);
-            } else {
-                fm_mesh_add_triangle(m, a, b, c, 0);
-                fm_mesh_add_triangle(m, b, d, c, 0);
-            }
-        }
-    return m;
+    return fm_test_grid_mesh(f->L, f->W, h, fault_grid_point, f);
 }
 
 /* Triangulate, repair, fit: the model `faultmesh remesh` meshes. */
