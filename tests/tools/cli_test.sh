@@ -4,14 +4,7 @@
 set -u
 exe=$1 data=$2/cli tmp=$3
 rm -rf "$tmp" && mkdir -p "$tmp"
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-expect_rc() { # expected-rc description command...
-    local want=$1 what=$2; shift 2
-    "$@" >"$tmp/out" 2>"$tmp/err"; local rc=$?
-    if [ "$rc" = "$want" ]; then ok; else bad "$what: exit $rc, expected $want"; cat "$tmp/err"; fi
-}
+. "$(dirname "$0")/cli_lib.sh"
 
 expect_rc 2 "no arguments" "$exe"
 expect_rc 2 "unknown command" "$exe" frobnicate
