@@ -172,6 +172,49 @@ int main(int argc, char **argv)
            with_curve, ncurves, closed, npoints, length / 1000, gaps, overshoots, maxd, minang,
            fallback, unconverged, b - a);
     fm_connect_pairs_destroy(keep);
+    {
+        fm_connect_plan_options po;
+        fm_connect_plan_options_default(&po);
+        po.nthreads = 2;
+        fm_connect_plan *plan = NULL;
+        fm_error err;
+        double pa = fm_clock_seconds();
+        if (fm_connect_plan_build((const fm_model *const *)models, nm, &po, &plan, &err) != FM_OK) {
+            fprintf(stderr, "%s\n", err.message);
+            return 1;
+        }
+        double pb = fm_clock_seconds();
+        const fm_connect_plan_stats *ps = fm_connect_plan_get_stats(plan);
+        printf("plan (D = 1000, H = 1000, cut, 2 threads): %zu pairs; crossing %zu, T %zu, corner "
+               "%zu, unjoined %zu; %zu shared nodes; %.1f s (pairs + duplicates %.1f, curves %.1f)\n",
+               ps->pairs, ps->junctions[0], ps->junctions[1], ps->junctions[2], ps->junctions[3],
+               fm_connect_plan_nnodes(plan), pb - pa, ps->time_pairs, ps->time_curves);
+        /* unjoined reasons, counted */
+        const char *reasons[16];
+        size_t counts[16], nr = 0;
+        for (size_t i = 0; i < fm_connect_plan_njunctions(plan); i++) {
+            const fm_connect_junction *j = fm_connect_plan_junction(plan, i);
+            if (match)
+                printf("  %-9s %s / %s  gap %.0f overshoot %.0f length %.0f angle %.1f%s%s\n",
+                       fm_junction_type_name(j->type), base_name(names[j->fault[0]]),
+                       base_name(names[j->fault[1]]), j->gap, j->overshoot, j->length,
+                       j->min_angle, j->reason ? ": " : "", j->reason ? j->reason : "");
+            if (!j->reason)
+                continue;
+            size_t r = 0;
+            while (r < nr && strcmp(reasons[r], j->reason))
+                r++;
+            if (r == nr && nr < 16) {
+                reasons[nr] = j->reason;
+                counts[nr++] = 0;
+            }
+            if (r < nr)
+                counts[r]++;
+        }
+        for (size_t r = 0; r < nr; r++)
+            printf("  unjoined %zu: %s\n", counts[r], reasons[r]);
+        fm_connect_plan_destroy(plan);
+    }
     for (size_t i = 0; i < nm; i++)
         fm_model_destroy(models[i]);
     free(models);

@@ -231,6 +231,114 @@ fm_status fm_connect_find_duplicates(const fm_model *const *models, size_t n,
                                      const fm_connect_duplicate_options *opt,
                                      fm_connect_duplicate **out, size_t *nout, fm_error *err);
 
+
+/* ---- The junction plan ----
+ *
+ * Everything the mesher needs to make faults that meet share their nodes:
+ * for every pair of sheets of different faults within D, the intersection
+ * curves of their extended surfaces, each decided as a junction, cut to
+ * the part both sheets use, sampled once at the mesh size H and given to
+ * both sheets with the very same nodes.
+ *
+ * Policy, per curve and per side (its role, see fm_connect_side): a side
+ * that runs THROUGH the curve keeps both sides of it (the curve is an
+ * interior constraint there); a side that stops short of it (GAP) or runs
+ * just past it (OVERSHOOT) ENDS at it, keeping the side where the bulk of
+ * the sheet lies: the gap is filled over the sheet's own extension, the
+ * flap trimmed. Two through sides make a crossing, one a T-junction, none
+ * a corner.
+ *
+ * The part of the curve a sheet that ends uses is found by walking the
+ * curve both ways from the middle of its points that matter (inside, or in
+ * the extension within D): inside the outline the walk goes on until the
+ * curve leaves the outline; in the extension it goes on while the nearest
+ * outline point moves along with the curve (the curve faces the edge that
+ * ends there) and stops where that point sticks at a corner of the
+ * outline (the curve has passed the end of the facing edge). A through
+ * side uses the part of the curve inside its outline. The junction's curve
+ * is the part both use, clipped at sea level when the top is cut (with a
+ * node solved on both surfaces at z = sea level exactly), resampled at H,
+ * every node solved onto both surfaces.
+ *
+ * Junction curves on one sheet must not cross or come within H/4 of one
+ * another (where three faults meet, their curves would need a common
+ * point); junctions are accepted longest first and a later one that
+ * conflicts is left unjoined with that reason. Near-duplicate faults
+ * (fm_connect_find_duplicates) are given up first and join nothing.
+ * Deterministic for any thread count. */
+
+typedef struct fm_connect_plan_options {
+    double distance;   /* D: join tolerance (m); default 1000 */
+    double size;       /* H: node spacing along junction curves (m); default 1000 */
+    int cut;           /* 1 (default): clip junction curves to z <= sea_level */
+    double sea_level;  /* default 0 */
+    int nthreads;      /* pairs are intersected on this many threads; default 1 */
+    fm_connect_duplicate_options duplicates;
+} fm_connect_plan_options;
+
+void fm_connect_plan_options_default(fm_connect_plan_options *opt);
+
+typedef enum fm_junction_type {
+    FM_JUNCTION_CROSSING = 0, /* both sheets continue through the curve */
+    FM_JUNCTION_T = 1,        /* one ends at the other */
+    FM_JUNCTION_CORNER = 2,   /* both end at the curve */
+    FM_JUNCTION_UNJOINED = 3  /* left as it is; see reason */
+} fm_junction_type;
+
+const char *fm_junction_type_name(fm_junction_type t);
+
+typedef struct fm_connect_junction {
+    size_t fault[2], sheet[2];
+    fm_junction_type type;
+    fm_connect_role role[2];   /* as found by fm_connect_intersect */
+    double gap;                /* largest gap closed, m (0: none) */
+    double overshoot;          /* largest flap trimmed, m (0: none) */
+    double length;             /* of the shared curve, m (unjoined: of the raw curve) */
+    double min_angle;          /* smallest crossing angle of the surfaces along it, degrees */
+    long curve;                /* shared curve index, -1 when unjoined */
+    const char *reason;        /* unjoined: why (static text); NULL otherwise */
+} fm_connect_junction;
+
+/* A shared curve as one sheet sees it. */
+typedef struct fm_connect_shared {
+    size_t curve;          /* plan curve index */
+    size_t n;              /* nodes, >= 2 */
+    const double *uv;      /* 2 per node, in this sheet's (u, v) */
+    const int64_t *node;   /* plan node index per node */
+    int end;               /* 1: the sheet ends at the curve and keeps what lies on the
+                              left of it in (u, v), going from node 0 to node n-1
+                              (outer loops are counter-clockwise); 0: interior */
+} fm_connect_shared;
+
+typedef struct fm_connect_plan_stats {
+    size_t pairs, curves, junctions[4]; /* by fm_junction_type */
+    size_t duplicates;                  /* faults given up as near-duplicates */
+    double time_pairs, time_curves, time_total; /* seconds, wall clock */
+} fm_connect_plan_stats;
+
+typedef struct fm_connect_plan fm_connect_plan;
+
+/* Plans the junctions of models[0 .. n-1] (NULL entries skipped). opt may
+ * be NULL. */
+fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
+                                const fm_connect_plan_options *opt, fm_connect_plan **out,
+                                fm_error *err);
+void fm_connect_plan_destroy(fm_connect_plan *p);
+
+size_t fm_connect_plan_njunctions(const fm_connect_plan *p);
+const fm_connect_junction *fm_connect_plan_junction(const fm_connect_plan *p, size_t i);
+/* Shared nodes: 3 coordinates each (the mean of both surfaces' points). */
+size_t fm_connect_plan_nnodes(const fm_connect_plan *p);
+const double *fm_connect_plan_nodes(const fm_connect_plan *p);
+/* The shared curves of one sheet, in plan curve order. */
+size_t fm_connect_plan_sheet(const fm_connect_plan *p, size_t fault, size_t sheet,
+                             const fm_connect_shared **out);
+/* 1 when the fault was given up as a near-duplicate (and the pair that
+ * decided it, when dup is not NULL). */
+int fm_connect_plan_dropped(const fm_connect_plan *p, size_t fault,
+                            const fm_connect_duplicate **dup);
+const fm_connect_plan_stats *fm_connect_plan_get_stats(const fm_connect_plan *p);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,550 @@
+/* The junction plan (fm_connect.h): neighbours, near-duplicates, every
+ * pair's curves decided on N threads, conflicts between curves on one
+ * sheet resolved longest first, shared nodes numbered. */
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fm_clock.h"
+#include "fm_predicates.h"
+#include "plan_internal.h"
+
+void fm_connect_plan_options_default(fm_connect_plan_options *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->distance = 1000;
+    opt->size = 1000;
+    opt->cut = 1;
+    opt->sea_level = 0;
+    opt->nthreads = 1;
+    fm_connect_duplicate_options_default(&opt->duplicates);
+}
+
+const char *fm_junction_type_name(fm_junction_type t)
+{
+    switch (t) {
+    case FM_JUNCTION_CROSSING:
+        return "crossing";
+    case FM_JUNCTION_T:
+        return "T";
+    case FM_JUNCTION_CORNER:
+        return "corner";
+    default:
+        return "unjoined";
+    }
+}
+
+typedef struct plan_curve {
+    pl_curve c;
+    int64_t *node[2];  /* per side, in that side's order */
+    double *uv[2];     /* per side, in that side's order (reversed when it keeps the right) */
+} plan_curve;
+
+struct fm_connect_plan {
+    fm_connect_junction *junction;
+    size_t njunction;
+    plan_curve *curve;
+    size_t ncurve;
+    double *nodes;
+    size_t nnodes;
+    size_t nfaults;
+    size_t *sheet_base;        /* nfaults + 1 */
+    size_t *sheet_start;       /* per global sheet + 1: range in shared */
+    fm_connect_shared *shared;
+    unsigned char *dropped;
+    fm_connect_duplicate *dup;
+    size_t ndup;
+    fm_connect_plan_stats stats;
+};
+
+void fm_connect_plan_destroy(fm_connect_plan *p)
+{
+    if (!p)
+        return;
+    for (size_t i = 0; i < p->ncurve; i++) {
+        pl_curve_free(&p->curve[i].c);
+        for (int s = 0; s < 2; s++) {
+            free(p->curve[i].node[s]);
+            free(p->curve[i].uv[s]);
+        }
+    }
+    free(p->curve);
+    free(p->junction);
+    free(p->nodes);
+    free(p->sheet_base);
+    free(p->sheet_start);
+    free(p->shared);
+    free(p->dropped);
+    free(p->dup);
+    free(p);
+}
+
+size_t fm_connect_plan_njunctions(const fm_connect_plan *p) { return p->njunction; }
+const fm_connect_junction *fm_connect_plan_junction(const fm_connect_plan *p, size_t i)
+{
+    return &p->junction[i];
+}
+size_t fm_connect_plan_nnodes(const fm_connect_plan *p) { return p->nnodes; }
+const double *fm_connect_plan_nodes(const fm_connect_plan *p) { return p->nodes; }
+const fm_connect_plan_stats *fm_connect_plan_get_stats(const fm_connect_plan *p)
+{
+    return &p->stats;
+}
+
+size_t fm_connect_plan_sheet(const fm_connect_plan *p, size_t fault, size_t sheet,
+                             const fm_connect_shared **out)
+{
+    *out = NULL;
+    if (fault >= p->nfaults || sheet >= p->sheet_base[fault + 1] - p->sheet_base[fault])
+        return 0;
+    size_t g = p->sheet_base[fault] + sheet;
+    *out = p->shared + p->sheet_start[g];
+    return p->sheet_start[g + 1] - p->sheet_start[g];
+}
+
+int fm_connect_plan_dropped(const fm_connect_plan *p, size_t fault,
+                            const fm_connect_duplicate **dup)
+{
+    if (dup)
+        *dup = NULL;
+    if (fault >= p->nfaults || !p->dropped[fault])
+        return 0;
+    for (size_t k = 0; dup && k < p->ndup; k++)
+        if (p->dup[k].decided && p->dup[k].dropped == fault)
+            *dup = &p->dup[k];
+    return 1;
+}
+
+/* ---- Pairs on N threads ---- */
+
+typedef struct pair_work {
+    const fm_model *const *models;
+    const fm_connect_pairs *pairs;
+    const fm_connect_plan_options *opt;
+    const unsigned char *dropped;
+    pl_pair_result *res;
+    fm_status *st;
+    fm_error *err;
+    size_t n, next;
+    pthread_mutex_t lock;
+} pair_work;
+
+static void do_pair(pair_work *w, size_t k)
+{
+    const fm_connect_pair *p = fm_connect_pairs_get(w->pairs, k);
+    if (w->dropped[p->fault_a] || w->dropped[p->fault_b]) {
+        fm_connect_junction j;
+        memset(&j, 0, sizeof j);
+        j.fault[0] = p->fault_a;
+        j.sheet[0] = p->sheet_a;
+        j.fault[1] = p->fault_b;
+        j.sheet[1] = p->sheet_b;
+        j.type = FM_JUNCTION_UNJOINED;
+        j.curve = -1;
+        j.reason = "one of the pair was given up as a near-duplicate";
+        pl_pair_result *r = &w->res[k];
+        r->junction = malloc(sizeof *r->junction);
+        r->curve = calloc(1, sizeof *r->curve);
+        if (!r->junction || !r->curve) {
+            w->st[k] = fm_error_set(&w->err[k], FM_ERR_NOMEM, NULL, 0, "out of memory");
+            return;
+        }
+        r->junction[0] = j;
+        r->n = r->cap = 1;
+        return;
+    }
+    w->st[k] = pl_decide_pair(w->models[p->fault_a], p->fault_a, p->sheet_a,
+                              w->models[p->fault_b], p->fault_b, p->sheet_b, w->opt, &w->res[k],
+                              &w->err[k]);
+}
+
+static void *pair_worker(void *arg)
+{
+    pair_work *w = arg;
+    for (;;) {
+        pthread_mutex_lock(&w->lock);
+        size_t k = w->next++;
+        pthread_mutex_unlock(&w->lock);
+        if (k >= w->n)
+            return NULL;
+        do_pair(w, k);
+    }
+}
+
+static void run_pairs(pair_work *w, int nthreads)
+{
+    if (nthreads < 1)
+        nthreads = 1;
+    if ((size_t)nthreads > w->n)
+        nthreads = w->n ? (int)w->n : 1;
+    pthread_t *th = nthreads > 1 ? malloc((size_t)(nthreads - 1) * sizeof *th) : NULL;
+    int started = 0;
+    for (int t = 0; th && t < nthreads - 1; t++) {
+        if (pthread_create(&th[t], NULL, pair_worker, w) != 0)
+            break;
+        started++;
+    }
+    pair_worker(w);
+    for (int t = 0; t < started; t++)
+        pthread_join(th[t], NULL);
+    free(th);
+}
+
+/* ---- Conflicts between curves on one sheet ---- */
+
+static int seg_cross(const double *a, const double *b, const double *c, const double *d)
+{
+    int o1 = fm_orient2d(a, b, c), o2 = fm_orient2d(a, b, d);
+    int o3 = fm_orient2d(c, d, a), o4 = fm_orient2d(c, d, b);
+    if (o1 * o2 < 0 && o3 * o4 < 0)
+        return 1;
+    /* touching or collinear overlap counts too: both would need a common node */
+    if (o1 == 0 && o2 == 0)
+        return fmax(fmin(a[0], b[0]), fmin(c[0], d[0])) <= fmin(fmax(a[0], b[0]), fmax(c[0], d[0])) &&
+               fmax(fmin(a[1], b[1]), fmin(c[1], d[1])) <= fmin(fmax(a[1], b[1]), fmax(c[1], d[1]));
+    return (o1 == 0 || o2 == 0 || o3 == 0 || o4 == 0) && o1 * o2 <= 0 && o3 * o4 <= 0;
+}
+
+/* Curve x (side sx) and curve y (side sy) lie on the same sheet: do they
+ * cross, touch or come within tol of each other? */
+static int curves_conflict(const pl_curve *x, int sx, const pl_curve *y, int sy, double tol)
+{
+    for (size_t i = 0; i + 1 < x->n; i++)
+        for (size_t k = 0; k + 1 < y->n; k++)
+            if (seg_cross(x->uv[sx] + 2 * i, x->uv[sx] + 2 * i + 2, y->uv[sy] + 2 * k,
+                          y->uv[sy] + 2 * k + 2))
+                return 1;
+    for (size_t i = 0; i < x->n; i++)
+        for (size_t k = 0; k + 1 < y->n; k++)
+            if (fm_segment_distance3(x->xyz + 3 * i, y->xyz + 3 * k, y->xyz + 3 * k + 3) < tol)
+                return 1;
+    for (size_t k = 0; k < y->n; k++)
+        for (size_t i = 0; i + 1 < x->n; i++)
+            if (fm_segment_distance3(y->xyz + 3 * k, x->xyz + 3 * i, x->xyz + 3 * i + 3) < tol)
+                return 1;
+    return 0;
+}
+
+static void curve_box(const pl_curve *c, double lo[3], double hi[3])
+{
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+    for (size_t i = 0; i < c->n; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], c->xyz[3 * i + k]);
+            hi[k] = fmax(hi[k], c->xyz[3 * i + k]);
+        }
+}
+
+typedef struct cand {
+    size_t junction;
+    pl_curve *c;
+    double len;
+    double lo[3], hi[3];
+} cand;
+
+static int longer_first(const void *a, const void *b)
+{
+    const cand *x = a, *y = b;
+    if (x->len != y->len)
+        return x->len > y->len ? -1 : 1;
+    return (x->junction > y->junction) - (x->junction < y->junction);
+}
+
+static int same_sheet(const fm_connect_junction *a, int sa, const fm_connect_junction *b, int sb)
+{
+    return a->fault[sa] == b->fault[sb] && a->sheet[sa] == b->sheet[sb];
+}
+
+/* Accepts candidates longest first; a candidate that conflicts on either
+ * of its sheets with an accepted one is left unjoined. */
+static int resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj, double H)
+{
+    size_t nc = 0;
+    for (size_t i = 0; i < nj; i++)
+        nc += C[i].n > 0;
+    cand *cs = malloc((nc + 1) * sizeof *cs);
+    size_t *acc = malloc((nc + 1) * sizeof *acc);
+    if (!cs || !acc) {
+        free(cs);
+        free(acc);
+        return -1;
+    }
+    size_t k = 0;
+    for (size_t i = 0; i < nj; i++)
+        if (C[i].n > 0) {
+            cs[k].junction = i;
+            cs[k].c = &C[i];
+            cs[k].len = J[i].length;
+            curve_box(&C[i], cs[k].lo, cs[k].hi);
+            k++;
+        }
+    qsort(cs, nc, sizeof *cs, longer_first);
+    size_t na = 0;
+    double tol = 0.25 * H;
+    for (size_t i = 0; i < nc; i++) {
+        const fm_connect_junction *ji = &J[cs[i].junction];
+        int bad = 0;
+        for (size_t a = 0; a < na && !bad; a++) {
+            const cand *o = &cs[acc[a]];
+            const fm_connect_junction *jo = &J[o->junction];
+            int far = 0;
+            for (int q = 0; q < 3; q++)
+                far |= cs[i].lo[q] > o->hi[q] + tol || o->lo[q] > cs[i].hi[q] + tol;
+            if (far)
+                continue;
+            for (int s = 0; s < 2 && !bad; s++)
+                for (int t = 0; t < 2 && !bad; t++)
+                    if (same_sheet(ji, s, jo, t))
+                        bad = curves_conflict(cs[i].c, s, o->c, t, tol);
+        }
+        if (bad) {
+            fm_connect_junction *j = &J[cs[i].junction];
+            j->type = FM_JUNCTION_UNJOINED;
+            j->reason = "crosses or nears another junction curve on one of its sheets "
+                        "(junctions of three faults are not joined yet)";
+            pl_curve_free(cs[i].c);
+        } else {
+            acc[na++] = i;
+        }
+    }
+    free(cs);
+    free(acc);
+    return 0;
+}
+
+/* ---- Assembly ---- */
+
+static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, size_t n,
+                          pl_pair_result *res, size_t npairs, double H, fm_error *err)
+{
+    size_t nj = 0;
+    for (size_t k = 0; k < npairs; k++)
+        nj += res[k].n;
+    p->junction = malloc((nj + 1) * sizeof *p->junction);
+    pl_curve *C = calloc(nj + 1, sizeof *C);
+    if (!p->junction || !C) {
+        free(C);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    }
+    size_t q = 0;
+    for (size_t k = 0; k < npairs; k++)
+        for (size_t i = 0; i < res[k].n; i++, q++) {
+            p->junction[q] = res[k].junction[i];
+            C[q] = res[k].curve[i];
+            memset(&res[k].curve[i], 0, sizeof res[k].curve[i]);
+        }
+    p->njunction = nj;
+    if (resolve_conflicts(p->junction, C, nj, H)) {
+        for (size_t i = 0; i < nj; i++)
+            pl_curve_free(&C[i]);
+        free(C);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    }
+    size_t nc = 0, nn = 0;
+    for (size_t i = 0; i < nj; i++)
+        if (C[i].n) {
+            nc++;
+            nn += C[i].n;
+        }
+    p->curve = calloc(nc + 1, sizeof *p->curve);
+    p->nodes = malloc(3 * (nn + 1) * sizeof *p->nodes);
+    if (!p->curve || !p->nodes) {
+        for (size_t i = 0; i < nj; i++)
+            pl_curve_free(&C[i]);
+        free(C);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    }
+    for (size_t i = 0; i < nj; i++) {
+        fm_connect_junction *j = &p->junction[i];
+        if (!C[i].n)
+            continue;
+        plan_curve *pc = &p->curve[p->ncurve];
+        pc->c = C[i];
+        memset(&C[i], 0, sizeof C[i]);
+        size_t m = pc->c.n;
+        memcpy(p->nodes + 3 * p->nnodes, pc->c.xyz, 3 * m * sizeof(double));
+        for (int s = 0; s < 2; s++) {
+            pc->node[s] = malloc(m * sizeof *pc->node[s]);
+            pc->uv[s] = malloc(2 * m * sizeof *pc->uv[s]);
+            if (!pc->node[s] || !pc->uv[s]) {
+                p->ncurve++;
+                for (size_t r = i + 1; r < nj; r++)
+                    pl_curve_free(&C[r]);
+                free(C);
+                return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+            }
+            int rev = pc->c.end[s] && !pc->c.keep_left[s];
+            for (size_t k = 0; k < m; k++) {
+                size_t from = rev ? m - 1 - k : k;
+                pc->node[s][k] = (int64_t)(p->nnodes + from);
+                pc->uv[s][2 * k] = pc->c.uv[s][2 * from];
+                pc->uv[s][2 * k + 1] = pc->c.uv[s][2 * from + 1];
+            }
+        }
+        j->curve = (long)p->ncurve;
+        p->nnodes += m;
+        p->ncurve++;
+    }
+    free(C);
+    /* per-sheet lists */
+    p->nfaults = n;
+    p->sheet_base = calloc(n + 1, sizeof *p->sheet_base);
+    if (!p->sheet_base)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    for (size_t f = 0; f < n; f++)
+        p->sheet_base[f + 1] = p->sheet_base[f] + (models[f] ? fm_model_nsheets(models[f]) : 0);
+    size_t ns = p->sheet_base[n];
+    p->sheet_start = calloc(ns + 2, sizeof *p->sheet_start);
+    p->shared = malloc((2 * p->ncurve + 1) * sizeof *p->shared);
+    if (!p->sheet_start || !p->shared)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    for (size_t i = 0; i < p->njunction; i++) {
+        const fm_connect_junction *j = &p->junction[i];
+        if (j->curve < 0)
+            continue;
+        for (int s = 0; s < 2; s++)
+            p->sheet_start[p->sheet_base[j->fault[s]] + j->sheet[s] + 1]++;
+    }
+    for (size_t g = 0; g < ns; g++)
+        p->sheet_start[g + 1] += p->sheet_start[g];
+    size_t *fill = calloc(ns + 1, sizeof *fill);
+    if (!fill)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    for (size_t i = 0; i < p->njunction; i++) {
+        const fm_connect_junction *j = &p->junction[i];
+        if (j->curve < 0)
+            continue;
+        const plan_curve *pc = &p->curve[j->curve];
+        for (int s = 0; s < 2; s++) {
+            size_t g = p->sheet_base[j->fault[s]] + j->sheet[s];
+            fm_connect_shared *sh = &p->shared[p->sheet_start[g] + fill[g]++];
+            sh->curve = (size_t)j->curve;
+            sh->n = pc->c.n;
+            sh->uv = pc->uv[s];
+            sh->node = pc->node[s];
+            sh->end = pc->c.end[s];
+        }
+    }
+    free(fill);
+    return FM_OK;
+}
+
+fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
+                                const fm_connect_plan_options *opt, fm_connect_plan **out,
+                                fm_error *err)
+{
+    *out = NULL;
+    fm_connect_plan_options o;
+    if (opt)
+        o = *opt;
+    else
+        fm_connect_plan_options_default(&o);
+    if (!(o.distance > 0) || !(o.size > 0) || !isfinite(o.distance) || !isfinite(o.size))
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0,
+                            "connect: join distance and mesh size must be positive");
+    double t0 = fm_clock_seconds();
+    fm_connect_plan *p = calloc(1, sizeof *p);
+    if (!p)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    p->dropped = calloc(n + 1, 1);
+    if (!p->dropped) {
+        fm_connect_plan_destroy(p);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    }
+    fm_connect_options co;
+    fm_connect_options_default(&co);
+    co.distance = o.distance;
+    co.reach = o.distance;
+    fm_connect_pairs *pairs = NULL;
+    fm_status st = fm_connect_find_pairs(models, n, &co, &pairs, err);
+    if (st != FM_OK) {
+        fm_connect_plan_destroy(p);
+        return st;
+    }
+    st = fm_connect_find_duplicates(models, n, pairs, &o.duplicates, &p->dup, &p->ndup, err);
+    if (st != FM_OK) {
+        fm_connect_pairs_destroy(pairs);
+        fm_connect_plan_destroy(p);
+        return st;
+    }
+    for (size_t k = 0; k < p->ndup; k++)
+        if (p->dup[k].decided) {
+            p->dropped[p->dup[k].dropped] = 1;
+            p->stats.duplicates++;
+        }
+    double t1 = fm_clock_seconds();
+    size_t np = fm_connect_pairs_count(pairs);
+    pair_work w;
+    memset(&w, 0, sizeof w);
+    w.models = models;
+    w.pairs = pairs;
+    w.opt = &o;
+    w.dropped = p->dropped;
+    w.n = np;
+    w.res = calloc(np + 1, sizeof *w.res);
+    w.st = calloc(np + 1, sizeof *w.st);
+    w.err = calloc(np + 1, sizeof *w.err);
+    if (!w.res || !w.st || !w.err || pthread_mutex_init(&w.lock, NULL) != 0) {
+        free(w.res);
+        free(w.st);
+        free(w.err);
+        fm_connect_pairs_destroy(pairs);
+        fm_connect_plan_destroy(p);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    }
+    run_pairs(&w, o.nthreads);
+    pthread_mutex_destroy(&w.lock);
+    double t2 = fm_clock_seconds();
+    for (size_t k = 0; k < np && st == FM_OK; k++)
+        if (w.st[k] != FM_OK) {
+            /* a pair whose curves could not be computed stays unjoined
+             * unless memory ran out */
+            if (w.st[k] == FM_ERR_NOMEM) {
+                *err = w.err[k];
+                st = FM_ERR_NOMEM;
+            } else {
+                const fm_connect_pair *pp = fm_connect_pairs_get(pairs, k);
+                pl_pair_result *r = &w.res[k];
+                pl_pair_result_free(r);
+                r->junction = calloc(1, sizeof *r->junction);
+                r->curve = calloc(1, sizeof *r->curve);
+                if (!r->junction || !r->curve) {
+                    st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+                    break;
+                }
+                r->junction[0].fault[0] = pp->fault_a;
+                r->junction[0].sheet[0] = pp->sheet_a;
+                r->junction[0].fault[1] = pp->fault_b;
+                r->junction[0].sheet[1] = pp->sheet_b;
+                r->junction[0].type = FM_JUNCTION_UNJOINED;
+                r->junction[0].curve = -1;
+                r->junction[0].reason = "intersection curves could not be computed";
+                r->n = r->cap = 1;
+            }
+        }
+    if (st == FM_OK)
+        st = assemble(p, models, n, w.res, np, o.size, err);
+    for (size_t k = 0; k < np; k++)
+        pl_pair_result_free(&w.res[k]);
+    free(w.res);
+    free(w.st);
+    free(w.err);
+    fm_connect_pairs_destroy(pairs);
+    if (st != FM_OK) {
+        fm_connect_plan_destroy(p);
+        return st;
+    }
+    p->stats.pairs = np;
+    p->stats.curves = p->ncurve;
+    for (size_t i = 0; i < p->njunction; i++)
+        p->stats.junctions[p->junction[i].type]++;
+    p->stats.time_pairs = t1 - t0;
+    p->stats.time_curves = t2 - t1;
+    p->stats.time_total = fm_clock_seconds() - t0;
+    *out = p;
+    return FM_OK;
+}

@@ -1,0 +1,58 @@
+/* faultmesh connect: what the junction plan's files share (fm_connect.h,
+ * "The junction plan"). */
+#ifndef FM_PLAN_INTERNAL_H
+#define FM_PLAN_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fm_closest.h"
+#include "fm_connect.h"
+
+/* A sheet's outline for foot queries: the trimming loops sampled finely,
+ * in (u, v) and as 3D segments in a closest-point tree (segment k joins
+ * sample a[k] to b[k]). */
+typedef struct pl_outline {
+    const fm_fit_surface *surf;
+    double *uv;
+    size_t *start;      /* nloops + 1 */
+    size_t nloops;
+    int32_t *a, *b;     /* per segment */
+    fm_closest_tree *tree;
+} pl_outline;
+
+fm_status pl_outline_build(const fm_model *m, size_t sheet, pl_outline *o, fm_error *err);
+void pl_outline_free(pl_outline *o);
+/* Nearest outline point to p: 3D foot and its (u, v); returns the distance. */
+double pl_outline_foot(const pl_outline *o, const double p[3], double foot[3], double uv[2]);
+/* Even-odd test on the sampled loops. */
+int pl_outline_inside(const pl_outline *o, const double uv[2]);
+
+/* A candidate shared curve: nodes in 3D and in each sheet's (u, v), in
+ * curve order; end[s] and keep_left[s] per side. */
+typedef struct pl_curve {
+    size_t n;
+    double *xyz;
+    double *uv[2];
+    int end[2], keep_left[2];
+} pl_curve;
+
+void pl_curve_free(pl_curve *c);
+
+/* The junctions one pair of sheets makes: one per shared curve, plus one
+ * unjoined entry per raw curve that gave none. curve[k].n == 0 when
+ * junction k is unjoined. */
+typedef struct pl_pair_result {
+    fm_connect_junction *junction;
+    pl_curve *curve;
+    size_t n, cap;
+} pl_pair_result;
+
+void pl_pair_result_free(pl_pair_result *r);
+
+/* Intersects the pair's sheets and decides every curve (plan_decide.c). */
+fm_status pl_decide_pair(const fm_model *a, size_t fault_a, size_t sheet_a, const fm_model *b,
+                         size_t fault_b, size_t sheet_b, const fm_connect_plan_options *opt,
+                         pl_pair_result *out, fm_error *err);
+
+#endif
