@@ -246,6 +246,100 @@ static void test_synth(void)
     fm_synth_destroy(sy);
 }
 
+/* The junction plan on the synthetic system: both designed junctions are
+ * T-junctions with the main fault running through; the shared curve is
+ * cut at sea level, sampled at H and lies on both true surfaces; the
+ * fault that ends keeps its bulk on the curve's left. */
+static void test_synth_plan(void)
+{
+    fm_synth *sy = NULL;
+    fm_error err;
+    CHECK(fm_synth_create(NULL, &sy, &err) == FM_OK);
+    if (!sy)
+        return;
+    size_t n = fm_synth_nfaults(sy);
+    fm_model **models = calloc(n, sizeof *models);
+    for (size_t i = 0; i < n; i++)
+        models[i] = fit_mesh(fm_synth_fault_name(sy, i), fm_synth_fault_mesh(sy, i));
+    long main_f = fm_synth_find(sy, "SYNT-MAIN-SS-Main_strike_slip_fault-SYN1");
+    long tj = fm_synth_find(sy, "SYNT-MAIN-TJNC-T_junction_gap_fault-SYN1");
+    long xo = fm_synth_find(sy, "SYNT-MAIN-XOVR-Overshooting_fault-SYN1");
+    fm_connect_plan_options po;
+    fm_connect_plan_options_default(&po);
+    po.nthreads = 2;
+    fm_connect_plan *plan = NULL;
+    CHECK(fm_connect_plan_build((const fm_model *const *)models, n, &po, &plan, &err) == FM_OK);
+    if (!plan)
+        goto out;
+    CHECK_EQ(fm_connect_plan_njunctions(plan), 2);
+    const double *X = fm_connect_plan_nodes(plan);
+    for (size_t i = 0; i < fm_connect_plan_njunctions(plan); i++) {
+        const fm_connect_junction *j = fm_connect_plan_junction(plan, i);
+        printf("junction %zu: %s %zu-%zu gap %.1f overshoot %.1f length %.0f%s%s\n", i,
+               fm_junction_type_name(j->type), j->fault[0], j->fault[1], j->gap, j->overshoot,
+               j->length, j->reason ? ": " : "", j->reason ? j->reason : "");
+        CHECK(j->type == FM_JUNCTION_T);
+        CHECK((long)j->fault[0] == main_f);
+        CHECK(j->curve >= 0);
+        if ((long)j->fault[1] == tj) {
+            CHECK_NEAR(j->gap, 300.0, 40.0);
+        } else {
+            CHECK((long)j->fault[1] == xo);
+            CHECK_NEAR(j->overshoot * sin(60.0 * FM_PI / 180), 400.0, 40.0);
+        }
+        /* the T and overshooting faults reach 12 km down, cut at sea level */
+        CHECK_NEAR(j->length, 12000.0, 300.0);
+    }
+    /* per sheet: the main fault has both curves running through; each of
+     * the others ends at one */
+    const fm_connect_shared *sh = NULL;
+    CHECK_EQ(fm_connect_plan_sheet(plan, (size_t)main_f, 0, &sh), 2);
+    for (size_t k = 0; sh && k < 2; k++)
+        CHECK(sh[k].end == 0);
+    for (int o = 0; o < 2; o++) {
+        long f = o ? xo : tj;
+        CHECK_EQ(fm_connect_plan_sheet(plan, (size_t)f, 0, &sh), 1);
+        if (!sh)
+            continue;
+        CHECK(sh[0].end == 1);
+        double top = -INFINITY;
+        for (size_t k = 0; k < sh[0].n; k++) {
+            const double *p = X + 3 * sh[0].node[k];
+            CHECK(p[2] <= 0);
+            top = fmax(top, p[2]);
+            CHECK(fm_synth_distance(sy, (size_t)main_f, p) < 5.0);
+            /* the T fault's own surface is reached over its extension,
+             * past the end of its true one */
+            double fuv[2], ff[3], fd = INFINITY;
+            fm_fit_project(fm_model_surface(models[f], 0), p, fuv, ff, &fd);
+            CHECK(fd < 1e-3);
+            if (f == xo)
+                CHECK(fm_synth_distance(sy, (size_t)f, p) < 5.0);
+            if (k > 0) {
+                const double *q = X + 3 * sh[0].node[k - 1];
+                double d = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                (p[2] - q[2]) * (p[2] - q[2]));
+                CHECK(d > 0.7 * po.size && d < 1.4 * po.size);
+            }
+        }
+        CHECK(top == 0.0); /* the top node is on sea level exactly */
+        /* the bulk of the fault lies on the curve's left in its (u, v) */
+        const fm_mesh *smp = fm_model_samples(models[f], 0);
+        const double *c = fm_mesh_vertices(smp) + 3 * (fm_mesh_nvertices(smp) / 2);
+        double uv[2], foot[3];
+        fm_fit_project(fm_model_surface(models[f], 0), c, uv, foot, NULL);
+        const double *a = sh[0].uv, *b = sh[0].uv + 2 * (sh[0].n - 1);
+        double cr = (b[0] - a[0]) * (uv[1] - a[1]) - (b[1] - a[1]) * (uv[0] - a[0]);
+        CHECK(cr > 0);
+    }
+    fm_connect_plan_destroy(plan);
+out:
+    for (size_t i = 0; i < n; i++)
+        fm_model_destroy(models[i]);
+    free(models);
+    fm_synth_destroy(sy);
+}
+
 static fm_model *fit_file(const char *path)
 {
     fm_tsurf **objs = NULL;
@@ -371,6 +465,7 @@ int main(void)
         FM_CASE(test_planes_90),
         FM_CASE(test_planes_10),
         FM_CASE(test_synth),
+        FM_CASE(test_synth_plan),
         FM_CASE(test_duplicates),
         FM_CASE(test_cfm_santa_monica),
     };
