@@ -111,3 +111,7 @@ target_include_directories(cc_check PUBLIC ${FM_TOOLS})
 target_link_libraries(cc_check PUBLIC fm_core)
 add_executable(check_connect ${FM_TOOLS}/check_connect.c)
 target_link_libraries(check_connect PRIVATE cc_check)
+# tests/unit/test_check_connect.c tests the parts and runs the program.
+target_link_libraries(test_check_connect PRIVATE cc_check)
+target_compile_definitions(test_check_connect PRIVATE CC_BINARY="$<TARGET_FILE:check_connect>")
+add_dependencies(test_check_connect check_connect)
