@@ -115,3 +115,13 @@ target_link_libraries(check_connect PRIVATE cc_check)
 target_link_libraries(test_check_connect PRIVATE cc_check)
 target_compile_definitions(test_check_connect PRIVATE CC_BINARY="$<TARGET_FILE:check_connect>")
 add_dependencies(test_check_connect check_connect)
+# check_connect on the demo output: succeeds, deterministic JSON whose
+# totals and order Python re-reads (when present).
+set(fm_cc_python "")
+if(FM_SYSTEM_PYTHON)
+  set(fm_cc_python ${FM_SYSTEM_PYTHON})
+endif()
+add_test(NAME check_connect_demo
+  COMMAND bash ${FM_TOOLS}/check_connect_demo.sh $<TARGET_FILE:faultmesh_cli> $<TARGET_FILE:check_connect>
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/check_connect_demo ${fm_cc_python})
+set_tests_properties(check_connect_demo PROPERTIES TIMEOUT 600)
