@@ -98,3 +98,30 @@ if(FM_SYSTEM_PYTHON)
             --size 1000 -- --size 1000 --top cut --msh-version 4.1 --criteria ${fm_remesh_criteria})
   set_tests_properties(cfm_remesh_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
 endif()
+
+# check_connect (issue 5, conforming meshes): an independent check of the
+# OBJ a remesh writes: intersections between (and within) faults by exact
+# triangle-triangle tests, vertices and edges shared per fault pair,
+# unjoined boundary edges near other faults and near pairs sharing nothing.
+# It uses nothing of the library but the exact predicates of fm_core, so
+# the connecting code cannot vouch for itself. Not installed.
+add_library(cc_check STATIC ${FM_TOOLS}/cc_obj.c ${FM_TOOLS}/cc_geom.c ${FM_TOOLS}/cc_grid.c ${FM_TOOLS}/cc_sort.c
+            ${FM_TOOLS}/cc_analyse.c)
+target_include_directories(cc_check PUBLIC ${FM_TOOLS})
+target_link_libraries(cc_check PUBLIC fm_core)
+add_executable(check_connect ${FM_TOOLS}/check_connect.c)
+target_link_libraries(check_connect PRIVATE cc_check)
+# tests/unit/test_check_connect.c tests the parts and runs the program.
+target_link_libraries(test_check_connect PRIVATE cc_check)
+target_compile_definitions(test_check_connect PRIVATE CC_BINARY="$<TARGET_FILE:check_connect>")
+add_dependencies(test_check_connect check_connect)
+# check_connect on the demo output: succeeds, deterministic JSON whose
+# totals and order Python re-reads (when present).
+set(fm_cc_python "")
+if(FM_SYSTEM_PYTHON)
+  set(fm_cc_python ${FM_SYSTEM_PYTHON})
+endif()
+add_test(NAME check_connect_demo
+  COMMAND bash ${FM_TOOLS}/check_connect_demo.sh $<TARGET_FILE:faultmesh_cli> $<TARGET_FILE:check_connect>
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/check_connect_demo ${fm_cc_python})
+set_tests_properties(check_connect_demo PROPERTIES TIMEOUT 600)
