@@ -627,56 +627,179 @@ static void wiggly_chain(graph *g, double s, double y0, double y1, double len, i
 }
 
 /* A frozen interior chain of pieces about size long: its nodes stay, it
- * is never crossed, and the triangles next to it are decent. */
+ * is never crossed, and the triangles next to it are decent. The same
+ * chain not frozen is split (so frozen is what keeps it). */
 static void test_frozen_interior(void)
 {
-    double s = 10, size = 1;
+    double s = 10, piece = 1;
     graph *g = square(s);
     size_t first = g->ns;
-    wiggly_chain(g, s, 2, 7.3, size, 5);
+    wiggly_chain(g, s, 2, 7.3, piece, 5);
     size_t nchain = g->ns - first;
-    fm_cdt *t = make(g);
-    CHECK(t != NULL);
-    if (!t) {
-        free(g);
-        return;
+    double sizes[2] = {1, 0.8};
+    for (int run = 0; run < 4; run++) {
+        double size = sizes[run / 2];
+        int freeze = run % 2 == 0;
+        fm_cdt *t = make(g);
+        CHECK(t != NULL);
+        if (!t)
+            break;
+        CHECK_EQ(fm_cdt_nfaces(t), 2);
+        unsigned char keep[2] = {1, 1}, frozen[6] = {0, 0, 0, 0, 0, 1};
+        fm_error err;
+        CHECK_EQ(fm_cdt_select_faces(t, keep, &err), FM_OK);
+        CHECK_EQ(refine(t, size, freeze ? frozen : NULL, freeze ? 6 : 0), FM_OK);
+        validate(t, s * s, 1);
+        const int32_t *ps = fm_cdt_point_segment(t);
+        const double *p = fm_cdt_points(t);
+        size_t on5 = 0, added_on5 = 0;
+        for (size_t i = 0; i < fm_cdt_npoints(t); i++) {
+            on5 += ps[i] == 5;
+            added_on5 += ps[i] == 5 && i >= g->np;
+        }
+        for (size_t i = 0; i < g->np; i++)
+            CHECK(p[2 * i] == g->uv[2 * i] && p[2 * i + 1] == g->uv[2 * i + 1]);
+        /* Every sub-edge of the chain is an edge with a triangle on each
+         * side (exact orient2d), and no triangle edge crosses it. */
+        size_t nsub = check_chain(t, g, 5, 1);
+        double ok, mn;
+        quality(t, &ok, &mn);
+        fm_cdt_refine_stats st;
+        fm_cdt_refine_get_stats(t, &st);
+        printf("interior chain, %s, %zu pieces of %.2f size: %zu triangles, %zu chain edges, "
+               "angle>=30 %.4f, min %.2f, %zu rejected, %zu bad left\n",
+               freeze ? "frozen" : "free", nchain, hypot(s, 5.3) / (double)nchain / size,
+               fm_cdt_ntriangles(t), nsub, ok, mn, st.rejected, st.bad_left);
+        if (freeze) {
+            /* Nodes on the chain: exactly its input points (its ends are
+             * on the square's sides, which come first). */
+            CHECK_EQ(added_on5, 0);
+            CHECK_EQ(on5, nchain - 1);
+            CHECK_EQ(ps[4], 100);
+            CHECK_EQ(ps[4 + nchain], 100);
+            CHECK_EQ(nsub, nchain);
+            CHECK(ok >= 0.95);
+            CHECK(mn >= 15);
+            CHECK_EQ(st.capped, 0);
+        } else if (size < 1) {
+            CHECK(added_on5 > 0);
+            CHECK_EQ(nsub, nchain + added_on5);
+        }
+        fm_cdt_destroy(t);
     }
-    CHECK_EQ(fm_cdt_nfaces(t), 2);
-    unsigned char keep[2] = {1, 1}, frozen[6] = {0, 0, 0, 0, 0, 1};
-    fm_error err;
-    CHECK_EQ(fm_cdt_select_faces(t, keep, &err), FM_OK);
-    CHECK_EQ(refine(t, size, frozen, 6), FM_OK);
-    validate(t, s * s, 1);
-    /* Nodes on the chain: exactly its input points. */
-    const int32_t *ps = fm_cdt_point_segment(t);
-    const double *p = fm_cdt_points(t);
-    size_t on5 = 0, added_on5 = 0;
-    for (size_t i = 0; i < fm_cdt_npoints(t); i++) {
-        on5 += ps[i] == 5;
-        added_on5 += ps[i] == 5 && i >= g->np;
-    }
-    CHECK_EQ(added_on5, 0);
-    /* its ends are on the square's sides, which come first */
-    CHECK_EQ(on5, nchain - 1);
-    CHECK_EQ(ps[4], 100);
-    CHECK_EQ(ps[4 + nchain], 100);
-    for (size_t i = 0; i < g->np; i++)
-        CHECK(p[2 * i] == g->uv[2 * i] && p[2 * i + 1] == g->uv[2 * i + 1]);
-    /* Every input piece of the chain is an edge with a triangle on each
-     * side (exact orient2d), and no triangle edge crosses it. */
-    CHECK_EQ(check_chain(t, g, 5, 1), nchain);
-    double ok, mn;
-    quality(t, &ok, &mn);
-    fm_cdt_refine_stats st;
-    fm_cdt_refine_get_stats(t, &st);
-    printf("frozen interior chain (%zu pieces ~ size): %zu triangles, angle>=30 %.4f, min %.2f, "
-           "%zu rejected, %zu bad left\n",
-           nchain, fm_cdt_ntriangles(t), ok, mn, st.rejected, st.bad_left);
-    CHECK(ok >= 0.95);
-    CHECK(mn >= 15);
-    CHECK_EQ(st.capped, 0);
-    fm_cdt_destroy(t);
     free(g);
+}
+
+static double point_segment_distance(const double *q, const double *a, const double *b)
+{
+    double dx = b[0] - a[0], dy = b[1] - a[1];
+    double f = ((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / (dx * dx + dy * dy);
+    f = f < 0 ? 0 : f > 1 ? 1 : f;
+    return hypot(q[0] - a[0] - f * dx, q[1] - a[1] - f * dy);
+}
+
+/* Face numbers follow the documented key (the smallest directed boundary
+ * piece, face on its left) whatever the point numbering; each face's point
+ * is the incentre of its triangle with the largest incircle, so at least
+ * that radius from every segment. */
+static void test_face_numbers(void)
+{
+    /* The square with the chain's ends as loop points, a chain across and
+     * a hole below it: every segment is one piece, the hull the square. */
+    double base[] = {0, 0, 1, 0, 1, 0.6, 1, 1, 0, 1, 0, 0.4, 0.5, 0.55,
+                     0.6, 0.1, 0.8, 0.1, 0.8, 0.3, 0.6, 0.3};
+    int32_t bseg[] = {0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 0, 5, 6, 6, 2, 7, 8, 8, 9, 9, 10, 10, 7};
+    size_t np = 11, ns = 12;
+    uint64_t r = 5;
+    for (int trial = 0; trial < 8; trial++) {
+        int32_t perm[11];
+        for (size_t i = 0; i < np; i++)
+            perm[i] = (int32_t)i;
+        for (size_t i = np - 1; i > 0 && trial; i--) {
+            r = r * 6364136223846793005ull + 1442695040888963407ull;
+            size_t j = (size_t)(r >> 33) % (i + 1);
+            int32_t x = perm[i];
+            perm[i] = perm[j];
+            perm[j] = x;
+        }
+        double uv[22];
+        int32_t seg[24];
+        for (size_t i = 0; i < np; i++) {
+            uv[2 * perm[i]] = base[2 * i];
+            uv[2 * perm[i] + 1] = base[2 * i + 1];
+        }
+        for (size_t k = 0; k < 2 * ns; k++)
+            seg[k] = perm[bseg[k]];
+        fm_cdt *t = NULL;
+        fm_error err;
+        CHECK_EQ(fm_cdt_create_graph(uv, np, seg, NULL, ns, &t, &err), FM_OK);
+        if (!t)
+            continue;
+        size_t nf = fm_cdt_nfaces(t);
+        CHECK_EQ(nf, 3);
+        if (nf != 3) {
+            fm_cdt_destroy(t);
+            continue;
+        }
+        int32_t key[3][2];
+        for (int f = 0; f < 3; f++)
+            key[f][0] = key[f][1] = INT32_MAX;
+        for (size_t k = 0; k < ns; k++) {
+            int32_t l, rr, d[2][2] = {{seg[2 * k], seg[2 * k + 1]}, {seg[2 * k + 1], seg[2 * k]}};
+            fm_cdt_segment_faces(t, k, &l, &rr);
+            int32_t fs[2] = {l, rr};
+            for (int side = 0; side < 2; side++) {
+                int32_t f = fs[side];
+                if (f < 0)
+                    continue;
+                if (d[side][0] < key[f][0] || (d[side][0] == key[f][0] && d[side][1] < key[f][1])) {
+                    key[f][0] = d[side][0];
+                    key[f][1] = d[side][1];
+                }
+            }
+        }
+        for (int f = 0; f + 1 < 3; f++)
+            CHECK(key[f][0] < key[f + 1][0] ||
+                  (key[f][0] == key[f + 1][0] && key[f][1] < key[f + 1][1]));
+        /* Areas by geometry: above the chain, below it less the hole, the
+         * hole. */
+        double above[] = {0, 0.4, 0.5, 0.55, 1, 0.6, 1, 1, 0, 1};
+        double want[3] = {shoelace(above, 5), 1 - shoelace(above, 5) - 0.04, 0.04};
+        const double *fa = fm_cdt_face_areas(t), *fp = fm_cdt_face_points(t);
+        const double *p = fm_cdt_points(t);
+        const int32_t *tri = fm_cdt_triangles(t);
+        double rmax[3] = {0, 0, 0};
+        for (int f = 0; f < 3; f++) {
+            const double *q = fp + 2 * f;
+            int kind = q[0] > 0.6 && q[0] < 0.8 && q[1] > 0.1 && q[1] < 0.3 ? 2
+                       : q[1] > (q[0] < 0.5 ? 0.4 + 0.3 * q[0] : 0.55 + 0.1 * (q[0] - 0.5)) ? 0
+                                                                                             : 1;
+            CHECK_NEAR(fa[f], want[kind], 1e-12);
+        }
+        /* Before a selection the triangles are the CDT's: the largest
+         * incircle in each face (a triangle's face from its centroid). */
+        for (size_t k = 0; k < fm_cdt_ntriangles(t); k++) {
+            const double *a = p + 2 * tri[3 * k], *b = p + 2 * tri[3 * k + 1], *c = p + 2 * tri[3 * k + 2];
+            double g[2] = {(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3};
+            double ar = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+            double per = hypot(b[0] - a[0], b[1] - a[1]) + hypot(c[0] - b[0], c[1] - b[1]) +
+                         hypot(a[0] - c[0], a[1] - c[1]);
+            int kind = g[0] > 0.6 && g[0] < 0.8 && g[1] > 0.1 && g[1] < 0.3 ? 2
+                       : g[1] > (g[0] < 0.5 ? 0.4 + 0.3 * g[0] : 0.55 + 0.1 * (g[0] - 0.5)) ? 0
+                                                                                             : 1;
+            for (int f = 0; f < 3; f++)
+                if (fabs(fa[f] - want[kind]) < 1e-12 && 2 * ar / per > rmax[f])
+                    rmax[f] = 2 * ar / per;
+        }
+        for (int f = 0; f < 3; f++) {
+            double dmin = 1e300;
+            for (size_t k = 0; k < ns; k++)
+                dmin = fmin(dmin, point_segment_distance(fp + 2 * f, uv + 2 * seg[2 * k],
+                                                         uv + 2 * seg[2 * k + 1]));
+            CHECK(rmax[f] > 0 && dmin >= rmax[f] * (1 - 1e-9));
+        }
+        fm_cdt_destroy(t);
+    }
 }
 
 static int same_results(const fm_cdt *a, const fm_cdt *b)
@@ -836,9 +959,15 @@ static void test_odd_graphs(void)
     double flat[] = {0, 0, 0.5, -1e-15, 1, 0, 0.5, 0.5, 0.4, 1e-16};
     CHECK_EQ(fm_cdt_create_graph(flat, 5, NULL, NULL, 0, &t, &err), FM_OK);
     if (t) {
+        /* (0.4, 1e-16) lies 9e-16 inside the hull edge below it, whose
+         * empty circles are far larger than the super triangle: only a
+         * recovered hull keeps the sliver under it. */
         double hull[] = {0, 0, 0.5, -1e-15, 1, 0, 0.5, 0.5};
         CHECK_NEAR(fm_cdt_face_areas(t)[0], shoelace(hull, 4), 1e-15);
         validate(t, shoelace(hull, 4), 1);
+        CHECK_EQ(fm_cdt_nedges(t), 4);
+        for (size_t m = 0; m < 2 * fm_cdt_nedges(t); m++)
+            CHECK(fm_cdt_edges(t)[m] != 4);
         fm_cdt_destroy(t);
     }
     /* A star: 6 segments from the centre of a hexagon to its corners,
@@ -903,6 +1032,6 @@ static void test_bad_input(void)
 }
 
 FM_TEST_MAIN(FM_CASE(test_dangling), FM_CASE(test_cut), FM_CASE(test_leaving),
-             FM_CASE(test_t_junction), FM_CASE(test_frozen_interior),
+             FM_CASE(test_t_junction), FM_CASE(test_face_numbers), FM_CASE(test_frozen_interior),
              FM_CASE(test_deterministic), FM_CASE(test_loops_as_graph),
              FM_CASE(test_odd_graphs), FM_CASE(test_bad_input))
