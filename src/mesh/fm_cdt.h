@@ -226,7 +226,8 @@ const int32_t *fm_cdt_point_segment(const fm_cdt *t);
  * domain on its left. An interior edge (graph CDTs: the domain on both
  * sides) is listed once, oriented as its input segment, seg[2k] towards
  * seg[2k+1], so a chain reads in order; edge_interior is 1 for those, 0
- * for boundary edges. Sorted by input segment, then by point indices. */
+ * for boundary edges. Sorted by input segment (hull edges last), then by
+ * point indices. */
 size_t fm_cdt_nedges(const fm_cdt *t);
 const int32_t *fm_cdt_edges(const fm_cdt *t);
 const int32_t *fm_cdt_edge_ids(const fm_cdt *t);
