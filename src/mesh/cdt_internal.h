@@ -29,6 +29,27 @@ typedef struct cdt_pair {
     int32_t a, b;
 } cdt_pair;
 
+/* A CDT made by fm_cdt_create_graph (cdt_graph.c): the arrangement as
+ * built, kept so that faces can be selected (again) until refinement
+ * changes the triangles. Segments there are pieces: one per triangulation
+ * edge of an input segment as recovered (an input segment split by points
+ * lying on it has several), user pieces in input order first, then the
+ * convex hull's edges that lie on no segment. */
+typedef struct cdt_graph {
+    size_t nin;              /* input segments */
+    int32_t *in_sid;         /* their caller ids */
+    size_t npc, nuser;       /* pieces, of which user pieces */
+    int32_t *pc;             /* internal point indices, 2 per piece */
+    int32_t *pc_orig;        /* input segment of a piece, -1 on the hull */
+    int32_t *first;          /* per input segment: its first piece */
+    int32_t *left, *right;   /* per piece: face on either side, -1 outside */
+    size_t nfaces;
+    double *area, *point;    /* per face: (u, v) area, a point inside */
+    int32_t *tface;          /* per triangle slot: face, -1 outside the hull */
+    int32_t *tc0;            /* per edge handle: piece */
+    size_t nt0;              /* slots tface and tc0 describe; 0: refined */
+} cdt_graph;
+
 /* Called for every triangle created or changed, so refinement can queue
  * it; NULL while building. */
 typedef void (*cdt_touch_fn)(struct fm_cdt *t, int32_t tri);
@@ -54,6 +75,13 @@ struct fm_cdt {
     size_t nseg;
     int32_t *seg;          /* internal point indices, 2 per segment */
     int32_t *sid;          /* caller ids */
+    /* Graph CDTs: per segment the input segment it is a piece of (or nin
+     * for the hull), for the order of the results; and how many segments
+     * come before the hull pieces, which are never split. NULL and nseg
+     * for loop CDTs, whose segments are the input segments. */
+    int32_t *sorig;
+    size_t nuser;
+    cdt_graph *graph;
     uint8_t *apex;         /* per input point: small-angle apex */
     /* cavity scratch */
     int32_t *cav, *stack;
@@ -74,6 +102,7 @@ struct fm_cdt {
     void *touch_user;
     /* results */
     int32_t *out_tri, *out_pseg, *out_edges, *out_eid;
+    unsigned char *out_eint;
     size_t out_nt, out_ne;
     fm_cdt_refine_stats stats;
 };
@@ -151,8 +180,21 @@ int cdt_commit(struct fm_cdt *t, int32_t v, int32_t force_edge, int32_t split_se
  * Only valid while the triangulation is Delaunay (no segments yet). */
 int32_t cdt_locate(struct fm_cdt *t, const double q[2]);
 
-/* cdt_segment.c: segment recovery */
-fm_status cdt_recover_segment(struct fm_cdt *t, int32_t k, fm_error *err);
+/* cdt_segment.c: segment recovery. soft (the convex hull of a graph
+ * CDT): edges some segment already holds are left to it, and points met on
+ * the way do not take k as their segment. */
+fm_status cdt_recover_segment(struct fm_cdt *t, int32_t k, int soft, fm_error *err);
+
+/* cdt_graph.c: the arrangement of a graph CDT. After the segments are
+ * recovered: the convex hull's edges, the pieces, the faces and the
+ * domain (every face). */
+fm_status cdt_graph_build(struct fm_cdt *t, fm_error *err);
+void cdt_graph_free(cdt_graph *g);
+/* Refinement starts: the triangles no longer match the faces' slots. */
+void cdt_graph_refined(struct fm_cdt *t);
+/* The other end of the constrained edge with segment k at v that does not
+ * lead to prev, or -1. */
+int32_t cdt_next_on_segment(const struct fm_cdt *t, int32_t v, int32_t prev, int32_t k);
 
 /* cdt_output.c */
 int cdt_build_output(struct fm_cdt *t);

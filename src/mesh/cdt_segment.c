@@ -36,8 +36,10 @@ static int pq_push(pair_queue *q, int32_t a, int32_t b)
     return 0;
 }
 
-static fm_status mark(struct fm_cdt *t, int32_t e, int32_t k, fm_error *err)
+static fm_status mark(struct fm_cdt *t, int32_t e, int32_t k, int soft, fm_error *err)
 {
+    if (soft && t->tc[e] >= 0)
+        return FM_OK;
     if (t->tc[e] >= 0 && t->tc[e] != k)
         return fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,
                             "segments %d and %d overlap (between points %d and %d)", t->tc[e],
@@ -85,7 +87,7 @@ static int32_t first_crossing(const struct fm_cdt *t, int32_t a, int32_t b, int3
     return -1;
 }
 
-fm_status cdt_recover_segment(struct fm_cdt *t, int32_t k, fm_error *err)
+fm_status cdt_recover_segment(struct fm_cdt *t, int32_t k, int soft, fm_error *err)
 {
     int32_t a = t->seg[2 * k], b = t->seg[2 * k + 1];
     pair_queue q = {0};
@@ -93,14 +95,14 @@ fm_status cdt_recover_segment(struct fm_cdt *t, int32_t k, fm_error *err)
     while (a != b && st == FM_OK) {
         int32_t e = cdt_find_edge(t, a, b);
         if (e >= 0) {
-            st = mark(t, e, k, err);
+            st = mark(t, e, k, soft, err);
             break;
         }
         int32_t on;
         int32_t cur = first_crossing(t, a, b, &on);
         if (on >= 0) {
-            st = mark(t, cdt_find_edge(t, a, on), k, err);
-            if (t->pseg[on] < 0)
+            st = mark(t, cdt_find_edge(t, a, on), k, soft, err);
+            if (!soft && t->pseg[on] < 0)
                 t->pseg[on] = k;
             a = on;
             continue;
@@ -183,9 +185,9 @@ fm_status cdt_recover_segment(struct fm_cdt *t, int32_t k, fm_error *err)
             st = fm_error_set(err, FM_ERR_NUMERIC, NULL, 0, "segment %d was not recovered", k);
             break;
         }
-        st = mark(t, e, k, err);
+        st = mark(t, e, k, soft, err);
         cdt_legalize(t, legal_from);
-        if (tgt != b && t->pseg[tgt] < 0)
+        if (!soft && tgt != b && t->pseg[tgt] < 0)
             t->pseg[tgt] = k;
         a = tgt;
     }

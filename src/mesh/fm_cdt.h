@@ -64,7 +64,68 @@ typedef struct fm_cdt fm_cdt;
  * overlap, and for open chains; messages name the indices. */
 fm_status fm_cdt_create(const double *uv, size_t npoints, const int32_t *seg,
                         const int32_t *seg_id, size_t nseg, fm_cdt **out, fm_error *err);
+
+/* Like fm_cdt_create, but the segments may form any planar straight-line
+ * graph: open chains, dangling ends, isolated segments, points with any
+ * number of segments. This is how faults that meet share nodes: a sheet's
+ * outline loops and the intersection curves on it (which may end inside
+ * the sheet, on its outline or beyond it) make an arrangement, whose faces
+ * the caller picks as the domain (fm_cdt_select_faces); a curve with the
+ * domain on both sides stays in the mesh as an interior segment, with
+ * triangles on both sides and, frozen, the same nodes as the other fault's
+ * mesh.
+ *
+ * No domain is implied: until a selection it is the whole convex hull of
+ * the points. The hull's edges are kept as edges of the triangulation
+ * (exactly, whatever the super triangle) and bound the domain like
+ * segments where no segment runs: in the results they carry id -1 and
+ * refinement never splits them (it has no curve to put points on there),
+ * so a domain meant to be meshed well should be closed by segments.
+ *
+ * Same arguments, ids and errors as fm_cdt_create, but for the parity
+ * rule: crossing or overlapping segments are FM_ERR_TOPOLOGY, and a point
+ * lying exactly on a segment splits it. Segment indices k in the functions
+ * below are those of seg here. */
+fm_status fm_cdt_create_graph(const double *uv, size_t npoints, const int32_t *seg,
+                              const int32_t *seg_id, size_t nseg, fm_cdt **out,
+                              fm_error *err);
 void fm_cdt_destroy(fm_cdt *t);
+
+/* Faces of a graph CDT: the regions inside the convex hull that segments
+ * separate, i.e. maximal sets of triangles joined across unconstrained
+ * edges. They are numbered 0 .. nfaces - 1 by the smallest directed piece
+ * of their boundary (the pair of point indices, lexicographic, with the
+ * face on its left): a key of the arrangement and the point numbering
+ * alone, so the same input always numbers its faces the same way, whatever
+ * the triangulation looks like. They describe the arrangement as created:
+ * selection and refinement leave them as they are. A CDT from
+ * fm_cdt_create has no faces (0, NULL, -1). */
+size_t fm_cdt_nfaces(const fm_cdt *t);
+/* The faces on the left and on the right of input segment k as directed
+ * seg[2k] -> seg[2k+1]; -1 beyond the convex hull (or k out of range). A
+ * segment split by points lying on it, where other segments end, can have
+ * other faces further along; these are the faces of its first piece, from
+ * seg[2k] to the first point on it. */
+void fm_cdt_segment_faces(const fm_cdt *t, size_t k, int32_t *left, int32_t *right);
+/* Per face: its area in (u, v) (the sum of its triangles', positive), and
+ * a point strictly inside it, 2 per face: the incentre of its triangle with
+ * the largest incircle, so that a caller classifying faces by
+ * point-in-polygon against the curves that bound them is not at the mercy
+ * of rounding. */
+const double *fm_cdt_face_areas(const fm_cdt *t);
+const double *fm_cdt_face_points(const fm_cdt *t);
+
+/* The domain becomes the union of the faces f with keep[f] != 0 (keep has
+ * fm_cdt_nfaces entries). A piece of a segment (the whole segment unless
+ * points lie on it) with kept faces on both sides stays as an interior
+ * segment; with a kept face on one side it is a boundary; with none it is
+ * no constraint any more, and points on it only are no longer on a
+ * segment (point_segment -1) and, outside kept faces, in no triangle of the
+ * results. May be called again, each time from the arrangement as created,
+ * but only before fm_cdt_refine (which changes the triangles the faces are
+ * made of): FM_ERR_INVALID afterwards, for a CDT from fm_cdt_create, or
+ * for NULL arguments. */
+fm_status fm_cdt_select_faces(fm_cdt *t, const unsigned char *keep, fm_error *err);
 
 /* The metric at uv: m = {E, F, G}, symmetric positive definite. Called at
  * triangle centroids and segment points; it must be deterministic. */
@@ -136,7 +197,9 @@ void fm_cdt_refine_options_default(fm_cdt_refine_options *o);
 /* Refines the domain: inserts points until every triangle is within size
  * and angle (apex triangles exempt from the angle), or nothing more may be
  * inserted. Points are only ever inserted inside the domain or on its
- * segments. FM_ERR_INVALID for bad options or when a max_points given
+ * segments. Interior segments are treated like boundaries: no cavity
+ * crosses them, an encroached one is split (both sides retriangulated)
+ * unless frozen. FM_ERR_INVALID for bad options or when a max_points given
  * would be exceeded; FM_ERR_NUMERIC for a metric that is not positive
  * definite (and cannot be clamped, see max_anisotropy). On
  * error the triangulation stays valid (partly refined) and the results
@@ -154,14 +217,21 @@ const int32_t *fm_cdt_triangles(const fm_cdt *t);  /* 3 per triangle, CCW in (u,
 /* Per point: the caller id of the segment it lies on, -1 when on none
  * (interior points, and input points outside the domain). An input point
  * shared by several segments reports the one with the lowest index; it is
- * an input point when its index is below fm_cdt_ninput. */
+ * an input point when its index is below fm_cdt_ninput. Points on interior
+ * segments report them like points on boundaries. */
 const int32_t *fm_cdt_point_segment(const fm_cdt *t);
-/* The constrained edges of the result: 2 point indices per edge, oriented
- * with the domain on the left, and the caller id of each. Sorted by input
- * segment, then by point indices. */
+/* The constrained edges of the result: 2 point indices per edge, and the
+ * caller id of each (-1 for the convex hull's edges bounding a graph CDT's
+ * domain where no segment runs). A boundary edge is oriented with the
+ * domain on its left. An interior edge (graph CDTs: the domain on both
+ * sides) is listed once, oriented as its input segment, seg[2k] towards
+ * seg[2k+1], so a chain reads in order; edge_interior is 1 for those, 0
+ * for boundary edges. Sorted by input segment (hull edges last), then by
+ * point indices. */
 size_t fm_cdt_nedges(const fm_cdt *t);
 const int32_t *fm_cdt_edges(const fm_cdt *t);
 const int32_t *fm_cdt_edge_ids(const fm_cdt *t);
+const unsigned char *fm_cdt_edge_interior(const fm_cdt *t);
 
 /* What the last fm_cdt_refine did: points inserted inside and on segments,
  * candidate points rejected (frozen segments, no valid place, below

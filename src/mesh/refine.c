@@ -337,7 +337,10 @@ static size_t auto_max_points(cdt_refiner *r)
             if (cdt_metric(r, mid, m))
                 break;
             double dx = y[0] - x[0], dy = y[1] - x[1];
-            perim += sqrt(m[0] * dx * dx + 2 * m[1] * dx * dy + m[2] * dy * dy);
+            /* An interior segment is met from both sides. */
+            int32_t f = t->tn[e];
+            double w = f >= 0 && t->region[f / 3] == 1 ? 0.5 : 1;
+            perim += w * sqrt(m[0] * dx * dx + 2 * m[1] * dx * dy + m[2] * dy * dy);
         }
     }
     double s = r->size;
@@ -394,6 +397,7 @@ fm_status fm_cdt_refine(fm_cdt *t, const fm_cdt_refine_options *opt, fm_error *e
         r.min_len = 0;
     r.auto_cap = opt->max_points == 0;
     t->stats = (fm_cdt_refine_stats){0};
+    cdt_graph_refined(t);
     r.st = cdt_apex_init(&r);
     if (r.st == FM_OK) {
         size_t cap = auto_max_points(&r); /* also the stats' expected points */

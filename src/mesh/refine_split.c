@@ -8,6 +8,9 @@
 
 int cdt_frozen(const cdt_refiner *r, int32_t k)
 {
+    /* Hull pieces of a graph CDT: no curve is known there. */
+    if ((size_t)k >= r->t->nuser)
+        return 1;
     int32_t id = r->t->sid[k];
     return r->o->frozen_ids && id >= 0 && (size_t)id < r->o->nfrozen && r->o->frozen_ids[id];
 }
