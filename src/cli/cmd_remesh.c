@@ -15,6 +15,7 @@
 #include "fm_check.h"
 #include "fm_clock.h"
 #include "fm_closest.h"
+#include "fm_connect.h"
 #include "fm_faultset_write.h"
 #include "fm_json.h"
 #include "fm_model.h"
@@ -30,7 +31,9 @@ typedef struct remesh_cli {
     fm_msh_version msh;
     const char *crs;
     int quiet;
-    int jobs;   /* threads; faults are independent until they are connected */
+    int jobs;   /* threads */
+    int connect;  /* join faults that meet (default 1) */
+    double join;  /* D: join tolerance, m */
 } remesh_cli;
 
 /* What one fault came to, for report.json. */
@@ -43,6 +46,8 @@ typedef struct fault_result {
     fm_remesh_stats ms;
     double fitted_area;  /* trimmed fitted surface (below sea level when cut), m^2 */
     double t_fit, t_mesh, t_check;
+    unsigned char *join_failed; /* per sheet: its shared curves did not fit (meshed without) */
+    char *join_error;           /* why, for the first such sheet */
 } fault_result;
 
 static char *dup_str(const char *s)
@@ -73,6 +78,10 @@ static void remesh_usage(FILE *fp)
             "                        (default EPSG:26711, the CFM's UTM 11N NAD27)\n"
             "  -j, --jobs N          threads (default: all cores); the output is the same\n"
             "                        for any N\n"
+            "  --no-connect          mesh every fault on its own (default: faults that meet\n"
+            "                        share their nodes along the intersection)\n"
+            "  --join D              join faults whose surfaces come within D metres\n"
+            "                        (default 1000)\n"
             "  --quiet               no per-fault lines\n");
     fputs(fm_cli_repair_help, fp);
 }
@@ -118,25 +127,85 @@ static double fitted_area(const fm_model *m, int cut, double level)
     return area;
 }
 
-/* Remeshes one fault (one TSurf object) into fault (tags = sheet). */
-static fm_status remesh_fault(const remesh_cli *cli, const char *path, const fm_mesh *orig,
-                              fault_result *r, fm_mesh **fault, fm_error *err)
+/* Repairs and fits one fault (one TSurf object). */
+static fm_status fit_object(const remesh_cli *cli, const char *path, const fm_mesh *orig,
+                            fault_result *r, fm_model **model, fm_error *err)
 {
     fm_surface *surf = NULL;
-    fm_model *model = NULL;
     double t0 = fm_clock_seconds();
     fm_status st = fm_repair(orig, &cli->repair, &surf, err);
     if (st == FM_OK)
-        st = fm_model_build(path, surf, &cli->model, &model, err);
-    double t1 = fm_clock_seconds();
-    r->t_fit = t1 - t0;
-    if (st == FM_OK) {
-        fm_remesh_options mo = cli->mesh;
-        mo.name = path;
-        st = fm_remesh_model(model, &mo, fault, &r->ms, err);
-        r->sheets = fm_model_nsheets(model);
-        r->fitted_area = fitted_area(model, cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level);
+        st = fm_model_build(path, surf, &cli->model, model, err);
+    fm_surface_destroy(surf);
+    r->t_fit = fm_clock_seconds() - t0;
+    return st;
+}
+
+/* The shared curves the plan gives each sheet of fault f, as the mesher
+ * takes them; *store (free it) holds them. NULL when there are none. */
+static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f,
+                                           const fm_model *m, fm_remesh_curve **store)
+{
+    *store = NULL;
+    if (!plan)
+        return NULL;
+    size_t ns = fm_model_nsheets(m), total = 0;
+    for (size_t i = 0; i < ns; i++) {
+        const fm_connect_shared *sh;
+        total += fm_connect_plan_sheet(plan, f, i, &sh);
     }
+    if (total == 0)
+        return NULL;
+    fm_remesh_sheet_curves *per = calloc(ns, sizeof *per);
+    fm_remesh_curve *cv = malloc(total * sizeof *cv);
+    if (!per || !cv) {
+        free(per);
+        free(cv);
+        return NULL;
+    }
+    size_t k = 0;
+    for (size_t i = 0; i < ns; i++) {
+        const fm_connect_shared *sh;
+        size_t n = fm_connect_plan_sheet(plan, f, i, &sh);
+        per[i].curves = cv + k;
+        per[i].n = n;
+        for (size_t c = 0; c < n; c++, k++) {
+            cv[k].uv = sh[c].uv;
+            cv[k].n = sh[c].n;
+            cv[k].node = sh[c].node;
+            cv[k].end = sh[c].end;
+        }
+    }
+    *store = cv;
+    return per;
+}
+
+/* Meshes a fitted fault into fault (tags = sheet; ids: shared node per
+ * vertex) and checks it against the original. */
+static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_mesh *orig,
+                             const fm_model *model, const fm_connect_plan *plan, size_t f,
+                             fault_result *r, fm_mesh **fault, int64_t **ids, fm_error *err)
+{
+    double t1 = fm_clock_seconds();
+    fm_remesh_options mo = cli->mesh;
+    mo.name = path;
+    fm_remesh_curve *store = NULL;
+    fm_remesh_sheet_curves *per = plan_curves(plan, f, model, &store);
+    r->sheets = fm_model_nsheets(model);
+    r->join_failed = per ? calloc(r->sheets, 1) : NULL;
+    fm_error *jerr = per ? calloc(r->sheets, sizeof *jerr) : NULL;
+    fm_status st = (per && (!r->join_failed || !jerr))
+                       ? fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory")
+                       : fm_remesh_model_joined(model, per, &mo, fault, ids, r->join_failed, jerr,
+                                                &r->ms, err);
+    /* the first reason a sheet's curves did not fit, for the report */
+    for (size_t i = 0; jerr && r->join_failed && i < r->sheets && !r->join_error; i++)
+        if (r->join_failed[i])
+            r->join_error = dup_str(jerr[i].message);
+    free(jerr);
+    free(per);
+    free(store);
+    r->fitted_area = fitted_area(model, cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level);
     double t2 = fm_clock_seconds();
     r->t_mesh = t2 - t1;
     if (st == FM_OK && fm_mesh_ntriangles(*fault) > 0) {
@@ -149,8 +218,6 @@ static fm_status remesh_fault(const remesh_cli *cli, const char *path, const fm_
         fm_closest_tree_destroy(tree);
     }
     r->t_check = fm_clock_seconds() - t2;
-    fm_model_destroy(model);
-    fm_surface_destroy(surf);
     return st;
 }
 
@@ -158,6 +225,11 @@ typedef struct run_state {
     fm_mesh *set;       /* all faults; tag = fault index */
     char **names;
     size_t nfaults;
+    const fm_connect_plan *plan;
+    int32_t *node_vertex; /* per plan node: its vertex in set, -1 until used */
+    size_t *plan_res;     /* per plan fault index (objects in input order): its entry in res */
+    size_t nplan_faults;
+    double time[3];       /* fit, connect, mesh + check (wall clock, s) */
     fault_result *res;
     size_t nres, cap;
     long failed;
@@ -216,25 +288,31 @@ static void print_fault(const fault_result *r, double H)
     (void)H;
 }
 
-/* One input file's faults, meshed by a worker; merged into the run in
- * file order, so the output does not depend on which thread did what. */
+/* One input file's faults, fitted and then meshed by workers; merged
+ * into the run in file order, so the output does not depend on which
+ * thread did what. */
 typedef struct file_job {
     const char *path;
+    fm_tsurf **objs;
+    size_t nobj;
+    size_t first;       /* plan fault index of object 0 */
     fault_result *res;  /* per object (one entry if the file could not be read) */
+    fm_model **model;   /* per object; NULL unless fitted */
     fm_mesh **mesh;     /* per object; NULL unless meshed */
+    int64_t **ids;      /* per object: shared node per mesh vertex */
     size_t n;
 } file_job;
 
-static void process_file(const remesh_cli *cli, file_job *job)
+static void fit_file(const remesh_cli *cli, file_job *job)
 {
-    fm_tsurf **objs = NULL;
-    size_t nobj = 0;
     fm_error err;
     fm_error_clear(&err);
     const char *path = job->path;
-    if (fm_tsurf_read_file(path, &objs, &nobj, &err) != FM_OK) {
+    if (fm_tsurf_read_file(path, &job->objs, &job->nobj, &err) != FM_OK) {
         job->res = calloc(1, sizeof *job->res);
         job->mesh = calloc(1, sizeof *job->mesh);
+        job->objs = NULL;
+        job->nobj = 0;
         if (job->res) {
             job->n = 1;
             job->res->file = dup_str(path);
@@ -243,21 +321,44 @@ static void process_file(const remesh_cli *cli, file_job *job)
         }
         return;
     }
+    size_t nobj = job->nobj;
     job->res = calloc(nobj ? nobj : 1, sizeof *job->res);
     job->mesh = calloc(nobj ? nobj : 1, sizeof *job->mesh);
-    if (!job->res || !job->mesh) {
-        fm_tsurf_free_all(objs, nobj);
+    job->model = calloc(nobj ? nobj : 1, sizeof *job->model);
+    job->ids = calloc(nobj ? nobj : 1, sizeof *job->ids);
+    if (!job->res || !job->mesh || !job->model || !job->ids) {
+        free(job->res);
+        job->res = NULL;
         return;
     }
     job->n = nobj;
     for (size_t o = 0; o < nobj; o++) {
         fault_result *r = &job->res[o];
-        const char *name = fm_tsurf_name(objs[o]);
+        const char *name = fm_tsurf_name(job->objs[o]);
         r->file = dup_str(path);
         r->name = dup_str(name[0] ? name : path);
+        fm_error_clear(&err);
+        if (fit_object(cli, path, fm_tsurf_mesh(job->objs[o]), r, &job->model[o], &err) != FM_OK) {
+            r->status = "error";
+            r->error = dup_str(err.message);
+        }
+    }
+}
+
+static void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan, file_job *job)
+{
+    if (!job->res || !job->model)
+        return;
+    fm_error err;
+    for (size_t o = 0; o < job->n; o++) {
+        fault_result *r = &job->res[o];
+        fm_model *model = job->model[o];
+        if (!model || r->status)
+            continue;
         fm_mesh *fault = NULL;
         fm_error_clear(&err);
-        fm_status st = remesh_fault(cli, path, fm_tsurf_mesh(objs[o]), r, &fault, &err);
+        fm_status st = mesh_object(cli, job->path, fm_tsurf_mesh(job->objs[o]), model, plan,
+                                   job->first + o, r, &fault, &job->ids[o], &err);
         if (st == FM_OK && fm_mesh_ntriangles(fault) == 0) {
             r->status = "empty";
             r->error = dup_str("nothing of the fault lies below sea level");
@@ -270,12 +371,18 @@ static void process_file(const remesh_cli *cli, file_job *job)
             r->error = dup_str(err.message);
             fm_mesh_destroy(fault);
         }
+        fm_model_destroy(model);
+        job->model[o] = NULL;
     }
-    fm_tsurf_free_all(objs, nobj);
+    fm_tsurf_free_all(job->objs, job->nobj);
+    job->objs = NULL;
+    job->nobj = 0;
 }
 
 typedef struct pool {
     const remesh_cli *cli;
+    const fm_connect_plan *plan;
+    int phase;          /* 0: fit, 1: mesh */
     file_job *jobs;
     const size_t *order; /* the order jobs are handed out in */
     size_t n, next;
@@ -291,7 +398,11 @@ static void *worker(void *arg)
         pthread_mutex_unlock(&p->mu);
         if (i >= p->n)
             return NULL;
-        process_file(p->cli, &p->jobs[p->order ? p->order[i] : i]);
+        file_job *job = &p->jobs[p->order ? p->order[i] : i];
+        if (p->phase == 0)
+            fit_file(p->cli, job);
+        else
+            mesh_file(p->cli, p->plan, job);
     }
 }
 
@@ -333,11 +444,13 @@ static size_t *schedule(const file_job *jobs, size_t n)
     return order;
 }
 
-/* Runs the jobs on cli->jobs threads (the calling one included). */
-static void run_jobs(const remesh_cli *cli, file_job *jobs, size_t n)
+/* Runs one phase of the jobs on cli->jobs threads (the calling one
+ * included). */
+static void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
+                     file_job *jobs, size_t n)
 {
     size_t *order = schedule(jobs, n);
-    pool p = {cli, jobs, order, n, 0, PTHREAD_MUTEX_INITIALIZER};
+    pool p = {cli, plan, phase, jobs, order, n, 0, PTHREAD_MUTEX_INITIALIZER};
     size_t nt = cli->jobs > 1 ? (size_t)cli->jobs - 1 : 0;
     pthread_t *th = nt ? calloc(nt, sizeof *th) : NULL;
     size_t started = 0;
@@ -351,6 +464,39 @@ static void run_jobs(const remesh_cli *cli, file_job *jobs, size_t n)
         pthread_join(th[k], NULL);
     free(th);
     free(order);
+}
+
+/* Appends a fault to the set: a shared node is one vertex of the set,
+ * made when a fault first uses it, at the plan's position (on both
+ * surfaces). */
+static fm_status append_fault(run_state *rs, const fm_mesh *fault, const int64_t *ids)
+{
+    size_t nv = fm_mesh_nvertices(fault), nt = fm_mesh_ntriangles(fault);
+    int32_t *map = malloc((nv + 1) * sizeof *map);
+    if (!map || fm_mesh_reserve(rs->set, fm_mesh_nvertices(rs->set) + nv,
+                                fm_mesh_ntriangles(rs->set) + nt) != FM_OK) {
+        free(map);
+        return FM_ERR_NOMEM;
+    }
+    const double *X = fm_mesh_vertices(fault);
+    const double *P = rs->plan ? fm_connect_plan_nodes(rs->plan) : NULL;
+    for (size_t v = 0; v < nv; v++) {
+        int64_t id = ids ? ids[v] : -1;
+        if (id >= 0 && rs->node_vertex) {
+            if (rs->node_vertex[id] < 0)
+                rs->node_vertex[id] =
+                    fm_mesh_add_vertex(rs->set, P[3 * id], P[3 * id + 1], P[3 * id + 2]);
+            map[v] = rs->node_vertex[id];
+        } else {
+            map[v] = fm_mesh_add_vertex(rs->set, X[3 * v], X[3 * v + 1], X[3 * v + 2]);
+        }
+    }
+    const int32_t *T = fm_mesh_triangles(fault);
+    for (size_t t = 0; t < nt; t++)
+        fm_mesh_add_triangle(rs->set, map[T[3 * t]], map[T[3 * t + 1]], map[T[3 * t + 2]],
+                             (int32_t)rs->nfaults);
+    free(map);
+    return FM_OK;
 }
 
 /* Merges a job's faults into the run, in order. */
@@ -374,18 +520,21 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
             continue;
         }
         *r = job->res[o];
+        if (rs->plan_res && job->model && job->first + o < rs->nplan_faults)
+            rs->plan_res[job->first + o] = rs->nres - 1;
         fm_mesh *fault = job->mesh[o];
         if (fault) {
             char **nn = realloc(rs->names, (rs->nfaults + 1) * sizeof *nn);
             if (nn)
                 rs->names = nn;
-            if (!nn || fm_mesh_append(rs->set, fault, (int32_t)rs->nfaults) != FM_OK) {
+            if (!nn || append_fault(rs, fault, job->ids[o]) != FM_OK) {
                 r->status = "error";
                 r->error = dup_str("out of memory");
             } else {
                 rs->names[rs->nfaults++] = r->name;
             }
         }
+        free(job->ids ? job->ids[o] : NULL);
         if (!strcmp(r->status, "error")) {
             fprintf(stderr, "faultmesh: %s\n", r->error ? r->error : "out of memory");
             rs->failed++;
@@ -396,6 +545,8 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
     }
     free(job->res);
     free(job->mesh);
+    free(job->model);
+    free(job->ids);
 }
 
 static void json_quality(fm_json *j, const fault_result *r, double H)
@@ -443,6 +594,8 @@ static void json_fault(fm_json *j, const fault_result *r, double H)
         for (int k = 0; k < nw; k++)
             fm_json_string(j, w[k]);
         fm_json_end_array(j);
+        if (r->join_error)
+            fm_json_kv_string(j, "join_error", r->join_error);
         fm_json_kv_number(j, "area_m2", r->q.area);
         json_quality(j, r, H);
         fm_json_key(j, "fidelity");
@@ -468,6 +621,81 @@ static void json_fault(fm_json *j, const fault_result *r, double H)
         fm_json_kv_number(j, "check", r->t_check);
         fm_json_end_object(j);
     }
+    fm_json_end_object(j);
+}
+
+/* Junction i as meshed: the plan's type, unless the mesher could not fit
+ * its curve into one of its sheets (*why then says which). */
+static fm_junction_type junction_outcome(const run_state *rs, const fm_connect_junction *jn,
+                                         const char **why, size_t *which)
+{
+    *why = jn->reason;
+    *which = 0;
+    if (jn->curve < 0)
+        return jn->type;
+    for (int s = 0; s < 2; s++) {
+        const fault_result *r = &rs->res[rs->plan_res[jn->fault[s]]];
+        if (r->join_failed && jn->sheet[s] < r->sheets && r->join_failed[jn->sheet[s]]) {
+            *why = "the curve could not be fitted into the outline of one of the sheets";
+            *which = jn->fault[s];
+            return FM_JUNCTION_UNJOINED;
+        }
+    }
+    return jn->type;
+}
+
+static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs, size_t count[4])
+{
+    memset(count, 0, 4 * sizeof *count);
+    fm_json_key(j, "connect");
+    fm_json_begin_object(j);
+    fm_json_kv_bool(j, "enabled", cli->connect && rs->plan);
+    fm_json_kv_number(j, "join_distance_m", cli->join);
+    if (!rs->plan) {
+        fm_json_end_object(j);
+        return;
+    }
+    const fm_connect_plan_stats *ps = fm_connect_plan_get_stats(rs->plan);
+    fm_json_kv_int(j, "sheet_pairs_within_join_distance", (int64_t)ps->pairs);
+    fm_json_kv_int(j, "near_duplicates_given_up", (int64_t)ps->duplicates);
+    fm_json_kv_int(j, "shared_nodes", (int64_t)fm_connect_plan_nnodes(rs->plan));
+    fm_json_key(j, "junctions");
+    fm_json_begin_array(j);
+    for (size_t i = 0; i < fm_connect_plan_njunctions(rs->plan); i++) {
+        const fm_connect_junction *jn = fm_connect_plan_junction(rs->plan, i);
+        const char *why;
+        size_t which;
+        fm_junction_type t = junction_outcome(rs, jn, &why, &which);
+        count[t]++;
+        fm_json_begin_object(j);
+        fm_json_key(j, "faults");
+        fm_json_begin_array(j);
+        for (int s = 0; s < 2; s++)
+            fm_json_string(j, rs->res[rs->plan_res[jn->fault[s]]].name);
+        fm_json_end_array(j);
+        fm_json_key(j, "sheets");
+        fm_json_begin_array(j);
+        for (int s = 0; s < 2; s++)
+            fm_json_int(j, (int64_t)jn->sheet[s]);
+        fm_json_end_array(j);
+        fm_json_kv_string(j, "type", fm_junction_type_name(t));
+        fm_json_kv_number(j, "gap_closed_m", t == FM_JUNCTION_UNJOINED ? 0 : jn->gap);
+        fm_json_kv_number(j, "overshoot_trimmed_m", t == FM_JUNCTION_UNJOINED ? 0 : jn->overshoot);
+        fm_json_kv_number(j, "curve_length_m", jn->length);
+        fm_json_kv_number(j, "min_crossing_angle_deg", jn->min_angle);
+        if (why) {
+            char msg[600];
+            if (jn->curve >= 0)
+                snprintf(msg, sizeof msg, "%s (%s)", why, rs->res[rs->plan_res[which]].name);
+            fm_json_kv_string(j, "reason", jn->curve >= 0 ? msg : why);
+        }
+        fm_json_end_object(j);
+    }
+    fm_json_end_array(j);
+    fm_json_kv_int(j, "crossing", (int64_t)count[FM_JUNCTION_CROSSING]);
+    fm_json_kv_int(j, "T", (int64_t)count[FM_JUNCTION_T]);
+    fm_json_kv_int(j, "corner", (int64_t)count[FM_JUNCTION_CORNER]);
+    fm_json_kv_int(j, "unjoined", (int64_t)count[FM_JUNCTION_UNJOINED]);
     fm_json_end_object(j);
 }
 
@@ -518,6 +746,8 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
         zmax = fmax(zmax, r->q.zmax);
     }
     fm_json_end_array(&j);
+    size_t jcount[4];
+    json_connect(&j, cli, rs, jcount);
     fm_json_key(&j, "summary");
     fm_json_begin_object(&j);
     fm_json_kv_int(&j, "faults", (int64_t)rs->nres);
@@ -532,8 +762,17 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     fm_json_kv_int(&j, "edges_within_0.7_1.4", (int64_t)band);
     fm_json_kv_number(&j, "node_to_original_max_m", worst_dist);
     fm_json_kv_number(&j, "z_max_m", ok ? zmax : 0);
+    fm_json_kv_number(&j, "time_fit_s", rs->time[0]);
+    fm_json_kv_number(&j, "time_connect_s", rs->time[1]);
+    fm_json_kv_number(&j, "time_mesh_s", rs->time[2]);
     fm_json_end_object(&j);
     fm_json_end_object(&j);
+    if (!cli->quiet && rs->plan)
+        printf("junctions: %zu crossing, %zu T, %zu corner, %zu unjoined; %zu near-duplicate "
+               "faults given up; %zu shared nodes\n",
+               jcount[0], jcount[1], jcount[2], jcount[3],
+               fm_connect_plan_get_stats(rs->plan)->duplicates,
+               fm_connect_plan_nnodes(rs->plan));
     if (!cli->quiet)
         printf("faults %zu, meshed %zu (%zu with warnings), failed %ld; triangles %zu, below 30 deg "
                "%.3f%%, below 20 deg %zu (%zu at sharp corners), edges in [0.7, 1.4] H %.2f%%, "
@@ -565,6 +804,68 @@ static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error 
     return st;
 }
 
+/* The junction plan over every fitted fault (objects in input order);
+ * faults it gives up as near-duplicates are marked "dropped". NULL when
+ * there is nothing to join or the plan failed (reported; the faults are
+ * then meshed unconnected). */
+static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t njobs,
+                                  run_state *rs)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < njobs; i++) {
+        jobs[i].first = n;
+        n += jobs[i].model ? jobs[i].n : 0;
+    }
+    const fm_model **models = calloc(n + 1, sizeof *models);
+    fault_result **res = calloc(n + 1, sizeof *res);
+    rs->plan_res = calloc(n + 1, sizeof *rs->plan_res);
+    if (!models || !res || !rs->plan_res) {
+        free(models);
+        free(res);
+        return NULL;
+    }
+    rs->nplan_faults = n;
+    for (size_t i = 0; i < njobs; i++)
+        for (size_t o = 0; jobs[i].model && o < jobs[i].n; o++) {
+            models[jobs[i].first + o] = jobs[i].model[o];
+            res[jobs[i].first + o] = &jobs[i].res[o];
+        }
+    fm_connect_plan_options po;
+    fm_connect_plan_options_default(&po);
+    po.distance = cli->join;
+    po.size = cli->mesh.size;
+    po.cut = cli->mesh.top != FM_TOP_KEEP;
+    po.sea_level = cli->mesh.sea_level;
+    po.nthreads = cli->jobs;
+    fm_connect_plan *plan = NULL;
+    fm_error err;
+    fm_error_clear(&err);
+    if (fm_connect_plan_build(models, n, &po, &plan, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: connecting faults failed, meshing them unconnected: %s\n",
+                err.message);
+        free(models);
+        free(res);
+        return NULL;
+    }
+    free(models);
+    for (size_t f = 0; f < n; f++) {
+        const fm_connect_duplicate *d;
+        if (!fm_connect_plan_dropped(plan, f, &d))
+            continue;
+        fault_result *r = res[f];
+        char msg[512];
+        snprintf(msg, sizeof msg,
+                 "near-duplicate of %s (%.0f%% of its area within %.0f m of it); that one is "
+                 "kept (the smaller of the two)",
+                 d ? res[d->kept]->name : "another fault", d ? 100 * d->share[0] : 0,
+                 po.duplicates.tolerance);
+        r->status = "dropped";
+        r->error = dup_str(msg);
+    }
+    free(res);
+    return plan;
+}
+
 static int run(const remesh_cli *cli, char **files, long nfiles)
 {
     fm_error err;
@@ -584,10 +885,28 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     }
     for (long i = 0; i < nfiles; i++)
         jobs[i].path = files[i];
-    run_jobs(cli, jobs, (size_t)nfiles);
+    double t0 = fm_clock_seconds();
+    run_jobs(cli, NULL, 0, jobs, (size_t)nfiles);
+    double t1 = fm_clock_seconds();
+    fm_connect_plan *plan = NULL;
+    if (cli->connect)
+        plan = make_plan(cli, jobs, (size_t)nfiles, &rs);
+    double t2 = fm_clock_seconds();
+    run_jobs(cli, plan, 1, jobs, (size_t)nfiles);
+    double t3 = fm_clock_seconds();
+    rs.plan = plan;
+    if (plan) {
+        size_t nn = fm_connect_plan_nnodes(plan);
+        rs.node_vertex = malloc((nn + 1) * sizeof *rs.node_vertex);
+        for (size_t k = 0; rs.node_vertex && k < nn; k++)
+            rs.node_vertex[k] = -1;
+    }
     for (long i = 0; i < nfiles; i++)
         merge_job(cli, &jobs[i], &rs);
     free(jobs);
+    rs.time[0] = t1 - t0;
+    rs.time[1] = t2 - t1;
+    rs.time[2] = t3 - t2;
     fm_status st = write_set(cli, &rs, &err);
     if (st == FM_OK)
         st = write_report(cli, &rs, &err);
@@ -599,9 +918,14 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         free(rs.res[i].file);
         free(rs.res[i].name);
         free(rs.res[i].error);
+        free(rs.res[i].join_failed);
+        free(rs.res[i].join_error);
     }
     free(rs.res);
     free(rs.names);
+    free(rs.node_vertex);
+    free(rs.plan_res);
+    fm_connect_plan_destroy(plan);
     fm_mesh_destroy(rs.set);
     return rs.failed ? FM_EXIT_FAILURES : FM_EXIT_OK;
 }
@@ -654,6 +978,12 @@ static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     } else if (!strcmp(a, "--quiet")) {
         cli->quiet = 1;
         return 1;
+    } else if (!strcmp(a, "--no-connect")) {
+        cli->connect = 0;
+        return 1;
+    } else if (!strcmp(a, "--join")) {
+        if (fm_parse_double(a, val, &cli->join) || !(cli->join > 0))
+            return -1;
     } else {
         return fm_cli_repair_option(argc, argv, i, &cli->repair);
     }
@@ -678,6 +1008,8 @@ static void cli_defaults(remesh_cli *cli)
     fm_remesh_options_default(&cli->mesh);
     cli->msh = FM_MSH_41;
     cli->crs = "EPSG:26711";
+    cli->connect = 1;
+    cli->join = 1000;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     cli->jobs = ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;
 }

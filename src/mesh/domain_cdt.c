@@ -111,6 +111,9 @@ void flat_free(flat_domain *f)
     free(f->seg);
     free(f->segs);
     free(f->ends);
+    free(f->shared);
+    free(f->curve);
+    free(f->end);
     memset(f, 0, sizeof *f);
 }
 
@@ -151,10 +154,37 @@ fm_status domain_triangulate(const fm_fit_surface *s, const fm_trim_loop *const 
                              const char *name)
 {
     *out = NULL;
-    memset(fd, 0, sizeof *fd);
-    if (flatten(dom, fd) != FM_OK) {
-        flat_free(fd);
-        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
+    int joined = fd->npoints > 0;
+    if (!joined) {
+        memset(fd, 0, sizeof *fd);
+        if (flatten(dom, fd) != FM_OK) {
+            flat_free(fd);
+            return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
+        }
+    }
+    if (joined) {
+        fm_error e0;
+        fm_cdt *arr = NULL;
+        fm_status r0 = fm_cdt_create_graph(fd->uv, fd->npoints, fd->seg, NULL, fd->nseg, &arr, &e0);
+        if (r0 == FM_OK)
+            r0 = join_reduce(arr, fd, &e0);
+        fm_cdt_destroy(arr);
+        if (r0 != FM_OK) {
+            fm_error_set(err, r0, name, 0, "%s", e0.message);
+            flat_free(fd);
+            return r0;
+        }
+    }
+    size_t nseg = joined ? fd->nseg : fd->n, npts = joined ? fd->npoints : fd->n;
+    unsigned char *frozen = NULL;
+    if (joined) {
+        frozen = calloc(nseg + 1, 1);
+        if (!frozen) {
+            flat_free(fd);
+            return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
+        }
+        for (size_t k = 0; k < nseg; k++)
+            frozen[k] = fd->segs[k].kind == SEG_SHARED;
     }
     fm_cdt *cdt = NULL;
     fm_error e2;
@@ -173,7 +203,13 @@ fm_status domain_triangulate(const fm_fit_surface *s, const fm_trim_loop *const 
     for (int mode = 0; mode < 3; mode++) {
         fm_cdt_destroy(cdt);
         cdt = NULL;
-        rc = fm_cdt_create(fd->uv, fd->n, fd->seg, NULL, fd->n, &cdt, &e2);
+        if (joined) {
+            rc = fm_cdt_create_graph(fd->uv, npts, fd->seg, NULL, nseg, &cdt, &e2);
+            if (rc == FM_OK)
+                rc = join_select(cdt, fd, &e2);
+        } else {
+            rc = fm_cdt_create(fd->uv, npts, fd->seg, NULL, nseg, &cdt, &e2);
+        }
         if (rc != FM_OK)
             break;
         ctx.step = mode == 1 ? 0.5 * size / scale : 0;
@@ -186,6 +222,8 @@ fm_status domain_triangulate(const fm_fit_surface *s, const fm_trim_loop *const 
         ro.split = split_cb;
         ro.split_user = &ctx;
         ro.max_points = max_points;
+        ro.frozen_ids = frozen;
+        ro.nfrozen = frozen ? nseg : 0;
         /* A parametrisation (over a conformal or convex map) that nearly
          * folds has a metric close to singular there; beyond this ratio
          * the mesh in (u, v) cannot follow it anyway. */
@@ -203,6 +241,7 @@ fm_status domain_triangulate(const fm_fit_surface *s, const fm_trim_loop *const 
         if (rc != FM_OK || (!rs.capped && !swollen && rs.bad_left <= 8 + ntri / 50))
             break;
     }
+    free(frozen);
     if (rc != FM_OK) {
         /* The triangulation does not know the file: name it here. */
         fm_error_set(err, rc, name, 0, "%s", e2.message);

@@ -541,7 +541,7 @@ fm_status domain_clip(const fm_fit_surface *s, const fm_trim_loop *const *loops,
         return FM_OK;
     }
     *cut = 1;
-    flat_domain fd;
+    flat_domain fd = {0};
     fm_cdt *cdt = NULL;
     fm_status st = domain_triangulate(s, loops, level, in, h, 0, &fd, &cdt, err, name);
     if (st != FM_OK)

@@ -94,12 +94,58 @@ fm_status fm_remesh_sheet(const fm_fit_surface *s, const fm_trim_loop *const *lo
                           fm_mesh **out, double **uv_out, fm_remesh_stats *stats,
                           fm_error *err);
 
+/* A curve this sheet shares with a sheet of another fault (an
+ * intersection curve from the junction plan, fm_connect.h): its nodes,
+ * given in this sheet's (u, v), are nodes of the mesh exactly as given and
+ * its segments are edges of it, never split, so that both meshes meet
+ * node for node along it. A curve end within a quarter size of the
+ * outline (or the sea-level line) becomes a node of it. */
+typedef struct fm_remesh_curve {
+    const double *uv;     /* 2 per node */
+    size_t n;             /* >= 2 */
+    const int64_t *node;  /* the caller's id of each node, reported per output vertex */
+    int end;              /* 1: the sheet ends at the curve and keeps what lies on its
+                             left (going from node 0 to node n-1, outer loops being
+                             counter-clockwise): the flap beyond is dropped, a gap
+                             before it filled; 0: the curve crosses the sheet */
+} fm_remesh_curve;
+
+/* fm_remesh_sheet with shared curves. node_out (may be NULL) receives per
+ * output vertex the id of the shared node it is, or -1 (malloc'ed, freed by
+ * the caller). Fails (FM_ERR_TOPOLOGY, and the mesh is not made) when the
+ * curves cannot be fitted into the domain: they cross its loops or each
+ * other other than at their ends, a flap to drop would be most of the
+ * sheet, or a gap to fill is not closed; the caller may mesh the sheet
+ * without them. */
+fm_status fm_remesh_sheet_joined(const fm_fit_surface *s, const fm_trim_loop *const *loops,
+                                 size_t nloops, const fm_remesh_curve *curves, size_t ncurves,
+                                 const fm_remesh_options *opt, int32_t tag, fm_mesh **out,
+                                 double **uv_out, int64_t **node_out, fm_remesh_stats *stats,
+                                 fm_error *err);
+
 /* Meshes every sheet of a fault model into one mesh (triangles tagged
  * with the model sheet index; sheets are not joined to each other here).
  * stats (may be NULL) receives the sums over sheets (cut, empty: any /
  * all sheets; clamp_max, extended: the largest). */
 fm_status fm_remesh_model(const fm_model *m, const fm_remesh_options *opt, fm_mesh **out,
                           fm_remesh_stats *stats, fm_error *err);
+
+/* The shared curves of one sheet. */
+typedef struct fm_remesh_sheet_curves {
+    const fm_remesh_curve *curves;
+    size_t n;
+} fm_remesh_sheet_curves;
+
+/* fm_remesh_model with shared curves: curves[i] for sheet i (curves may be
+ * NULL). node_out (may be NULL) receives per vertex of the mesh the shared
+ * node id or -1. A sheet whose curves do not fit its domain
+ * (fm_remesh_sheet_joined fails other than for memory) is meshed without
+ * them, join_failed[i] (may be NULL) set to 1 and join_errors[i] (may be
+ * NULL) given the reason. */
+fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves *curves,
+                                 const fm_remesh_options *opt, fm_mesh **out, int64_t **node_out,
+                                 unsigned char *join_failed, fm_error *join_errors,
+                                 fm_remesh_stats *stats, fm_error *err);
 
 #ifdef __cplusplus
 }

@@ -229,6 +229,9 @@ static size_t walk_to(const struct fm_cdt *t, int32_t tri, const double p[2], in
     return 0;
 }
 
+static void insert_for(cdt_refiner *r, int32_t tri, const cdt_quality *qq, const double p[2],
+                       int again);
+
 static void process_triangle(cdt_refiner *r, int32_t tri)
 {
     struct fm_cdt *t = r->t;
@@ -240,9 +243,31 @@ static void process_triangle(cdt_refiner *r, int32_t tri)
         t->stats.rejected++;
         return;
     }
+    insert_for(r, tri, &q, p, 1);
+}
+
+/* Inserts p for bad triangle tri, or splits the segments it encroaches.
+ * A point too close to a frozen segment (which cannot be split) is
+ * replaced, once (again), by the apex of the equilateral triangle on that
+ * segment on tri's side: the point a good triangle there has. */
+static void insert_for(cdt_refiner *r, int32_t tri, const cdt_quality *qq, const double p[2],
+                       int again)
+{
+    struct fm_cdt *t = r->t;
+    cdt_quality q = *qq;
     cdt_use_metric(r, q.m);
-    int32_t bad;
-    cdt_cavity_result cr = cdt_cavity(t, p, &tri, 1, -1, &bad);
+    int32_t bad, seed = tri;
+    if (!again) {
+        /* the apex lies in some other triangle: start from the one holding it */
+        int32_t way[64];
+        size_t nw = walk_to(t, tri, p, way, 64);
+        if (!nw) {
+            t->stats.rejected++;
+            return;
+        }
+        seed = way[nw - 1];
+    }
+    cdt_cavity_result cr = cdt_cavity(t, p, &seed, 1, -1, &bad);
     if (cr == CDT_CAVITY_NOMEM) {
         nomem(r);
         return;
@@ -281,16 +306,40 @@ static void process_triangle(cdt_refiner *r, int32_t tri)
         return;
     }
 star:;
+    /* An encroached segment is split instead; a frozen one cannot be, and
+     * a point off it by a good part of its length is let in: refusing it
+     * would leave the skinny triangles next to a shared curve for good. */
     int any = 0;
+    double apex[2];
+    int have_apex = 0;
     for (size_t k = 0; k < t->nbnd; k++) {
         int32_t e = t->bnde[k];
         if (t->tc[e] < 0 || !cdt_encroaches(r, p, cdt_org(t, e), cdt_dst(t, e)))
             continue;
+        if (cdt_frozen(r, t->tc[e])) {
+            const double *a = cdt_p(t, cdt_org(t, e)), *b = cdt_p(t, cdt_dst(t, e));
+            double d[2] = {b[0] - a[0], b[1] - a[1]}, L2 = d[0] * d[0] + d[1] * d[1];
+            double side = d[0] * (p[1] - a[1]) - d[1] * (p[0] - a[0]);
+            /* distance over length, in (u, v): the metric is near constant
+             * over one triangle */
+            if (L2 > 0 && fabs(side) / L2 >= 0.35)
+                continue;
+            if (L2 > 0 && !have_apex) {
+                double sg = side >= 0 ? 1 : -1, h = 0.866 * sg;
+                apex[0] = 0.5 * (a[0] + b[0]) - h * d[1];
+                apex[1] = 0.5 * (a[1] + b[1]) + h * d[0];
+                have_apex = 1;
+            }
+        }
         any = 1;
         if (!cdt_frozen(r, t->tc[e]) && cdt_push_pair(t, cdt_org(t, e), cdt_dst(t, e)))
             nomem(r);
     }
     if (any) {
+        if (have_apex && again && t->npairs == from) {
+            insert_for(r, tri, &q, apex, 0);
+            return;
+        }
         split_for(r, tri, from);
         return;
     }

@@ -63,11 +63,22 @@ fm_status fm_remesh_sheet(const fm_fit_surface *s, const fm_trim_loop *const *lo
                           size_t nloops, const fm_remesh_options *opt, int32_t tag,
                           fm_mesh **out, double **uv_out, fm_remesh_stats *st, fm_error *err)
 {
+    return fm_remesh_sheet_joined(s, loops, nloops, NULL, 0, opt, tag, out, uv_out, NULL, st, err);
+}
+
+fm_status fm_remesh_sheet_joined(const fm_fit_surface *s, const fm_trim_loop *const *loops,
+                                 size_t nloops, const fm_remesh_curve *curves, size_t ncurves,
+                                 const fm_remesh_options *opt, int32_t tag, fm_mesh **out,
+                                 double **uv_out, int64_t **node_out, fm_remesh_stats *st,
+                                 fm_error *err)
+{
     double t0 = fm_clock_seconds();
     memset(st, 0, sizeof *st);
     *out = NULL;
     if (uv_out)
         *uv_out = NULL;
+    if (node_out)
+        *node_out = NULL;
     if (!(opt->size > 0) || !isfinite(opt->size))
         return fm_error_set(err, FM_ERR_INVALID, opt->name, 0, "mesh size must be positive");
     if (nloops == 0)
@@ -87,6 +98,11 @@ fm_status fm_remesh_sheet(const fm_fit_surface *s, const fm_trim_loop *const *lo
     if (dom.n == 0) {
         st->empty = 1;
         goto done;
+    }
+    if (ncurves > 0) {
+        rc = domain_join(s, &dom, curves, ncurves, opt->size, opt->sea_level, &fd, err, opt->name);
+        if (rc != FM_OK)
+            goto done;
     }
     rc = domain_triangulate(s, loops, opt->sea_level, &dom, opt->size, opt->max_points, &fd, &cdt,
                             err, opt->name);
@@ -131,9 +147,11 @@ fm_status fm_remesh_sheet(const fm_fit_surface *s, const fm_trim_loop *const *lo
         if (map[i] == 0)
             map[i] = (int32_t)nout++;
     double *uvo = uv_out ? malloc(2 * nout * sizeof *uvo + 1) : NULL;
-    if ((uv_out && !uvo) || fm_mesh_reserve(mesh, nout, nt) != FM_OK) {
+    int64_t *ido = node_out ? malloc(nout * sizeof *ido + 1) : NULL;
+    if ((uv_out && !uvo) || (node_out && !ido) || fm_mesh_reserve(mesh, nout, nt) != FM_OK) {
         free(map);
         free(uvo);
+        free(ido);
         goto nomem;
     }
     int cut = opt->top != FM_TOP_KEEP;
@@ -159,12 +177,16 @@ fm_status fm_remesh_sheet(const fm_fit_surface *s, const fm_trim_loop *const *lo
         fm_mesh_add_vertex(mesh, p[0], p[1], p[2]);
         if (uvo)
             memcpy(uvo + 2 * map[i], uv + 2 * i, 2 * sizeof *uvo);
+        if (ido)
+            ido[map[i]] = fd.shared && i < fd.npoints ? fd.shared[i] : -1;
     }
     for (size_t t = 0; t < nt; t++)
         fm_mesh_add_triangle(mesh, map[tri[3 * t]], map[tri[3 * t + 1]], map[tri[3 * t + 2]], tag);
     free(map);
     if (uv_out)
         *uv_out = uvo;
+    if (node_out)
+        *node_out = ido;
     st->points = nout;
     st->triangles = nt;
     goto done;

@@ -14,7 +14,8 @@
 typedef enum seg_kind {
     SEG_TRIM = 0,  /* a trimming curve piece: loop, piece, t from ta to tb */
     SEG_LEVEL = 1, /* the sea-level curve of the surface */
-    SEG_FREE = 2   /* a straight line in (u, v) (extension sides) */
+    SEG_FREE = 2,  /* a straight line in (u, v) (extension sides, connectors) */
+    SEG_SHARED = 3 /* a piece of a curve shared with another sheet: never split */
 } seg_kind;
 
 typedef struct dom_seg {
@@ -96,12 +97,40 @@ typedef struct flat_domain {
     int32_t *seg;
     dom_seg *segs;
     double *ends;
-    size_t n;
+    size_t n;          /* points; the first n segments are the loops' */
+    /* With shared curves (domain_join): more points and segments; per
+     * point its shared node id (-1: none); per segment the shared curve it
+     * belongs to (-1: none) and whether that curve is one the sheet ends
+     * at (keeping the left side). */
+    size_t npoints, nseg;
+    int64_t *shared;
+    int32_t *curve;
+    unsigned char *end;
 } flat_domain;
 void flat_free(flat_domain *f);
 
-/* Flattens dom, triangulates it and refines it at `size` under the
- * surface metric; caller ids of segments are their flat indices. */
+/* Puts the shared curves into the domain (domain_join.c): a curve end
+ * within a quarter size of a loop becomes a node of it; the open end of a
+ * curve the sheet ends at is joined to the nearest point of the loops by a
+ * straight connector; fd receives the loops flattened plus the curves and
+ * connectors. dom gains the nodes put on its loops. */
+fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_remesh_curve *cv,
+                      size_t nc, double h, double level, flat_domain *fd, fm_error *err,
+                      const char *name);
+
+/* Chooses the faces of a joined domain's arrangement (fd from
+ * domain_join, cdt from fm_cdt_create_graph on it) and selects them. */
+fm_status join_select(fm_cdt *cdt, const flat_domain *fd, fm_error *err);
+/* Reduces fd to the chosen domain's boundary (the first fd->n segments,
+ * the domain on their left) and the shared curves inside it. */
+fm_status join_reduce(fm_cdt *cdt, flat_domain *fd, fm_error *err);
+
+/* Flattens dom (unless fd already holds a joined domain: fd->npoints > 0),
+ * triangulates it and refines it at `size` under the surface metric;
+ * caller ids of segments are their flat indices. With shared curves the
+ * faces between loops, curves and connectors are chosen: inside the loops,
+ * less the flaps beyond curves the sheet ends at, plus the closed gaps
+ * before them. */
 fm_status domain_triangulate(const fm_fit_surface *s, const fm_trim_loop *const *loops,
                              double level, const remesh_domain *dom, double size,
                              size_t max_points, flat_domain *fd, fm_cdt **out, fm_error *err,

@@ -25,14 +25,19 @@ Measured per fault and over all faults (3D, from the VTU):
                   (>= 99.5 %, over all triangles);
   - angle-20      triangles under 20 deg sit at a boundary corner whose
                   interior angle (sum of the triangle angles there) is
-                  under 40 deg;
+                  under 40 deg, or at a node shared with another fault (a
+                  junction curve, fixed as planned: at most 0.1 % of all
+                  triangles);
   - edge-band     share of edges (each once per fault) within
                   [0.7 H, 1.4 H] (>= 95 %);
   - failures      report.json lists no failed fault and, with --original,
                   every object of the inputs that reaches below sea level
-                  (or any, with --top keep) is in the mesh;
+                  (or any, with --top keep) is in the mesh, unless the
+                  report gives it up as a near-duplicate ("dropped");
   - distance-max, distance-rms  (--original) every node within 100 m of the
-                  original triangulation, RMS <= 10 m per fault;
+                  original triangulation (plus, for a fault extended over a
+                  gap to a neighbour, the largest gap report.json says it
+                  closed), RMS <= 10 m per fault (gap closers excepted);
   - top           (--top cut / extend) every node z <= 0; boundary nodes
                   less than --level-tol (1 m) below sea level are on it
                   exactly (no top edge a hair below), and every fault whose original
@@ -45,7 +50,9 @@ Measured per fault and over all faults (3D, from the VTU):
                   original's best-fit plane. The 3D area ratio is printed too:
                   it also counts relief finer than H, which no mesh at H can
                   have (a wrinkled original can have 7 % more area than any
-                  smooth surface over the same extent).
+                  smooth surface over the same extent). A fault whose
+                  overshoot past a junction was trimmed (report.json) is
+                  excepted.
 --criteria LIST (comma-separated names above, or "all") asserts those;
 the others are printed only. Without --original the distance and
 coverage figures are not measured.
@@ -592,6 +599,15 @@ def main():
     below20 = minang < 20.0
     forced = below20 & np.isin(corner_key, sharp_keys)
     sharp_f = np.bincount(sharp_keys // nv, minlength=nf)
+    # Nodes of more than one fault lie on junction curves, which stay as
+    # the plan sampled them: triangles there are counted apart (issue 5
+    # allows at most 0.1 % of all triangles).
+    vf = np.unique(np.stack([tris.ravel(), np.repeat(fid, 3)], axis=1), axis=0) if len(tris) else np.zeros((0, 2), np.int64)
+    shared_v = np.zeros(nv, dtype=bool)
+    if len(vf):
+        vcount = np.bincount(vf[:, 0], minlength=nv)
+        shared_v = vcount > 1
+    at_junction = below20 & ~forced & (shared_v[tris].any(axis=1) if len(tris) else np.zeros(0, bool))
     # sea level: boundary nodes
     bnode = np.unique(np.concatenate([eu[bnd], ev[bnd]]))
     top_e = bnd & (X[eu, 2] == 0.0) & (X[ev, 2] == 0.0)
@@ -710,11 +726,26 @@ def main():
     nt = max(len(tris), 1)
     failed_faults = [f for f in rfaults if f.get("status") == "error"]
     empty_faults = [f for f in rfaults if f.get("status") == "empty"]
+    # A near-duplicate given up by the connect stage is reported, not lost.
+    dropped = {f.get("name") for f in rfaults if f.get("status") == "dropped"}
+    # A fault extended over a closed gap has nodes up to the gap off its
+    # original (issue 5: fidelity holds "except inside closed gaps").
+    # Its RMS counts the filled gap too, and a fault trimmed at a junction
+    # loses the flap it had beyond it (coverage).
+    gap_allow, trimmed = {}, set()
+    for jn in report.get("connect", {}).get("junctions", []):
+        if jn.get("type") == "unjoined":
+            continue
+        if jn.get("gap_closed_m", 0) > 0:
+            for n in jn["faults"]:
+                gap_allow[n] = max(gap_allow.get(n, 0.0), float(jn["gap_closed_m"]))
+        if jn.get("overshoot_trimmed_m", 0) > 0:
+            trimmed.update(jn["faults"])
     missing = []
     if a.original:
         for n, T in sorted(orig.items()):
             reaches = T[:, :, 2].min() < 0 if a.top != "keep" else True
-            if reaches and n not in names:
+            if reaches and n not in names and n not in dropped:
                 missing.append(n)
     results.append(("failures", "%d failed, %d empty, %s" % (
         len(failed_faults), len(empty_faults),
@@ -724,10 +755,14 @@ def main():
     results.append(("min-angle-30", "%.3f%% of %d triangles >= 30 deg (min %.2f deg)"
                     % (100 * share30, len(tris), minang.min() if len(minang) else 0),
                     ">= 99.5%", share30 >= 0.995))
-    unforced = int(below20.sum() - forced.sum())
-    results.append(("angle-20", "%d under 20 deg, %d at corners < 40 deg (%d sharp corners)"
-                    % (below20.sum(), forced.sum(), sharp_f.sum()), "all at sharp corners",
-                    unforced == 0))
+    njunc = int(at_junction.sum())
+    njunc = int(at_junction.sum())
+    unforced = int(below20.sum() - forced.sum()) - njunc
+    results.append(("angle-20", "%d under 20 deg, %d at corners < 40 deg (%d sharp corners), %d at "
+                    "junction curves (%.3f%% of triangles)"
+                    % (below20.sum(), forced.sum(), sharp_f.sum(), njunc, 100.0 * njunc / nt),
+                    "all at sharp corners (or <= 0.1% at junctions)",
+                    unforced == 0 and njunc <= 0.001 * nt))
     shareb = inband.sum() / max(len(elen), 1)
     results.append(("edge-band", "%.2f%% of %d edges in [%.0f, %.0f] m" % (
         100 * shareb, len(elen), 0.7 * H, 1.4 * H), ">= 95%", shareb >= 0.95))
@@ -735,14 +770,22 @@ def main():
         dmax = np.nanmax(F["dmax"]) if nf else 0
         rmsmax = np.nanmax(F["rms"]) if nf else 0
         over_rms = int(np.sum(F["rms"] > 10))
-        results.append(("distance-max", "%.1f m (%d faults over 100 m)"
-                        % (dmax, int(np.sum(F["dmax"] > 100))), "<= 100 m", dmax <= 100))
-        results.append(("distance-rms", "worst fault %.2f m, median %.2f m (%d over 10 m)"
-                        % (rmsmax, np.nanmedian(F["rms"]) if nf else 0, over_rms), "<= 10 m",
-                        rmsmax <= 10))
+        allow = np.array([gap_allow.get(n, 0.0) for n in names]) if nf else np.zeros(0)
+        over = F["dmax"] > 100 + allow
+        gapped = int(np.sum((F["dmax"] > 100) & ~over))
+        results.append(("distance-max", "%.1f m (%d faults over 100 m; %d more over it only by "
+                        "the gap they close)" % (dmax, int(np.sum(over)), gapped),
+                        "<= 100 m (+ closed gap)", not bool(np.any(over))))
+        gap_rms = np.array([n in gap_allow for n in names], dtype=bool) if nf else np.zeros(0, bool)
+        rms_bad = (F["rms"] > 10) & ~gap_rms
+        results.append(("distance-rms", "worst fault %.2f m, median %.2f m (%d over 10 m; %d more "
+                        "that close a gap)" % (rmsmax, np.nanmedian(F["rms"]) if nf else 0,
+                                               int(np.sum(rms_bad)), over_rms - int(np.sum(rms_bad))),
+                        "<= 10 m (but gap closers)", not bool(np.any(rms_bad))))
         cov = F["extent"] / F["orig_extent"]
         cov3 = F["area"] / F["orig_area"]
-        low = int(np.sum(cov < a.min_coverage))
+        excused = np.array([n in trimmed for n in names], dtype=bool) if nf else np.zeros(0, bool)
+        low = int(np.sum((cov < a.min_coverage) & ~excused))
         results.append(("coverage", "extent / original%s: min %.3f, median %.3f, max %.3f (%d under); "
                         "3D area / original: min %.3f, median %.3f (%d under)"
                         % ("" if a.top == "keep" else " below sea level", np.nanmin(cov),
@@ -785,13 +828,14 @@ def main():
             o.append("<20")
         if F["band"][i] / max(F["edges"][i], 1) < 0.95:
             o.append("band")
-        if F["dmax"][i] > 100:
+        if F["dmax"][i] > 100 + gap_allow.get(names[i], 0.0):
             o.append("max")
-        if F["rms"][i] > 10:
+        if F["rms"][i] > 10 and names[i] not in gap_allow:
             o.append("rms")
         if a.top != "keep" and (F["zmax"][i] > 0 or F["near_miss"][i]):
             o.append("top")
-        if a.original and F["extent"][i] / F["orig_extent"][i] < a.min_coverage:
+        if (a.original and F["extent"][i] / F["orig_extent"][i] < a.min_coverage
+                and names[i] not in trimmed):
             o.append("cov")
         return o
 

@@ -65,7 +65,8 @@ endif()
 #  - remesh_demo: `faultmesh demo` (MSH 4.1, top cut) and `demo
 #    --msh-version 2.2 --top keep` with every criterion asserted, and two
 #    runs byte-identical.
-#  - cfm_remesh_500m_1000: the CFM 500 m set at H = 1000 m, top cut; every
+#  - cfm_remesh_500m_1000: the CFM 500 m set at H = 1000 m, top cut, each
+#    fault on its own (--no-connect: the mesh issue's targets); every
 #    figure printed, the criteria that hold today asserted
 #    (FM_CFM_REMESH_CRITERIA). -DFM_CFM_REMESH_ALL_CRITERIA=ON asserts all
 #    of them (angle-20 does not hold yet on two faults, see the mesh
@@ -95,7 +96,7 @@ if(FM_SYSTEM_PYTHON)
   add_test(NAME cfm_remesh_500m_1000
     COMMAND bash ${FM_TOOLS}/remesh_cfm_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_remesh_500m_1000 ${FM_CFM_DIR}/CFM5.3/500m
-            --size 1000 -- --size 1000 --top cut --msh-version 4.1 --criteria ${fm_remesh_criteria})
+            --size 1000 --no-connect -- --size 1000 --top cut --msh-version 4.1 --criteria ${fm_remesh_criteria})
   set_tests_properties(cfm_remesh_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
 endif()
 

@@ -1,0 +1,629 @@
+/* Shared curves into the domain: their ends put on the loops, connectors
+ * from the open ends of curves a sheet ends at, and the whole flattened
+ * into one planar graph of points and segments (remesh_internal.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "remesh_internal.h"
+
+typedef struct seg_hit {
+    size_t loop, i;   /* segment from node i to node i + 1 of the loop */
+    double t;         /* fraction along it of the nearest point */
+    double d;         /* 3D distance */
+} seg_hit;
+
+static void eval3(const fm_fit_surface *s, const double uv[2], double p[3])
+{
+    fm_fit_surface_eval(s, uv[0], uv[1], p, NULL, NULL);
+}
+
+static double dist3(const double *a, const double *b)
+{
+    double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/* The loop segment nearest to P in 3D (chords between the nodes' surface
+ * points: at most a size long, within a tenth of it of the curve). */
+static seg_hit nearest_segment(const fm_fit_surface *s, const remesh_domain *dom, const double P[3])
+{
+    seg_hit best = {0, 0, 0, INFINITY};
+    for (size_t l = 0; l < dom->n; l++) {
+        const dom_loop *lp = &dom->loops[l];
+        if (lp->n < 2)
+            continue;
+        double a[3], b[3];
+        eval3(s, lp->uv, a);
+        for (size_t i = 0; i < lp->n; i++) {
+            eval3(s, lp->uv + 2 * ((i + 1) % lp->n), b);
+            double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+            double ap[3] = {P[0] - a[0], P[1] - a[1], P[2] - a[2]};
+            double L2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+            double t = L2 > 0 ? (ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / L2 : 0;
+            t = t < 0 ? 0 : t > 1 ? 1 : t;
+            double f[3] = {a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]};
+            double d = dist3(f, P);
+            if (d < best.d) {
+                best.loop = l;
+                best.i = i;
+                best.t = t;
+                best.d = d;
+            }
+            memcpy(a, b, sizeof a);
+        }
+    }
+    return best;
+}
+
+/* Loop nodes already taken by a shared node: never moved again. */
+typedef struct taken {
+    double *uv;
+    size_t n, cap;
+} taken;
+
+static int is_taken(const taken *tk, const double *uv)
+{
+    for (size_t k = 0; k < tk->n; k++)
+        if (tk->uv[2 * k] == uv[0] && tk->uv[2 * k + 1] == uv[1])
+            return 1;
+    return 0;
+}
+
+static int take(taken *tk, const double *uv)
+{
+    if (tk->n == tk->cap) {
+        size_t cap = tk->cap ? 2 * tk->cap : 16;
+        double *n = realloc(tk->uv, 2 * cap * sizeof *n);
+        if (!n)
+            return -1;
+        tk->uv = n;
+        tk->cap = cap;
+    }
+    tk->uv[2 * tk->n] = uv[0];
+    tk->uv[2 * tk->n + 1] = uv[1];
+    tk->n++;
+    return 0;
+}
+
+/* Puts uv on segment h of the loops: moves the nearer end node there when
+ * it is within tol (and free), else inserts a node. at receives the node's
+ * final uv. */
+static int put_on_loop(const fm_fit_surface *s, remesh_domain *dom, const seg_hit *h,
+                       const double uv[2], double level, double tol, int move, taken *tk,
+                       double at[2])
+{
+    dom_loop *lp = &dom->loops[h->loop];
+    size_t ia = h->i, ib = (h->i + 1) % lp->n;
+    double P[3], A[3], B[3];
+    eval3(s, uv, P);
+    eval3(s, lp->uv + 2 * ia, A);
+    eval3(s, lp->uv + 2 * ib, B);
+    double da = dist3(A, P), db = dist3(B, P);
+    size_t near = da <= db ? ia : ib;
+    /* A connector may end on any node (even one a curve ends on); a curve
+     * end moves a node only when no other curve end is there. */
+    double fn = da <= db ? h->t : 1 - h->t;
+    if (!move && (fmin(da, db) <= tol || fn <= 1e-9)) {
+        at[0] = lp->uv[2 * near];
+        at[1] = lp->uv[2 * near + 1];
+        return is_taken(tk, at) ? 0 : take(tk, at);
+    }
+    /* Sliding a node along its own curve to the curve end spares a short
+     * edge (a sliver) up to half a size; a node where two kinds of
+     * boundary meet (a corner, the end of the sea-level line) stays. */
+    size_t prev = (near + lp->n - 1) % lp->n;
+    int same_kind = lp->seg[prev].kind == lp->seg[near].kind;
+    double reach = same_kind ? 2 * tol * 0.9 : tol;
+    if (move && fmin(da, db) <= reach && !is_taken(tk, lp->uv + 2 * near)) {
+        if (move) {
+            lp->uv[2 * near] = uv[0];
+            lp->uv[2 * near + 1] = uv[1];
+            if (fabs(P[2] - level) < 1e-6)
+                lp->level[near] = 1;
+        }
+        at[0] = lp->uv[2 * near];
+        at[1] = lp->uv[2 * near + 1];
+        return take(tk, at);
+    }
+    dom_seg s1 = lp->seg[ia], s2 = lp->seg[ia];
+    const double *a = lp->uv + 2 * ia, *b = lp->uv + 2 * ib;
+    double q[2];
+    if (move) {
+        q[0] = uv[0];
+        q[1] = uv[1];
+    } else {
+        q[0] = a[0] + h->t * (b[0] - a[0]);
+        q[1] = a[1] + h->t * (b[1] - a[1]);
+    }
+    if (s1.kind == SEG_TRIM) {
+        double tm = s1.ta + h->t * (s1.tb - s1.ta);
+        s1.tb = tm;
+        s2.ta = tm;
+    }
+    double Q[3];
+    eval3(s, q, Q);
+    int lev = s1.kind == SEG_LEVEL || fabs(Q[2] - level) < 1e-6;
+    lp->seg[ia] = s1;
+    if (loop_insert(lp, ia + 1, q, lev, &s2))
+        return -1;
+    at[0] = q[0];
+    at[1] = q[1];
+    return take(tk, at);
+}
+
+static int pt_eq(const double *a, const double *b) { return a[0] == b[0] && a[1] == b[1]; }
+
+/* Distance in (u, v) from p to segment a-b. */
+static double uv_seg_dist(const double *p, const double *a, const double *b, double *t)
+{
+    double d[2] = {b[0] - a[0], b[1] - a[1]}, L2 = d[0] * d[0] + d[1] * d[1];
+    double f = L2 > 0 ? ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / L2 : 0;
+    f = f < 0 ? 0 : f > 1 ? 1 : f;
+    *t = f;
+    return hypot(p[0] - a[0] - f * d[0], p[1] - a[1] - f * d[1]);
+}
+
+/* If curve segment p-q crosses a loop segment other than at shared end
+ * points, puts the curve node nearer that segment into the loop there;
+ * 1 when the loops changed, 0 when nothing crosses, -1 out of memory. */
+static int reroute(const fm_fit_surface *s, remesh_domain *dom, const double *p, const double *q,
+                   double level, taken *tk)
+{
+    for (size_t l = 0; l < dom->n; l++) {
+        dom_loop *lp = &dom->loops[l];
+        for (size_t i = 0; i < lp->n; i++) {
+            size_t j = (i + 1) % lp->n;
+            const double *a = lp->uv + 2 * i, *b = lp->uv + 2 * j;
+            if (pt_eq(a, p) || pt_eq(a, q) || pt_eq(b, p) || pt_eq(b, q))
+                continue;
+            if (!segments_cross(a, b, p, q))
+                continue;
+            double tp, tq;
+            double dp = uv_seg_dist(p, a, b, &tp), dq = uv_seg_dist(q, a, b, &tq);
+            const double *c = dp <= dq ? p : q;
+            double t = dp <= dq ? tp : tq;
+            for (size_t k = 0; k < lp->n; k++)
+                if (pt_eq(lp->uv + 2 * k, c))
+                    return 0; /* already on this loop: a crossing we cannot mend */
+            dom_seg s1 = lp->seg[i], s2 = lp->seg[i];
+            if (s1.kind == SEG_TRIM) {
+                double tm = s1.ta + t * (s1.tb - s1.ta);
+                s1.tb = tm;
+                s2.ta = tm;
+            }
+            double C[3];
+            eval3(s, c, C);
+            int lev = s1.kind == SEG_LEVEL || fabs(C[2] - level) < 1e-6;
+            lp->seg[i] = s1;
+            if (loop_insert(lp, i + 1, c, lev, &s2))
+                return -1;
+            if (!is_taken(tk, c) && take(tk, c))
+                return -1;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+typedef struct connector {
+    double a[2], b[2]; /* curve end, loop node */
+    int level;
+} connector;
+
+/* The loop segment (among the first nl, segment k starting at point k)
+ * joining points a and b either way, or -1. */
+static int32_t loop_segment(const flat_domain *fd, size_t nl, int32_t a, int32_t b)
+{
+    if ((size_t)a >= nl || (size_t)b >= nl)
+        return -1;
+    if (fd->seg[2 * (size_t)a + 1] == b)
+        return a;
+    if (fd->seg[2 * (size_t)b + 1] == a)
+        return b;
+    return -1;
+}
+
+static int32_t find_point(const flat_domain *fd, size_t n, const double uv[2])
+{
+    for (size_t i = 0; i < n; i++)
+        if (fd->uv[2 * i] == uv[0] && fd->uv[2 * i + 1] == uv[1])
+            return (int32_t)i;
+    return -1;
+}
+
+fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_remesh_curve *cv,
+                      size_t nc, double h, double level, flat_domain *fd, fm_error *err,
+                      const char *name)
+{
+    memset(fd, 0, sizeof *fd);
+    double tol = 0.25 * h;
+    taken tk = {0};
+    connector *cn = malloc((2 * nc + 1) * sizeof *cn);
+    unsigned char *snapped = calloc(2 * nc + 1, 1);
+    size_t ncn = 0;
+    fm_status st = FM_OK;
+    if (!cn || !snapped)
+        goto nomem;
+    for (size_t c = 0; c < nc; c++) {
+        if (cv[c].n < 2) {
+            st = fm_error_set(err, FM_ERR_INVALID, name, 0, "shared curve %zu has fewer than 2 nodes",
+                              c);
+            goto done;
+        }
+        for (int e = 0; e < 2; e++) {
+            const double *uv = cv[c].uv + 2 * (e ? cv[c].n - 1 : 0);
+            double P[3], at[2];
+            eval3(s, uv, P);
+            seg_hit hh = nearest_segment(s, dom, P);
+            if (!isfinite(hh.d))
+                continue;
+            if (hh.d <= tol) {
+                if (put_on_loop(s, dom, &hh, uv, level, tol, 1, &tk, at))
+                    goto nomem;
+                snapped[2 * c + (size_t)e] = 1;
+            } else if (cv[c].end) {
+                if (put_on_loop(s, dom, &hh, uv, level, tol, 0, &tk, at))
+                    goto nomem;
+                connector *k = &cn[ncn++];
+                memcpy(k->a, uv, sizeof k->a);
+                memcpy(k->b, at, sizeof k->b);
+                double B[3];
+                eval3(s, at, B);
+                k->level = fabs(P[2] - level) < 1e-6 && fabs(B[2] - level) < 1e-6;
+            }
+        }
+    }
+    /* A curve may cross the sampled outline between its nodes (the
+     * outline's chords are not the plan's outline): the outline, which
+     * belongs to this sheet alone, is rerouted through the curve node
+     * nearer the crossing, so the curve touches it there instead. */
+    for (int pass = 0; pass < 8; pass++) {
+        int changed = 0;
+        for (size_t c = 0; c < nc; c++)
+            for (size_t i = 0; i + 1 < cv[c].n; i++) {
+                const double *p = cv[c].uv + 2 * i, *q = p + 2;
+                int hit = reroute(s, dom, p, q, level, &tk);
+                if (hit < 0)
+                    goto nomem;
+                changed |= hit;
+            }
+        if (!changed)
+            break;
+    }
+    /* flatten: loops first (as domain_triangulate always did), then the
+     * curves' own nodes and segments, then the connectors */
+    size_t nl = 0, extra_p = 0, extra_s = ncn;
+    for (size_t l = 0; l < dom->n; l++)
+        nl += dom->loops[l].n;
+    for (size_t c = 0; c < nc; c++) {
+        extra_p += cv[c].n;
+        extra_s += cv[c].n - 1;
+    }
+    size_t P = nl + extra_p, S = nl + extra_s;
+    fd->uv = malloc(2 * P * sizeof *fd->uv + 1);
+    fd->level = malloc(P * sizeof *fd->level + 1);
+    fd->shared = malloc(P * sizeof *fd->shared + 1);
+    fd->seg = malloc(2 * S * sizeof *fd->seg + 1);
+    fd->segs = malloc(S * sizeof *fd->segs + 1);
+    fd->ends = malloc(4 * S * sizeof *fd->ends + 1);
+    fd->curve = malloc(S * sizeof *fd->curve + 1);
+    fd->end = malloc(S + 1);
+    if (!fd->uv || !fd->level || !fd->shared || !fd->seg || !fd->segs || !fd->ends || !fd->curve ||
+        !fd->end)
+        goto nomem;
+    size_t np = 0, ns = 0;
+    for (size_t l = 0; l < dom->n; l++) {
+        const dom_loop *lp = &dom->loops[l];
+        size_t base = np;
+        for (size_t i = 0; i < lp->n; i++) {
+            memcpy(fd->uv + 2 * np, lp->uv + 2 * i, 2 * sizeof *fd->uv);
+            fd->level[np] = lp->level[i];
+            fd->shared[np] = -1;
+            np++;
+        }
+        for (size_t i = 0; i < lp->n; i++) {
+            size_t k = base + i, nx = base + (i + 1) % lp->n;
+            fd->seg[2 * ns] = (int32_t)k;
+            fd->seg[2 * ns + 1] = (int32_t)nx;
+            fd->segs[ns] = lp->seg[i];
+            memcpy(fd->ends + 4 * ns, lp->uv + 2 * i, 2 * sizeof *fd->ends);
+            memcpy(fd->ends + 4 * ns + 2, lp->uv + 2 * ((i + 1) % lp->n), 2 * sizeof *fd->ends);
+            fd->curve[ns] = -1;
+            fd->end[ns] = 0;
+            ns++;
+        }
+    }
+    fd->n = nl;
+    for (size_t c = 0; c < nc; c++) {
+        int32_t prev = -1;
+        for (size_t i = 0; i < cv[c].n; i++) {
+            const double *uv = cv[c].uv + 2 * i;
+            int32_t pi = -1;
+            /* ends put on the loops, and nodes the loops were rerouted through */
+            pi = find_point(fd, nl, uv);
+            if (pi < 0) {
+                pi = (int32_t)np;
+                memcpy(fd->uv + 2 * np, uv, 2 * sizeof *fd->uv);
+                double Q[3];
+                eval3(s, uv, Q);
+                fd->level[np] = fabs(Q[2] - level) < 1e-6;
+                np++;
+            }
+            fd->shared[pi] = cv[c].node[i];
+            int32_t dup = prev >= 0 ? loop_segment(fd, nl, prev, pi) : -1;
+            if (dup >= 0) {
+                /* the curve runs along the outline here: that piece of the
+                 * outline is the shared curve */
+                fd->segs[dup].kind = SEG_SHARED;
+                fd->curve[dup] = (int32_t)c;
+            } else if (prev >= 0) {
+                fd->seg[2 * ns] = prev;
+                fd->seg[2 * ns + 1] = pi;
+                memset(&fd->segs[ns], 0, sizeof fd->segs[ns]);
+                fd->segs[ns].kind = SEG_SHARED;
+                memcpy(fd->ends + 4 * ns, fd->uv + 2 * prev, 2 * sizeof *fd->ends);
+                memcpy(fd->ends + 4 * ns + 2, uv, 2 * sizeof *fd->ends);
+                fd->curve[ns] = (int32_t)c;
+                fd->end[ns] = (unsigned char)(cv[c].end != 0);
+                ns++;
+            }
+            prev = pi;
+        }
+    }
+    for (size_t k = 0; k < ncn; k++) {
+        int32_t a = find_point(fd, np, cn[k].a), b = find_point(fd, nl, cn[k].b);
+        if (a < 0 || b < 0 || a == b)
+            continue;
+        fd->seg[2 * ns] = a;
+        fd->seg[2 * ns + 1] = b;
+        memset(&fd->segs[ns], 0, sizeof fd->segs[ns]);
+        fd->segs[ns].kind = cn[k].level ? SEG_LEVEL : SEG_FREE;
+        memcpy(fd->ends + 4 * ns, cn[k].a, 2 * sizeof *fd->ends);
+        memcpy(fd->ends + 4 * ns + 2, cn[k].b, 2 * sizeof *fd->ends);
+        fd->curve[ns] = -1;
+        fd->end[ns] = 0;
+        ns++;
+    }
+    fd->npoints = np;
+    fd->nseg = ns;
+    goto done;
+nomem:
+    st = fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
+done:
+    free(tk.uv);
+    free(cn);
+    free(snapped);
+    if (st != FM_OK)
+        flat_free(fd);
+    return st;
+}
+
+/* ---- Which faces of the arrangement are the domain ---- */
+
+static int32_t uf_find(int32_t *par, int32_t a)
+{
+    while (par[a] != a) {
+        par[a] = par[par[a]];
+        a = par[a];
+    }
+    return a;
+}
+
+static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char *keep_out,
+                               fm_error *err);
+
+fm_status join_select(fm_cdt *cdt, const flat_domain *fd, fm_error *err)
+{
+    unsigned char *keep = calloc(fm_cdt_nfaces(cdt) + 1, 1);
+    if (!keep)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    fm_status st = join_classify(cdt, fd, keep, err);
+    if (st == FM_OK)
+        st = fm_cdt_select_faces(cdt, keep, err);
+    free(keep);
+    return st;
+}
+
+/* The domain's boundary after the choice of faces, and the shared curves
+ * inside it; loop pieces and connectors with the domain on both sides are
+ * no constraint any more (a filled gap's old edge would force slivers). */
+fm_status join_reduce(fm_cdt *cdt, flat_domain *fd, fm_error *err)
+{
+    size_t nf = fm_cdt_nfaces(cdt), ns = fd->nseg;
+    unsigned char *keep = calloc(nf + 1, 1);
+    unsigned char *what = calloc(ns + 1, 1); /* 1 boundary, 2 flipped boundary, 3 interior */
+    if (!keep || !what) {
+        free(keep);
+        free(what);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    }
+    fm_status st = join_classify(cdt, fd, keep, err);
+    size_t nb = 0, ni = 0;
+    for (size_t k = 0; k < ns && st == FM_OK; k++) {
+        int32_t l, r;
+        fm_cdt_segment_faces(cdt, k, &l, &r);
+        int kl = l >= 0 && keep[l], kr = r >= 0 && keep[r];
+        if (kl && kr)
+            what[k] = fd->segs[k].kind == SEG_SHARED ? 3 : 0;
+        else if (kl || kr)
+            what[k] = kl ? 1 : 2;
+        nb += what[k] == 1 || what[k] == 2;
+        ni += what[k] == 3;
+    }
+    if (st != FM_OK) {
+        free(keep);
+        free(what);
+        return st;
+    }
+    /* rebuild in place: boundary pieces first, domain on their left */
+    int32_t *seg = malloc(2 * (nb + ni) * sizeof *seg + 1);
+    dom_seg *segs = malloc((nb + ni) * sizeof *segs + 1);
+    double *ends = malloc(4 * (nb + ni) * sizeof *ends + 1);
+    int32_t *curve = malloc((nb + ni) * sizeof *curve + 1);
+    unsigned char *end = malloc(nb + ni + 1);
+    if (!seg || !segs || !ends || !curve || !end) {
+        free(seg), free(segs), free(ends), free(curve), free(end);
+        free(keep);
+        free(what);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    }
+    size_t q = 0;
+    for (int pass = 0; pass < 2; pass++)
+        for (size_t k = 0; k < ns; k++) {
+            int w = what[k];
+            if (pass == 0 ? !(w == 1 || w == 2) : w != 3)
+                continue;
+            int flip = w == 2;
+            seg[2 * q] = fd->seg[2 * k + flip];
+            seg[2 * q + 1] = fd->seg[2 * k + 1 - flip];
+            segs[q] = fd->segs[k];
+            const double *e = fd->ends + 4 * k;
+            if (flip) {
+                double t = segs[q].ta;
+                segs[q].ta = segs[q].tb;
+                segs[q].tb = t;
+                ends[4 * q] = e[2], ends[4 * q + 1] = e[3], ends[4 * q + 2] = e[0],
+                ends[4 * q + 3] = e[1];
+            } else {
+                memcpy(ends + 4 * q, e, 4 * sizeof *ends);
+            }
+            curve[q] = fd->curve[k];
+            end[q] = 0;
+            q++;
+        }
+    /* Points of no remaining segment (the old edge of a filled gap) would
+     * be mesh nodes where no curve runs: they go. */
+    int32_t *map = malloc((fd->npoints + 1) * sizeof *map);
+    if (!map) {
+        free(seg), free(segs), free(ends), free(curve), free(end);
+        free(keep);
+        free(what);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    }
+    for (size_t i = 0; i < fd->npoints; i++)
+        map[i] = -1;
+    for (size_t k = 0; k < 2 * q; k++)
+        map[seg[k]] = 0;
+    size_t np = 0;
+    for (size_t i = 0; i < fd->npoints; i++) {
+        if (map[i] < 0)
+            continue;
+        map[i] = (int32_t)np;
+        memmove(fd->uv + 2 * np, fd->uv + 2 * i, 2 * sizeof *fd->uv);
+        fd->level[np] = fd->level[i];
+        fd->shared[np] = fd->shared[i];
+        np++;
+    }
+    for (size_t k = 0; k < 2 * q; k++)
+        seg[k] = map[seg[k]];
+    free(map);
+    fd->npoints = np;
+    free(fd->seg), free(fd->segs), free(fd->ends), free(fd->curve), free(fd->end);
+    fd->seg = seg;
+    fd->segs = segs;
+    fd->ends = ends;
+    fd->curve = curve;
+    fd->end = end;
+    fd->nseg = q;
+    fd->n = nb;
+    free(keep);
+    free(what);
+    return FM_OK;
+}
+
+static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char *keep_out,
+                               fm_error *err)
+{
+    size_t nf = fm_cdt_nfaces(cdt), ns = fd->nseg;
+    int32_t *par = malloc((nf + 1) * sizeof *par);
+    signed char *in = malloc(nf + 1);
+    unsigned char *drop = calloc(nf + 1, 1), *fill = calloc(nf + 1, 1), *keep = calloc(nf + 1, 1);
+    double *bound_right = calloc(nf + 1, sizeof *bound_right);
+    double *bound_left = calloc(nf + 1, sizeof *bound_left);
+    fm_status st = FM_OK;
+    if (!par || !in || !drop || !fill || !keep || !bound_right || !bound_left) {
+        st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+        goto done;
+    }
+    for (size_t f = 0; f < nf; f++) {
+        par[f] = (int32_t)f;
+        in[f] = -1;
+    }
+    /* Curves and connectors do not bound the domain: the faces on their
+     * two sides are on the same side of the loops. */
+    for (size_t k = fd->n; k < ns; k++) {
+        int32_t l, r;
+        fm_cdt_segment_faces(cdt, k, &l, &r);
+        if (l >= 0 && r >= 0)
+            par[uf_find(par, l)] = uf_find(par, r);
+    }
+    double loop_len = 0;
+    for (size_t k = 0; k < fd->n; k++) {
+        int32_t l, r;
+        fm_cdt_segment_faces(cdt, k, &l, &r);
+        const double *e = fd->ends + 4 * k;
+        double len = hypot(e[2] - e[0], e[3] - e[1]);
+        loop_len += len;
+        /* loops run with the domain on their left */
+        if (l >= 0) {
+            int32_t g = uf_find(par, l);
+            if (in[g] == 0)
+                st = FM_ERR_TOPOLOGY;
+            in[g] = 1;
+            bound_left[l] += len;
+        }
+        if (r >= 0) {
+            int32_t g = uf_find(par, r);
+            if (in[g] == 1)
+                st = FM_ERR_TOPOLOGY;
+            in[g] = 0;
+            bound_right[r] += len;
+        }
+    }
+    if (st != FM_OK) {
+        fm_error_set(err, st, NULL, 0, "shared curves cross the outline");
+        goto done;
+    }
+    for (size_t k = fd->n; k < ns; k++) {
+        if (fd->curve[k] < 0 || !fd->end[k])
+            continue;
+        int32_t l, r;
+        fm_cdt_segment_faces(cdt, k, &l, &r);
+        if (r >= 0 && in[uf_find(par, r)] == 1)
+            drop[r] = 1;
+        if (l >= 0 && in[uf_find(par, l)] != 1)
+            fill[l] = 1;
+    }
+    for (size_t f = 0; f < nf; f++) {
+        int inside = in[uf_find(par, (int32_t)f)] == 1;
+        if (drop[f] && fill[f]) {
+            st = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,
+                              "a shared curve has the sheet on both of its sides");
+            goto done;
+        }
+        /* A flap or a gap is a small part of the outline's length; one that
+         * takes half of it means the curve does not close it off. */
+        if (drop[f] && bound_left[f] > 0.5 * loop_len) {
+            st = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,
+                              "the flap beyond a shared curve would be most of the sheet");
+            goto done;
+        }
+        if (fill[f] && bound_right[f] > 0.5 * loop_len) {
+            st = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,
+                              "the gap before a shared curve is not closed off");
+            goto done;
+        }
+        keep[f] = (unsigned char)((inside && !drop[f]) || fill[f]);
+    }
+    memcpy(keep_out, keep, nf);
+done:
+    free(par);
+    free(in);
+    free(drop);
+    free(fill);
+    free(keep);
+    free(bound_right);
+    free(bound_left);
+    return st;
+}
