@@ -1,6 +1,6 @@
 #!/bin/bash
 # check_connect on `faultmesh demo` output: it must succeed (no
-# --criteria: the demo's faults are not connected yet) and write sane,
+# --criteria here; connect_demo asserts it) and write sane,
 # deterministic JSON. With a Python interpreter the JSON is also read back
 # and its totals, order and counts checked against the OBJ itself.
 # usage: check_connect_demo.sh FAULTMESH CHECK_CONNECT TMPDIR [PYTHON]

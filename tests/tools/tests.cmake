@@ -126,3 +126,13 @@ add_test(NAME check_connect_demo
   COMMAND bash ${FM_TOOLS}/check_connect_demo.sh $<TARGET_FILE:faultmesh_cli> $<TARGET_FILE:check_connect>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/check_connect_demo ${fm_cc_python})
 set_tests_properties(check_connect_demo PROPERTIES TIMEOUT 600)
+# connect_demo: the synthetic system connected by default passes
+# check_connect --criteria (no two faults cross or touch but along shared
+# nodes and edges), its designed T-junctions join with the gap closed and
+# the overshoot trimmed; --no-connect fails the same check.
+if(FM_SYSTEM_PYTHON)
+  add_test(NAME connect_demo
+    COMMAND bash ${FM_TOOLS}/connect_demo_check.sh $<TARGET_FILE:faultmesh_cli> $<TARGET_FILE:check_connect>
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/connect_demo ${FM_SYSTEM_PYTHON})
+  set_tests_properties(connect_demo PROPERTIES TIMEOUT 600)
+endif()

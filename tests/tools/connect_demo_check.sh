@@ -1,0 +1,54 @@
+#!/bin/bash
+# The synthetic system's designed junctions, connected by default: the
+# independent check_connect finds no two faults intersecting anywhere but
+# along shared nodes and edges (--criteria), both designed pairs share
+# nodes, and report.json lists the two T-junctions with the 300 m gap
+# closed and the 400 m overshoot (462 m over the fault's own surface, which
+# meets the main fault at 60 degrees) trimmed. The same demo with
+# --no-connect must fail the check (the overshoot crosses), so the check
+# can fail.
+# usage: connect_demo_check.sh FAULTMESH CHECK_CONNECT TMPDIR PYTHON
+set -u
+exe=$1 check=$2 tmp=$3 py=$4
+rm -rf "$tmp" && mkdir -p "$tmp"
+fail=0
+"$exe" demo --quiet -o "$tmp/on" >"$tmp/on.log" 2>&1 || { echo "FAIL: faultmesh demo"; cat "$tmp/on.log"; exit 1; }
+"$check" --criteria --json "$tmp/on.json" "$tmp/on/mesh.obj" >"$tmp/on.out" 2>&1
+rc=$?
+cat "$tmp/on.out"
+[ "$rc" = 0 ] || { echo "FAIL: connected demo: check_connect --criteria exit $rc"; fail=1; }
+"$exe" demo --quiet --no-connect -o "$tmp/off" >"$tmp/off.log" 2>&1 || { echo "FAIL: faultmesh demo --no-connect"; exit 1; }
+"$check" --criteria "$tmp/off/mesh.obj" >"$tmp/off.out" 2>&1
+rc=$?
+[ "$rc" = 1 ] || { echo "FAIL: unconnected demo: check_connect --criteria exit $rc, expected 1"; fail=1; }
+"$py" - "$tmp/on.json" "$tmp/on/report.json" <<'PY' || fail=1
+import json, sys
+cc = json.load(open(sys.argv[1]))
+rep = json.load(open(sys.argv[2]))
+bad = []
+MAIN = "SYNT-MAIN-SS-Main_strike_slip_fault-SYN1"
+TJ = "SYNT-MAIN-TJNC-T_junction_gap_fault-SYN1"
+XO = "SYNT-MAIN-XOVR-Overshooting_fault-SYN1"
+def find_pair(a, b):
+    for p in cc.get("pairs", []):
+        names = {p.get("a"), p.get("b")} | set(p.get("faults", []))
+        if a in names and b in names:
+            return p
+    return None
+for other in (TJ, XO):
+    p = find_pair(MAIN, other)
+    if p is None or p.get("shared_vertices", 0) < 10:
+        bad.append("%s and %s share fewer than 10 nodes: %s" % (MAIN, other, p))
+js = {tuple(j["faults"]): j for j in rep["connect"]["junctions"]}
+t = js.get((MAIN, TJ))
+if not t or t["type"] != "T" or abs(t["gap_closed_m"] - 300) > 40:
+    bad.append("T-junction gap: %s" % t)
+x = js.get((MAIN, XO))
+if not x or x["type"] != "T" or abs(x["overshoot_trimmed_m"] * 0.8660254 - 400) > 40:
+    bad.append("overshoot: %s" % x)
+for b in bad:
+    print("FAIL:", b)
+sys.exit(1 if bad else 0)
+PY
+[ "$fail" = 0 ] && echo "connect demo: ok" || echo "connect demo: FAILED"
+exit $fail
