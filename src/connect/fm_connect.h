@@ -260,10 +260,13 @@ fm_status fm_connect_find_duplicates(const fm_model *const *models, size_t n,
  * node solved on both surfaces at z = sea level exactly), resampled at H,
  * every node solved onto both surfaces.
  *
- * Junction curves on one sheet must not cross or come within H/4 of one
- * another (where three faults meet, their curves would need a common
- * point); junctions are accepted longest first and a later one that
- * conflicts is left unjoined with that reason. Near-duplicate faults
+ * Where the curves of two junctions on a common sheet cross (or end
+ * within H/4 of each other), three faults meet: the point on all three
+ * surfaces is solved for (Newton on S_A = S_B = S_C) and becomes one node
+ * of both curves, and of the third pair's curve when it passes within H/2.
+ * Otherwise junction curves on one sheet must not cross or come within H/4
+ * of one another; junctions are accepted longest first and a later one
+ * that conflicts is left unjoined with that reason. Near-duplicate faults
  * (fm_connect_find_duplicates) are given up first and join nothing.
  * Deterministic for any thread count. */
 
@@ -313,6 +316,7 @@ typedef struct fm_connect_shared {
 typedef struct fm_connect_plan_stats {
     size_t pairs, curves, junctions[4]; /* by fm_junction_type */
     size_t duplicates;                  /* faults given up as near-duplicates */
+    size_t triple_points;               /* points where junction curves of three faults meet */
     double time_pairs, time_curves, time_total; /* seconds, wall clock */
 } fm_connect_plan_stats;
 

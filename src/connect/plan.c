@@ -208,20 +208,44 @@ static int seg_cross(const double *a, const double *b, const double *c, const do
 
 /* Curve x (side sx) and curve y (side sy) lie on the same sheet: do they
  * cross, touch or come within tol of each other? */
+/* Near a point the two curves share (a keyed node of both), they may
+ * touch: that is where they meet. */
+static int near_common(const pl_curve *x, const pl_curve *y, const double *p, double tol)
+{
+    if (!x->key || !y->key)
+        return 0;
+    for (size_t i = 0; i < x->n; i++) {
+        if (x->key[i] < 0)
+            continue;
+        for (size_t k = 0; k < y->n; k++)
+            if (y->key[k] == x->key[i]) {
+                const double *c = x->xyz + 3 * i;
+                double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
+                if (sqrt(dx * dx + dy * dy + dz * dz) < 2 * tol + 1e-9)
+                    return 1;
+            }
+    }
+    return 0;
+}
+
 static int curves_conflict(const pl_curve *x, int sx, const pl_curve *y, int sy, double tol)
 {
     for (size_t i = 0; i + 1 < x->n; i++)
         for (size_t k = 0; k + 1 < y->n; k++)
             if (seg_cross(x->uv[sx] + 2 * i, x->uv[sx] + 2 * i + 2, y->uv[sy] + 2 * k,
-                          y->uv[sy] + 2 * k + 2))
+                          y->uv[sy] + 2 * k + 2) &&
+                !near_common(x, y, x->xyz + 3 * i, tol) &&
+                !near_common(x, y, x->xyz + 3 * i + 3, tol))
                 return 1;
     for (size_t i = 0; i < x->n; i++)
         for (size_t k = 0; k + 1 < y->n; k++)
-            if (fm_segment_distance3(x->xyz + 3 * i, y->xyz + 3 * k, y->xyz + 3 * k + 3) < tol)
+            if (fm_segment_distance3(x->xyz + 3 * i, y->xyz + 3 * k, y->xyz + 3 * k + 3) < tol &&
+                !near_common(x, y, x->xyz + 3 * i, tol))
                 return 1;
     for (size_t k = 0; k < y->n; k++)
         for (size_t i = 0; i + 1 < x->n; i++)
-            if (fm_segment_distance3(y->xyz + 3 * k, x->xyz + 3 * i, x->xyz + 3 * i + 3) < tol)
+            if (fm_segment_distance3(y->xyz + 3 * k, x->xyz + 3 * i, x->xyz + 3 * i + 3) < tol &&
+                !near_common(x, y, y->xyz + 3 * k, tol))
                 return 1;
     return 0;
 }
@@ -338,24 +362,39 @@ static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, siz
             memset(&res[k].curve[i], 0, sizeof res[k].curve[i]);
         }
     p->njunction = nj;
-    if (resolve_conflicts(p->junction, C, nj, H)) {
+    size_t triples = 0;
+    if (pl_triple_junctions(p->junction, C, nj, models, H, &triples) ||
+        resolve_conflicts(p->junction, C, nj, H)) {
         for (size_t i = 0; i < nj; i++)
             pl_curve_free(&C[i]);
         free(C);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     }
     size_t nc = 0, nn = 0;
+    int64_t nkeys = 0;
     for (size_t i = 0; i < nj; i++)
         if (C[i].n) {
             nc++;
             nn += C[i].n;
+            for (size_t k = 0; C[i].key && k < C[i].n; k++)
+                nkeys = C[i].key[k] + 1 > nkeys ? C[i].key[k] + 1 : nkeys;
         }
+    int64_t *key_id = malloc(((size_t)nkeys + 1) * sizeof *key_id);
+    if (!key_id) {
+        for (size_t i = 0; i < nj; i++)
+            pl_curve_free(&C[i]);
+        free(C);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    }
+    for (int64_t k = 0; k < nkeys; k++)
+        key_id[k] = -1;
     p->curve = calloc(nc + 1, sizeof *p->curve);
     p->nodes = malloc(3 * (nn + 1) * sizeof *p->nodes);
     if (!p->curve || !p->nodes) {
         for (size_t i = 0; i < nj; i++)
             pl_curve_free(&C[i]);
         free(C);
+        free(key_id);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     }
     for (size_t i = 0; i < nj; i++) {
@@ -366,7 +405,27 @@ static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, siz
         pc->c = C[i];
         memset(&C[i], 0, sizeof C[i]);
         size_t m = pc->c.n;
-        memcpy(p->nodes + 3 * p->nnodes, pc->c.xyz, 3 * m * sizeof(double));
+        /* node ids: a keyed node takes the id its key got first */
+        int64_t *id = malloc((m + 1) * sizeof *id);
+        if (!id) {
+            p->ncurve++;
+            for (size_t r = i + 1; r < nj; r++)
+                pl_curve_free(&C[r]);
+            free(C);
+            free(key_id);
+            return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+        }
+        for (size_t k = 0; k < m; k++) {
+            int64_t key = pc->c.key ? pc->c.key[k] : -1;
+            if (key >= 0 && key_id[key] >= 0) {
+                id[k] = key_id[key];
+                continue;
+            }
+            memcpy(p->nodes + 3 * p->nnodes, pc->c.xyz + 3 * k, 3 * sizeof(double));
+            id[k] = (int64_t)p->nnodes++;
+            if (key >= 0)
+                key_id[key] = id[k];
+        }
         for (int s = 0; s < 2; s++) {
             pc->node[s] = malloc(m * sizeof *pc->node[s]);
             pc->uv[s] = malloc(2 * m * sizeof *pc->uv[s]);
@@ -375,21 +434,25 @@ static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, siz
                 for (size_t r = i + 1; r < nj; r++)
                     pl_curve_free(&C[r]);
                 free(C);
+                free(id);
+                free(key_id);
                 return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
             }
             int rev = pc->c.end[s] && !pc->c.keep_left[s];
             for (size_t k = 0; k < m; k++) {
                 size_t from = rev ? m - 1 - k : k;
-                pc->node[s][k] = (int64_t)(p->nnodes + from);
+                pc->node[s][k] = id[from];
                 pc->uv[s][2 * k] = pc->c.uv[s][2 * from];
                 pc->uv[s][2 * k + 1] = pc->c.uv[s][2 * from + 1];
             }
         }
         j->curve = (long)p->ncurve;
-        p->nnodes += m;
+        free(id);
         p->ncurve++;
     }
     free(C);
+    free(key_id);
+    p->stats.triple_points = triples;
     /* per-sheet lists */
     p->nfaults = n;
     p->sheet_base = calloc(n + 1, sizeof *p->sheet_base);

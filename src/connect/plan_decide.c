@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "connect_solve.h"
+#include "fm_predicates.h"
 #include "plan_internal.h"
 
 void pl_curve_free(pl_curve *c)
@@ -15,6 +16,7 @@ void pl_curve_free(pl_curve *c)
     free(c->xyz);
     free(c->uv[0]);
     free(c->uv[1]);
+    free(c->key);
     memset(c, 0, sizeof *c);
 }
 
@@ -384,6 +386,23 @@ static int resample(const decider *d, const run *r, double H, pl_curve *c)
     return 0;
 }
 
+/* 1 when the curve's polyline crosses itself in either sheet's (u, v). */
+static int self_crossing(const pl_curve *c)
+{
+    for (int s = 0; s < 2; s++) {
+        const double *uv = c->uv[s];
+        for (size_t i = 0; i + 1 < c->n; i++)
+            for (size_t k = i + 2; k + 1 < c->n; k++) {
+                const double *a = uv + 2 * i, *b = a + 2, *p = uv + 2 * k, *q = p + 2;
+                int o1 = fm_orient2d(a, b, p), o2 = fm_orient2d(a, b, q);
+                int o3 = fm_orient2d(p, q, a), o4 = fm_orient2d(p, q, b);
+                if (o1 * o2 <= 0 && o3 * o4 <= 0 && (o1 || o2 || o3 || o4))
+                    return 1;
+            }
+    }
+    return 0;
+}
+
 /* Which side of the curve (in a sheet's (u, v), going from node 0 on) the
  * bulk of the sheet lies: the nearest outline point lies towards the bulk
  * from a point in the extension and towards the flap from a point inside. */
@@ -549,6 +568,15 @@ static int decide_curve(decider *d, const fm_connect_curves *cs, size_t ci, size
                     for (int s = 0; s < 2; s++) {
                         c.end[s] = end[s];
                         c.keep_left[s] = end[s] ? keeps_left(d, s, &c) : 1;
+                    }
+                    if (self_crossing(&c)) {
+                        /* surfaces that meet at a grazing angle: their
+                         * intersection zigzags and no mesh can follow it */
+                        pl_curve_free(&c);
+                        why = "the surfaces meet at so small an angle that their intersection "
+                              "folds on itself";
+                        run_free(&below[q]);
+                        continue;
                     }
                     /* gap closed and flap trimmed, over the raw points used */
                     for (int s = 0; s < 2; s++) {

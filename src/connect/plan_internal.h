@@ -34,6 +34,7 @@ typedef struct pl_curve {
     size_t n;
     double *xyz;
     double *uv[2];
+    int64_t *key;     /* per node: a point shared with other curves (-1: none); NULL: none */
     int end[2], keep_left[2];
 } pl_curve;
 
@@ -49,6 +50,11 @@ typedef struct pl_pair_result {
 } pl_pair_result;
 
 void pl_pair_result_free(pl_pair_result *r);
+
+/* Gives the curves of junctions that meet on a common sheet their common
+ * point (plan_triple.c): keyed nodes; *made counts the points. */
+int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
+                        const fm_model *const *models, double H, size_t *made);
 
 /* Intersects the pair's sheets and decides every curve (plan_decide.c). */
 fm_status pl_decide_pair(const fm_model *a, size_t fault_a, size_t sheet_a, const fm_model *b,

@@ -56,6 +56,8 @@ static seg_hit nearest_segment(const fm_fit_surface *s, const remesh_domain *dom
     return best;
 }
 
+static int pt_eq(const double *a, const double *b) { return a[0] == b[0] && a[1] == b[1]; }
+
 /* Loop nodes already taken by a shared node: never moved again. */
 typedef struct taken {
     double *uv;
@@ -86,6 +88,31 @@ static int take(taken *tk, const double *uv)
     return 0;
 }
 
+/* Node i of loop l may move to uv: its two segments then cross no other
+ * loop segment. */
+static int movable(const remesh_domain *dom, size_t l, size_t i, const double uv[2])
+{
+    const dom_loop *lp = &dom->loops[l];
+    size_t n = lp->n;
+    const double *nb[2] = {lp->uv + 2 * ((i + n - 1) % n), lp->uv + 2 * ((i + 1) % n)};
+    for (size_t m = 0; m < dom->n; m++) {
+        const dom_loop *o = &dom->loops[m];
+        for (size_t k = 0; k < o->n; k++) {
+            size_t k1 = (k + 1) % o->n;
+            if (m == l && (k == i || k1 == i))
+                continue;
+            const double *a = o->uv + 2 * k, *b = o->uv + 2 * k1;
+            for (int e = 0; e < 2; e++) {
+                if (a == nb[e] || b == nb[e])
+                    continue;
+                if (segments_cross(uv, nb[e], a, b))
+                    return 0;
+            }
+        }
+    }
+    return 1;
+}
+
 /* Puts uv on segment h of the loops: moves the nearer end node there when
  * it is within tol (and free), else inserts a node. at receives the node's
  * final uv. */
@@ -101,6 +128,12 @@ static int put_on_loop(const fm_fit_surface *s, remesh_domain *dom, const seg_hi
     eval3(s, lp->uv + 2 * ib, B);
     double da = dist3(A, P), db = dist3(B, P);
     size_t near = da <= db ? ia : ib;
+    if (pt_eq(lp->uv + 2 * near, uv)) {
+        /* another curve already ends here (where three faults meet) */
+        at[0] = uv[0];
+        at[1] = uv[1];
+        return 0;
+    }
     /* A connector may end on any node (even one a curve ends on); a curve
      * end moves a node only when no other curve end is there. */
     double fn = da <= db ? h->t : 1 - h->t;
@@ -115,7 +148,8 @@ static int put_on_loop(const fm_fit_surface *s, remesh_domain *dom, const seg_hi
     size_t prev = (near + lp->n - 1) % lp->n;
     int same_kind = lp->seg[prev].kind == lp->seg[near].kind;
     double reach = same_kind ? 2 * tol * 0.9 : tol;
-    if (move && fmin(da, db) <= reach && !is_taken(tk, lp->uv + 2 * near)) {
+    if (move && fmin(da, db) <= reach && !is_taken(tk, lp->uv + 2 * near) &&
+        movable(dom, h->loop, near, uv)) {
         if (move) {
             lp->uv[2 * near] = uv[0];
             lp->uv[2 * near + 1] = uv[1];
@@ -152,8 +186,6 @@ static int put_on_loop(const fm_fit_surface *s, remesh_domain *dom, const seg_hi
     return take(tk, at);
 }
 
-static int pt_eq(const double *a, const double *b) { return a[0] == b[0] && a[1] == b[1]; }
-
 /* Distance in (u, v) from p to segment a-b. */
 static double uv_seg_dist(const double *p, const double *a, const double *b, double *t)
 {
@@ -183,9 +215,17 @@ static int reroute(const fm_fit_surface *s, remesh_domain *dom, const double *p,
             double dp = uv_seg_dist(p, a, b, &tp), dq = uv_seg_dist(q, a, b, &tq);
             const double *c = dp <= dq ? p : q;
             double t = dp <= dq ? tp : tq;
+            int on = 0;
             for (size_t k = 0; k < lp->n; k++)
-                if (pt_eq(lp->uv + 2 * k, c))
-                    return 0; /* already on this loop: a crossing we cannot mend */
+                on |= pt_eq(lp->uv + 2 * k, c);
+            if (on) {
+                /* the nearer node is on the loop already: take the other */
+                c = dp <= dq ? q : p;
+                t = dp <= dq ? tq : tp;
+                for (size_t k = 0; k < lp->n; k++)
+                    if (pt_eq(lp->uv + 2 * k, c))
+                        return 0; /* both are: a crossing we cannot mend */
+            }
             dom_seg s1 = lp->seg[i], s2 = lp->seg[i];
             if (s1.kind == SEG_TRIM) {
                 double tm = s1.ta + t * (s1.tb - s1.ta);
@@ -195,14 +235,80 @@ static int reroute(const fm_fit_surface *s, remesh_domain *dom, const double *p,
             double C[3];
             eval3(s, c, C);
             int lev = s1.kind == SEG_LEVEL || fabs(C[2] - level) < 1e-6;
+            dom_seg s0 = lp->seg[i];
             lp->seg[i] = s1;
             if (loop_insert(lp, i + 1, c, lev, &s2))
                 return -1;
+            if (!movable(dom, l, i + 1, c)) {
+                /* the detour would cross the outline elsewhere: undo it */
+                memmove(lp->uv + 2 * (i + 1), lp->uv + 2 * (i + 2),
+                        2 * (lp->n - i - 2) * sizeof *lp->uv);
+                memmove(lp->level + i + 1, lp->level + i + 2, (lp->n - i - 2) * sizeof *lp->level);
+                memmove(lp->seg + i + 1, lp->seg + i + 2, (lp->n - i - 2) * sizeof *lp->seg);
+                lp->n--;
+                lp->seg[i] = s0;
+                return 0;
+            }
             if (!is_taken(tk, c) && take(tk, c))
                 return -1;
             return 1;
         }
     }
+    return 0;
+}
+
+/* Where segment a-b first crosses a loop segment (from a), other than at
+ * b: that point is put into the loop and returned in out (0); 1 when
+ * nothing crosses; -1 out of memory. */
+static int first_crossing(const fm_fit_surface *s, remesh_domain *dom, const double a[2],
+                          const double b[2], double level, taken *tk, double out[2])
+{
+    double best = INFINITY, bx[2] = {0, 0};
+    size_t bl = 0, bi = 0;
+    double bt = 0;
+    for (size_t l = 0; l < dom->n; l++) {
+        const dom_loop *lp = &dom->loops[l];
+        for (size_t i = 0; i < lp->n; i++) {
+            const double *p = lp->uv + 2 * i, *q = lp->uv + 2 * ((i + 1) % lp->n);
+            if (pt_eq(p, b) || pt_eq(q, b) || pt_eq(p, a) || pt_eq(q, a))
+                continue;
+            if (!segments_cross(a, b, p, q))
+                continue;
+            double d1[2] = {b[0] - a[0], b[1] - a[1]}, d2[2] = {q[0] - p[0], q[1] - p[1]};
+            double den = d1[0] * d2[1] - d1[1] * d2[0];
+            if (den == 0)
+                continue;
+            double ta = ((p[0] - a[0]) * d2[1] - (p[1] - a[1]) * d2[0]) / den;
+            double tp = ((p[0] - a[0]) * d1[1] - (p[1] - a[1]) * d1[0]) / den;
+            if (ta < best) {
+                best = ta;
+                bl = l;
+                bi = i;
+                bt = fmin(1, fmax(0, tp));
+                bx[0] = p[0] + bt * d2[0];
+                bx[1] = p[1] + bt * d2[1];
+            }
+        }
+    }
+    if (!isfinite(best))
+        return 1;
+    dom_loop *lp = &dom->loops[bl];
+    dom_seg s1 = lp->seg[bi], s2 = lp->seg[bi];
+    if (s1.kind == SEG_TRIM) {
+        double tm = s1.ta + bt * (s1.tb - s1.ta);
+        s1.tb = tm;
+        s2.ta = tm;
+    }
+    double X[3];
+    eval3(s, bx, X);
+    int lev = s1.kind == SEG_LEVEL || fabs(X[2] - level) < 1e-6;
+    lp->seg[bi] = s1;
+    if (loop_insert(lp, bi + 1, bx, lev, &s2))
+        return -1;
+    if (!is_taken(tk, bx) && take(tk, bx))
+        return -1;
+    out[0] = bx[0];
+    out[1] = bx[1];
     return 0;
 }
 
@@ -264,6 +370,10 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
                 snapped[2 * c + (size_t)e] = 1;
             } else if (cv[c].end) {
                 if (put_on_loop(s, dom, &hh, uv, level, tol, 0, &tk, at))
+                    goto nomem;
+                /* a connector that would cross the outline on its way ends
+                 * where it first meets it */
+                if (first_crossing(s, dom, uv, at, level, &tk, at) < 0)
                     goto nomem;
                 connector *k = &cn[ncn++];
                 memcpy(k->a, uv, sizeof k->a);
@@ -340,8 +450,9 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
         for (size_t i = 0; i < cv[c].n; i++) {
             const double *uv = cv[c].uv + 2 * i;
             int32_t pi = -1;
-            /* ends put on the loops, and nodes the loops were rerouted through */
-            pi = find_point(fd, nl, uv);
+            /* ends put on the loops, nodes the loops were rerouted through,
+             * and points curves share where three faults meet */
+            pi = find_point(fd, np, uv);
             if (pi < 0) {
                 pi = (int32_t)np;
                 memcpy(fd->uv + 2 * np, uv, 2 * sizeof *fd->uv);
@@ -373,7 +484,8 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
     }
     for (size_t k = 0; k < ncn; k++) {
         int32_t a = find_point(fd, np, cn[k].a), b = find_point(fd, nl, cn[k].b);
-        if (a < 0 || b < 0 || a == b)
+        /* a curve end the outline was rerouted through needs none */
+        if (a < 0 || b < 0 || a == b || (size_t)a < nl)
             continue;
         fd->seg[2 * ns] = a;
         fd->seg[2 * ns + 1] = b;
