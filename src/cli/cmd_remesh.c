@@ -48,6 +48,8 @@ typedef struct fault_result {
     double t_fit, t_mesh, t_check;
     unsigned char *join_failed; /* per sheet: its shared curves did not fit (meshed without) */
     char *join_error;           /* why, for the first such sheet */
+    size_t *dropped_curves;     /* plan curves left out of its meshes */
+    size_t ndropped;
 } fault_result;
 
 static char *dup_str(const char *s)
@@ -144,9 +146,14 @@ static fm_status fit_object(const remesh_cli *cli, const char *path, const fm_me
 /* The shared curves the plan gives each sheet of fault f, as the mesher
  * takes them; *store (free it) holds them. NULL when there are none. */
 static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f,
-                                           const fm_model *m, fm_remesh_curve **store)
+                                           const fm_model *m, fm_remesh_curve **store,
+                                           unsigned char **dropped, size_t **curve_of,
+                                           size_t *ntotal)
 {
     *store = NULL;
+    *dropped = NULL;
+    *curve_of = NULL;
+    *ntotal = 0;
     if (!plan)
         return NULL;
     size_t ns = fm_model_nsheets(m), total = 0;
@@ -158,18 +165,27 @@ static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f
         return NULL;
     fm_remesh_sheet_curves *per = calloc(ns, sizeof *per);
     fm_remesh_curve *cv = malloc(total * sizeof *cv);
-    if (!per || !cv) {
+    *dropped = calloc(total, 1);
+    *curve_of = malloc(total * sizeof **curve_of);
+    if (!per || !cv || !*dropped || !*curve_of) {
         free(per);
         free(cv);
+        free(*dropped);
+        free(*curve_of);
+        *dropped = NULL;
+        *curve_of = NULL;
         return NULL;
     }
+    *ntotal = total;
     size_t k = 0;
     for (size_t i = 0; i < ns; i++) {
         const fm_connect_shared *sh;
         size_t n = fm_connect_plan_sheet(plan, f, i, &sh);
         per[i].curves = cv + k;
         per[i].n = n;
+        per[i].dropped = *dropped + k;
         for (size_t c = 0; c < n; c++, k++) {
+            (*curve_of)[k] = sh[c].curve;
             cv[k].uv = sh[c].uv;
             cv[k].n = sh[c].n;
             cv[k].node = sh[c].node;
@@ -190,7 +206,9 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
     fm_remesh_options mo = cli->mesh;
     mo.name = path;
     fm_remesh_curve *store = NULL;
-    fm_remesh_sheet_curves *per = plan_curves(plan, f, model, &store);
+    unsigned char *dropped = NULL;
+    size_t *curve_of = NULL, ntotal = 0;
+    fm_remesh_sheet_curves *per = plan_curves(plan, f, model, &store, &dropped, &curve_of, &ntotal);
     r->sheets = fm_model_nsheets(model);
     r->join_failed = per ? calloc(r->sheets, 1) : NULL;
     fm_error *jerr = per ? calloc(r->sheets, sizeof *jerr) : NULL;
@@ -203,6 +221,17 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
         if (r->join_failed[i])
             r->join_error = dup_str(jerr[i].message);
     free(jerr);
+    /* the plan curves this fault could not take, for the junction table */
+    for (size_t k = 0; k < ntotal; k++)
+        if (dropped[k]) {
+            size_t *g = realloc(r->dropped_curves, (r->ndropped + 1) * sizeof *g);
+            if (!g)
+                break;
+            r->dropped_curves = g;
+            r->dropped_curves[r->ndropped++] = curve_of[k];
+        }
+    free(dropped);
+    free(curve_of);
     free(per);
     free(store);
     r->fitted_area = fitted_area(model, cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level);
@@ -635,7 +664,10 @@ static fm_junction_type junction_outcome(const run_state *rs, const fm_connect_j
         return jn->type;
     for (int s = 0; s < 2; s++) {
         const fault_result *r = &rs->res[rs->plan_res[jn->fault[s]]];
-        if (r->join_failed && jn->sheet[s] < r->sheets && r->join_failed[jn->sheet[s]]) {
+        int left_out = 0;
+        for (size_t k = 0; k < r->ndropped; k++)
+            left_out |= r->dropped_curves[k] == (size_t)jn->curve;
+        if (left_out) {
             *why = "the curve could not be fitted into the outline of one of the sheets";
             *which = jn->fault[s];
             return FM_JUNCTION_UNJOINED;
@@ -920,6 +952,7 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         free(rs.res[i].error);
         free(rs.res[i].join_failed);
         free(rs.res[i].join_error);
+        free(rs.res[i].dropped_curves);
     }
     free(rs.res);
     free(rs.names);

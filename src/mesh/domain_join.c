@@ -330,6 +330,15 @@ static int32_t loop_segment(const flat_domain *fd, size_t nl, int32_t a, int32_t
     return -1;
 }
 
+static int has_segment(const flat_domain *fd, size_t ns, int32_t a, int32_t b)
+{
+    for (size_t k = 0; k < ns; k++)
+        if ((fd->seg[2 * k] == a && fd->seg[2 * k + 1] == b) ||
+            (fd->seg[2 * k] == b && fd->seg[2 * k + 1] == a))
+            return 1;
+    return 0;
+}
+
 static int32_t find_point(const flat_domain *fd, size_t n, const double uv[2])
 {
     for (size_t i = 0; i < n; i++)
@@ -463,7 +472,10 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
             }
             fd->shared[pi] = cv[c].node[i];
             int32_t dup = prev >= 0 ? loop_segment(fd, nl, prev, pi) : -1;
-            if (dup >= 0) {
+            if (prev == pi || (dup < 0 && prev >= 0 && has_segment(fd, ns, prev, pi))) {
+                /* a zero-length piece, or one another curve already has
+                 * (curves that share points where three faults meet) */
+            } else if (dup >= 0) {
                 /* the curve runs along the outline here: that piece of the
                  * outline is the shared curve */
                 fd->segs[dup].kind = SEG_SHARED;

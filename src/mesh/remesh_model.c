@@ -24,6 +24,73 @@ static int append_ids(int64_t **all, size_t *nall, const int64_t *ids, size_t n)
     return 0;
 }
 
+/* The sheet meshed with the largest set of its curves that fits, built
+ * up one curve at a time (more nodes first); sc->dropped marks the rest. */
+static fm_status fit_some(const fm_model *m, size_t i, const fm_trim_loop **loops, size_t nl,
+                          const fm_remesh_sheet_curves *sc, const fm_remesh_options *opt,
+                          fm_mesh **sheet, int64_t **sid, fm_remesh_stats *s, fm_error *err)
+{
+    size_t nc = sc->n;
+    fm_remesh_curve *use = malloc((nc + 1) * sizeof *use);
+    size_t *order = malloc((nc + 1) * sizeof *order);
+    if (!use || !order) {
+        free(use);
+        free(order);
+        return fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
+    }
+    for (size_t k = 0; k < nc; k++)
+        order[k] = k;
+    for (size_t a = 1; a < nc; a++) /* insertion sort: more nodes first, then index */
+        for (size_t b = a; b > 0 && sc->curves[order[b]].n > sc->curves[order[b - 1]].n; b--) {
+            size_t t = order[b];
+            order[b] = order[b - 1];
+            order[b - 1] = t;
+        }
+    if (sc->dropped)
+        memset(sc->dropped, 1, nc);
+    size_t nu = 0;
+    fm_mesh *best = NULL;
+    int64_t *best_id = NULL;
+    fm_remesh_stats best_st;
+    memset(&best_st, 0, sizeof best_st);
+    fm_status st = FM_OK;
+    for (size_t k = 0; k < nc && st != FM_ERR_NOMEM; k++) {
+        use[nu] = sc->curves[order[k]];
+        fm_mesh *mm = NULL;
+        int64_t *id = NULL;
+        fm_remesh_stats ss;
+        fm_error e2;
+        st = fm_remesh_sheet_joined(fm_model_surface(m, i), loops, nl, use, nu + 1, opt,
+                                    (int32_t)i, &mm, NULL, &id, &ss, &e2);
+        if (st == FM_OK) {
+            fm_mesh_destroy(best);
+            free(best_id);
+            best = mm;
+            best_id = id;
+            best_st = ss;
+            nu++;
+            if (sc->dropped)
+                sc->dropped[order[k]] = 0;
+        } else if (st == FM_ERR_NOMEM) {
+            *err = e2;
+        }
+    }
+    free(use);
+    free(order);
+    if (st == FM_ERR_NOMEM) {
+        fm_mesh_destroy(best);
+        free(best_id);
+        return FM_ERR_NOMEM;
+    }
+    if (!best)
+        return fm_remesh_sheet_joined(fm_model_surface(m, i), loops, nl, NULL, 0, opt, (int32_t)i,
+                                      sheet, NULL, sid, s, err);
+    *sheet = best;
+    *sid = best_id;
+    *s = best_st;
+    return FM_OK;
+}
+
 fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves *curves,
                                  const fm_remesh_options *opt, fm_mesh **out, int64_t **node_out,
                                  unsigned char *join_failed, fm_error *join_errors,
@@ -60,14 +127,17 @@ fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves
         st = fm_remesh_sheet_joined(fm_model_surface(m, i), loops, nl, cv, nc, opt, (int32_t)i,
                                     &sheet, NULL, &sid, &s, err);
         if (st != FM_OK && st != FM_ERR_NOMEM && nc > 0) {
-            /* Curves that do not fit the domain: the sheet is meshed as
-             * it is, and the caller reports the junctions left open. */
+            /* Curves that do not fit the domain together: the sheet takes
+             * as many as fit, longest first (one bad curve should not
+             * leave its other junctions open), and the caller reports the
+             * ones left out. */
             if (join_failed)
                 join_failed[i] = 1;
             if (join_errors)
                 join_errors[i] = *err;
-            st = fm_remesh_sheet_joined(fm_model_surface(m, i), loops, nl, NULL, 0, opt,
-                                        (int32_t)i, &sheet, NULL, &sid, &s, err);
+            st = fit_some(m, i, loops, nl, &curves[i], opt, &sheet, &sid, &s, err);
+        } else if (curves && curves[i].dropped) {
+            memset(curves[i].dropped, 0, nc);
         }
         free(loops);
         if (st != FM_OK)
