@@ -235,6 +235,15 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
     free(per);
     free(store);
     r->fitted_area = fitted_area(model, cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level);
+    /* Shared nodes take the plan's position (on both surfaces), as in the
+     * fault set, so that the check measures what is written. */
+    if (st == FM_OK && plan && *ids) {
+        double *X = fm_mesh_vertices_mut(*fault);
+        const double *P = fm_connect_plan_nodes(plan);
+        for (size_t v = 0; v < fm_mesh_nvertices(*fault); v++)
+            if ((*ids)[v] >= 0)
+                memcpy(X + 3 * v, P + 3 * (*ids)[v], 3 * sizeof *X);
+    }
     double t2 = fm_clock_seconds();
     r->t_mesh = t2 - t1;
     if (st == FM_OK && fm_mesh_ntriangles(*fault) > 0) {

@@ -343,8 +343,10 @@ static int resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj, dou
 /* ---- Assembly ---- */
 
 static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, size_t n,
-                          pl_pair_result *res, size_t npairs, double H, fm_error *err)
+                          pl_pair_result *res, size_t npairs, const fm_connect_plan_options *o,
+                          fm_error *err)
 {
+    double H = o->size;
     size_t nj = 0;
     for (size_t k = 0; k < npairs; k++)
         nj += res[k].n;
@@ -363,7 +365,8 @@ static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, siz
         }
     p->njunction = nj;
     size_t triples = 0;
-    if (pl_triple_junctions(p->junction, C, nj, models, H, &triples) ||
+    if (pl_triple_junctions(p->junction, C, nj, models, H, o->cut ? &o->sea_level : NULL,
+                            &triples) ||
         resolve_conflicts(p->junction, C, nj, H)) {
         for (size_t i = 0; i < nj; i++)
             pl_curve_free(&C[i]);
@@ -590,7 +593,7 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
             }
         }
     if (st == FM_OK)
-        st = assemble(p, models, n, w.res, np, o.size, err);
+        st = assemble(p, models, n, w.res, np, &o, err);
     for (size_t k = 0; k < np; k++)
         pl_pair_result_free(&w.res[k]);
     free(w.res);

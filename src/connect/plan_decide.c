@@ -376,6 +376,10 @@ static int resample(const decider *d, const run *r, double H, pl_curve *c)
             solve_between(d, r->x + 4 * k, r->x + 4 * (k + 1), r->p + 3 * k, r->p + 3 * (k + 1),
                           t, NULL, x, p);
         }
+        /* a node within a metre below sea level is on it (its top edge
+         * then lies on z = 0 in both meshes) */
+        if (d->o->cut && p[2] > d->o->sea_level - 1.0)
+            p[2] = d->o->sea_level;
         memcpy(c->xyz + 3 * q, p, sizeof p);
         for (int sd = 0; sd < 2; sd++) {
             c->uv[sd][2 * q] = x[2 * sd];

@@ -54,7 +54,8 @@ void pl_pair_result_free(pl_pair_result *r);
 /* Gives the curves of junctions that meet on a common sheet their common
  * point (plan_triple.c): keyed nodes; *made counts the points. */
 int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
-                        const fm_model *const *models, double H, size_t *made);
+                        const fm_model *const *models, double H, const double *level,
+                        size_t *made);
 
 /* Intersects the pair's sheets and decides every curve (plan_decide.c). */
 fm_status pl_decide_pair(const fm_model *a, size_t fault_a, size_t sheet_a, const fm_model *b,

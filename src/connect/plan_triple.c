@@ -231,7 +231,8 @@ static int put_point(pl_curve *c, const fm_connect_junction *j, const double T[3
 }
 
 int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
-                        const fm_model *const *models, double H, size_t *made)
+                        const fm_model *const *models, double H, const double *level,
+                        size_t *made)
 {
     *made = 0;
     int64_t next_key = 0;
@@ -288,6 +289,9 @@ int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
                     S[k] = fm_model_surface(models[fs[k][0]], fs[k][1]);
                 double uvs[6], T[3];
                 if (!isfinite(triple_point(S, P, 0.5 * H, uvs, T)))
+                    continue;
+                /* with the top cut, nothing may rise above sea level */
+                if (level && T[2] > *level)
                     continue;
                 if (ensure_keys(a) || ensure_keys(b))
                     return -1;

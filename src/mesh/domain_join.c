@@ -719,6 +719,11 @@ static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char
         if (l >= 0 && in[uf_find(par, l)] != 1)
             fill[l] = 1;
     }
+    const double *area = fm_cdt_face_areas(cdt);
+    double inside_area = 0;
+    for (size_t f = 0; f < nf; f++)
+        if (in[uf_find(par, (int32_t)f)] == 1)
+            inside_area += area[f];
     for (size_t f = 0; f < nf; f++) {
         int inside = in[uf_find(par, (int32_t)f)] == 1;
         if (drop[f] && fill[f]) {
@@ -728,7 +733,7 @@ static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char
         }
         /* A flap or a gap is a small part of the outline's length; one that
          * takes half of it means the curve does not close it off. */
-        if (drop[f] && bound_left[f] > 0.5 * loop_len) {
+        if (drop[f] && (bound_left[f] > 0.5 * loop_len || area[f] > 0.25 * inside_area)) {
             st = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,
                               "the flap beyond a shared curve would be most of the sheet");
             goto done;
