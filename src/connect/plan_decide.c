@@ -193,6 +193,30 @@ static int end_range(const decider *d, int s, double *lo, double *hi)
     if (blen == 0)
         return -1;
     size_t seed = best + blen / 2;
+    /* The gap the sheet closes is the one it has along the curve; where
+     * the curve runs on past the sheet's end the gap grows, and following
+     * it would grow the sheet by up to D beyond its corners: the walk in
+     * the extension stops half a size beyond the median gap. */
+    double *g = malloc((blen + 1) * sizeof *g);
+    size_t ng = 0;
+    if (!g)
+        return -1;
+    for (size_t i = best; i < best + blen; i++)
+        if (!d->inside[s][i])
+            g[ng++] = d->sd[s][i];
+    double limit = D;
+    if (ng) {
+        for (size_t a = 1; a < ng; a++) /* insertion sort: a few hundred values */
+            for (size_t b = a; b > 0 && g[b] < g[b - 1]; b--) {
+                double t = g[b];
+                g[b] = g[b - 1];
+                g[b - 1] = t;
+            }
+        limit = fmin(D, g[ng / 2] + 0.5 * d->o->size);
+    } else {
+        limit = fmin(D, 0.5 * d->o->size);
+    }
+    free(g);
     for (int dir = 0; dir < 2; dir++) {
         size_t i = seed;
         double at = (double)seed;
@@ -206,7 +230,7 @@ static int end_range(const decider *d, int s, double *lo, double *hi)
                 i = j;
                 continue;
             }
-            if (d->sd[s][j] <= D && facing(d, s, i, j)) {
+            if (d->sd[s][j] <= limit && facing(d, s, i, j)) {
                 i = j;
                 continue;
             }
