@@ -41,7 +41,11 @@ static fm_status build_domain(const fm_fit_surface *s, const fm_trim_loop *const
         domain_free(&d0);
         return fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
     }
-    domain_despike(s, &d0, 30.0);
+    /* A merge can leave a spike (the two sides of a slit, their nodes a
+     * metre apart, become one node at its tip): despike again. */
+    do
+        domain_despike(s, &d0, 30.0);
+    while (domain_merge_close(s, &d0, opt->size));
     if (opt->top == FM_TOP_EXTEND) {
         rc = domain_extend_top(s, &d0, opt->sea_level, opt->top_extend, opt->size, &st->extended,
                                err, opt->name);

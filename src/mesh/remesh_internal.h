@@ -69,6 +69,11 @@ int segments_cross(const double *a, const double *b, const double *c, const doub
  * returns), when the chord that replaces them crosses nothing. */
 void domain_despike(const fm_fit_surface *s, remesh_domain *d, double min_angle);
 
+/* Removes one of two consecutive nodes closer than a quarter of h (3D)
+ * when that moves the outline by at most 2 % of h and the new chord
+ * crosses nothing; sea-level nodes stay. Returns the nodes removed. */
+size_t domain_merge_close(const fm_fit_surface *s, remesh_domain *d, double h);
+
 /* in clipped to z <= level; *cut = 1 when anything was above. */
 fm_status domain_clip(const fm_fit_surface *s, const fm_trim_loop *const *loops,
                       const remesh_domain *in, double level, double h, remesh_domain *out,
