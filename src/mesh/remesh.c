@@ -113,7 +113,8 @@ fm_status fm_remesh_sheet(const fm_fit_surface *s, const fm_trim_loop *const *lo
         fm_fit_surface_eval(s, uv[2 * i], uv[2 * i + 1], xyz + 3 * i, NULL, NULL);
     }
     opt_result orr;
-    rc = optimise_mesh(s, uv, xyz, fixed, np, tri, &nt, fm_cdt_edges(cdt), ne,
+    opt_curves cv = {loops, opt->sea_level, fd.segs, fd.ends, pseg, ninput};
+    rc = optimise_mesh(s, uv, xyz, fixed, np, tri, &nt, fm_cdt_edges(cdt), ne, &cv,
                        opt->optimise_passes, opt->size, &orr);
     if (rc != FM_OK)
         goto nomem;
