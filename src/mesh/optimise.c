@@ -275,16 +275,27 @@ static size_t smooth_pass(opt_mesh *m, const size_t *start, const int32_t *list)
 
 fm_status optimise_mesh(const fm_fit_surface *s, double *uv, double *xyz, const unsigned char *fixed,
                         size_t np, int32_t *tri, size_t *nt, const int32_t *cons, size_t ncons,
-                        int passes, double size, opt_result *res)
+                        const opt_curves *cv, int passes, double size, opt_result *res)
 {
     memset(res, 0, sizeof *res);
     opt_mesh m = {s, uv, xyz, fixed, np, *nt, tri, NULL, NULL};
     m.nbr = malloc(3 * m.nt * sizeof *m.nbr + 1);
     m.cons = malloc(3 * m.nt + 1);
-    if (!m.nbr || !m.cons) {
+    /* boundary neighbours along the constrained edges (domain on the left) */
+    int32_t *prev = cv ? malloc(2 * np * sizeof *prev + 1) : NULL, *next = prev ? prev + np : NULL;
+    if (!m.nbr || !m.cons || (cv && !prev)) {
         free(m.nbr);
         free(m.cons);
+        free(prev);
         return FM_ERR_NOMEM;
+    }
+    if (prev) {
+        for (size_t v = 0; v < 2 * np; v++)
+            prev[v] = -1;
+        for (size_t k = 0; k < ncons; k++) {
+            next[cons[2 * k]] = cons[2 * k + 1];
+            prev[cons[2 * k + 1]] = cons[2 * k];
+        }
     }
     fm_status st = build_adjacency(&m, cons, ncons);
     for (int p = 0; st == FM_OK && p < passes; p++) {
@@ -314,8 +325,28 @@ fm_status optimise_mesh(const fm_fit_surface *s, double *uv, double *xyz, const 
     }
     if (st == FM_OK)
         res->flips += flip_pass(&m);
+    /* Boundary nodes slide last, where the passes left angles under 30
+     * degrees: each move and flip raises the smallest angle of the
+     * triangles it changes and nothing else moves, so the mesh differs
+     * from the passes' own only there. */
+    for (int round = 0; prev && st == FM_OK && round < passes; round++) {
+        size_t *start = NULL;
+        int32_t *list = NULL;
+        st = incidence(&m, &start, &list);
+        if (st != FM_OK)
+            break;
+        size_t slid = slide_boundary(s, cv, uv, xyz, np, m.tri, start, list, prev, next, cons,
+                                     ncons);
+        free(start);
+        free(list);
+        res->slid += slid;
+        if (!slid)
+            break;
+        res->flips += flip_pass(&m);
+    }
     *nt = m.nt;
     free(m.nbr);
     free(m.cons);
+    free(prev);
     return st;
 }

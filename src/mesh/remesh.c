@@ -41,7 +41,11 @@ static fm_status build_domain(const fm_fit_surface *s, const fm_trim_loop *const
         domain_free(&d0);
         return fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
     }
-    domain_despike(s, &d0, 30.0);
+    /* A merge can leave a spike (the two sides of a slit, their nodes a
+     * metre apart, become one node at its tip): despike again. */
+    do
+        domain_despike(s, &d0, 30.0);
+    while (domain_merge_close(s, &d0, opt->size));
     if (opt->top == FM_TOP_EXTEND) {
         rc = domain_extend_top(s, &d0, opt->sea_level, opt->top_extend, opt->size, &st->extended,
                                err, opt->name);
@@ -125,7 +129,8 @@ fm_status fm_remesh_sheet_joined(const fm_fit_surface *s, const fm_trim_loop *co
         fm_fit_surface_eval(s, uv[2 * i], uv[2 * i + 1], xyz + 3 * i, NULL, NULL);
     }
     opt_result orr;
-    rc = optimise_mesh(s, uv, xyz, fixed, np, tri, &nt, fm_cdt_edges(cdt), ne,
+    opt_curves cv = {loops, opt->sea_level, fd.segs, fd.ends, pseg, ninput};
+    rc = optimise_mesh(s, uv, xyz, fixed, np, tri, &nt, fm_cdt_edges(cdt), ne, &cv,
                        opt->optimise_passes, opt->size, &orr);
     if (rc != FM_OK)
         goto nomem;

@@ -70,6 +70,11 @@ int segments_cross(const double *a, const double *b, const double *c, const doub
  * returns), when the chord that replaces them crosses nothing. */
 void domain_despike(const fm_fit_surface *s, remesh_domain *d, double min_angle);
 
+/* Removes one of two consecutive nodes closer than a quarter of h (3D)
+ * when that moves the outline by at most 2 % of h and the new chord
+ * crosses nothing; sea-level nodes stay. Returns the nodes removed. */
+size_t domain_merge_close(const fm_fit_surface *s, remesh_domain *d, double h);
+
 /* in clipped to z <= level; *cut = 1 when anything was above. */
 fm_status domain_clip(const fm_fit_surface *s, const fm_trim_loop *const *loops,
                       const remesh_domain *in, double level, double h, remesh_domain *out,
@@ -139,15 +144,41 @@ fm_status domain_triangulate(const fm_fit_surface *s, const fm_trim_loop *const 
 /* Where along input segment k (as a fraction of its chord) a point lies. */
 double chord_fraction(const double *ends, const double p[2]);
 
+/* The curves under the boundary nodes, for moves along them: point k of
+ * the triangulation lies on input segment pseg[k] (-1: none), whose curve
+ * is segs[pseg[k]] between ends[4 pseg[k] ..]; points below ninput are the
+ * domain's own nodes. */
+typedef struct opt_curves {
+    const fm_trim_loop *const *loops;
+    double level;
+    const dom_seg *segs;
+    const double *ends;
+    const int32_t *pseg;
+    size_t ninput;
+} opt_curves;
+
 /* The optimisation stage: flips and smoothing in 3D with nodes on the
- * surface. fixed[i] != 0: node i does not move; constrained edges are the
- * pairs in cons (ncons of them). */
+ * surface. fixed[i] != 0: node i does not move freely; constrained edges
+ * are the pairs in cons (ncons of them, the domain on their left). With
+ * cv (may be NULL), fixed nodes refinement added on a curve slide along it
+ * (slide_boundary). */
 typedef struct opt_result {
-    size_t flips, smoothed, collapsed;
+    size_t flips, smoothed, collapsed, slid;
 } opt_result;
 fm_status optimise_mesh(const fm_fit_surface *s, double *uv, double *xyz, const unsigned char *fixed,
                         size_t np, int32_t *tri, size_t *nt, const int32_t *cons, size_t ncons,
-                        int passes, double size, opt_result *res);
+                        const opt_curves *cv, int passes, double size, opt_result *res);
+
+/* One round of moves of the nodes added on curves (v >= cv->ninput, on a
+ * curve, with boundary neighbours prev[v] and next[v]) whose triangles
+ * have an angle under 30 degrees: each goes to the point of its curve
+ * between the neighbours that makes the smallest 3D angle around it
+ * largest (slide.c). start/list: the triangles around each node. Returns
+ * the nodes moved. */
+size_t slide_boundary(const fm_fit_surface *s, const opt_curves *cv, double *uv, double *xyz,
+                      size_t np, const int32_t *tri, const size_t *start, const int32_t *list,
+                      const int32_t *prev, const int32_t *next, const int32_t *cons,
+                      size_t ncons);
 
 /* One round of collapses of edges shorter than 0.7 size into a free end
  * (collapse.c); tri is compacted and *nt updated. Returns the count;

@@ -5,8 +5,10 @@
  * top edge exactly on z = 0, the analytic area below sea level), --top keep
  * and --top extend, a sheet wholly above sea level, quality and size in 3D,
  * nodes on the true surface, the (u, v) contract of fm_remesh_sheet, bad
- * arguments, determinism, and an outline with bends rounded too wide to
- * be corners, sampled without cutting them off. */
+ * arguments, determinism, an outline with bends rounded too wide to be
+ * corners, sampled without cutting them off, and one with a slit whose
+ * sides are metres apart, meshed without slivers. */
+#include "fm_check.h"
 #include "fm_mesh.h"
 #include "fm_model.h"
 #include "fm_remesh.h"
@@ -539,6 +541,101 @@ static void test_rounded_outline(void)
     fm_model_destroy(model);
 }
 
+/* Appends the points from a to b (b excluded) at about `step` apart. */
+static size_t add_side(double *uv, size_t n, const double a[2], const double b[2], double step)
+{
+    int m = (int)ceil(hypot(b[0] - a[0], b[1] - a[1]) / step);
+    for (int i = 0; i < m; i++) {
+        uv[2 * n] = a[0] + (b[0] - a[0]) * i / m;
+        uv[2 * n + 1] = a[1] + (b[1] - a[1]) * i / m;
+        n++;
+    }
+    return n;
+}
+
+/* A rectangle of 6 x 4 km with a slit 2 km long out of its top side, 3 m
+ * wide at its base (a spike of the outline, as on a Rose Canyon sheet,
+ * whose despiked base left two corners 3 m apart and a 2.7 degree
+ * triangle at 1 km). Despiking takes the slit's tip off and leaves the
+ * nodes half way up its sides 1.5 m apart; one of them goes
+ * (domain_merge_close), the other is then a tip despiking takes off, and
+ * so on down to the base. No outline edge is left shorter than a quarter
+ * size, and no 3D angle is under 20 degrees but at the outline's sharp
+ * corners (65 triangles were without the merge). */
+static void test_close_corners(void)
+{
+    fm_model *model = build_model(&DIPPING);
+    if (!model)
+        return;
+    const fm_fit_surface *s = fm_model_surface(model, 0);
+    double dom[4];
+    fm_fit_surface_domain(s, dom);
+    double c[2] = {0.5 * (dom[0] + dom[1]), 0.5 * (dom[2] + dom[3])};
+    double P[][2] = {{-3000, -2000}, {3000, -2000}, {3000, 2000}, {503, 2000},
+                     {300, 4000},    {500, 2000},   {-3000, 2000}};
+    size_t np = sizeof P / sizeof P[0];
+    double *uv = malloc(2 * 4096 * sizeof *uv);
+    unsigned char *corner = calloc(4096, 1);
+    size_t n = 0;
+    for (size_t k = 0; k < np; k++) {
+        double a[2] = {c[0] + P[k][0], c[1] + P[k][1]};
+        double b[2] = {c[0] + P[(k + 1) % np][0], c[1] + P[(k + 1) % np][1]};
+        corner[n] = 1;
+        n = add_side(uv, n, a, b, 50);
+    }
+    fm_trim_options to;
+    fm_trim_options_default(&to);
+    to.corner_at = corner;
+    fm_trim_loop *loop = NULL;
+    fm_error err;
+    fm_error_clear(&err);
+    CHECK_EQ(fm_trim_fit(uv, n, &to, &loop, &err), FM_OK);
+    free(uv);
+    free(corner);
+    if (!loop) {
+        fm_model_destroy(model);
+        return;
+    }
+    const fm_trim_loop *loops[1] = {loop};
+    remesh_domain d;
+    CHECK_EQ(domain_sample(s, loops, 1, H, &d, &err, "slit"), FM_OK);
+    CHECK_EQ(domain_split_sags(s, loops, &d, H), 0);
+    domain_despike(s, &d, 30.0);
+    double before = INFINITY, after = INFINITY;
+    for (size_t i = 0; i < d.loops[0].n; i++)
+        before = fmin(before, surface_dist(s, d.loops[0].uv + 2 * i,
+                                           d.loops[0].uv + 2 * ((i + 1) % d.loops[0].n)));
+    /* as build_domain does: a merge can leave a spike to take off */
+    while (domain_merge_close(s, &d, H))
+        domain_despike(s, &d, 30.0);
+    for (size_t i = 0; i < d.loops[0].n; i++)
+        after = fmin(after, surface_dist(s, d.loops[0].uv + 2 * i,
+                                         d.loops[0].uv + 2 * ((i + 1) % d.loops[0].n)));
+    printf("slit: shortest outline edge %.1f m after despiking, %.1f m after merging\n", before,
+           after);
+    CHECK(before < 10);
+    CHECK(after >= 0.25 * H);
+    domain_free(&d);
+
+    fm_remesh_options opt;
+    fm_remesh_options_default(&opt);
+    opt.size = H;
+    opt.top = FM_TOP_KEEP;
+    fm_mesh *m = NULL;
+    fm_remesh_stats st;
+    CHECK_EQ(fm_remesh_sheet(s, loops, 1, &opt, 0, &m, NULL, &st, &err), FM_OK);
+    if (m) {
+        fm_quality q;
+        CHECK_EQ(fm_check_quality(m, -1, H, &q), FM_OK);
+        printf("slit: %zu triangles, min angle %.1f deg, %zu under 20 deg (%zu at sharp corners)\n",
+               fm_mesh_ntriangles(m), q.angle_min, q.below_20, q.below_20_forced);
+        CHECK_EQ(q.below_20, q.below_20_forced);
+    }
+    fm_mesh_destroy(m);
+    fm_trim_loop_destroy(loop);
+    fm_model_destroy(model);
+}
+
 /* Same input, same output, to the bit (two models built from scratch). */
 static void test_determinism(void)
 {
@@ -571,4 +668,5 @@ static void test_determinism(void)
 
 FM_TEST_MAIN(FM_CASE(test_cut_plane), FM_CASE(test_keep), FM_CASE(test_extend),
              FM_CASE(test_above_sea_level), FM_CASE(test_cylinder), FM_CASE(test_sheet_uv),
-             FM_CASE(test_determinism), FM_CASE(test_rounded_outline))
+             FM_CASE(test_determinism), FM_CASE(test_rounded_outline),
+             FM_CASE(test_close_corners))
