@@ -156,24 +156,24 @@ typedef struct chord_rhs {
 static void add_sample_rhs(void *ctx, const fm_fit_sample *smp)
 {
     chord_rhs *q = ctx;
-    double u = smp->u, v = smp->v, weight = smp->weight;
+    double weight = smp->weight;
     const double *chord = smp->chord;
     const fm_fit_surface *s = q->s;
     int p = s->p;
-    double tu, tv, Nu[3][FM_FIT_MAX_DEGREE + 1], Nv[3][FM_FIT_MAX_DEGREE + 1];
-    size_t ju = fm_fit_locate(u, s->u0, s->s, s->nsu, &tu);
-    size_t jv = fm_fit_locate(v, s->v0, s->s, s->nsv, &tv);
-    fm_fit_basis_values(p, tu, Nu);
-    fm_fit_basis_values(p, tv, Nv);
+    /* One span lookup and basis for every component; the values N[0] of
+     * the basis with derivatives are those of the basis without. */
+    fm_fit_at at;
+    fm_fit_basis_at(s, smp->u, smp->v, 1, &at);
+    size_t ju = at.ju, jv = at.jv;
     for (int c = 0; c < s->ncomp; c++) {
         double d[5];
-        fm_fit_component(s, c, u, v, d);
+        fm_fit_component_at(s, c, &at, d);
         double fc = smp->val[c] - (chord[0] * d[2] + 2 * chord[1] * d[3] + chord[2] * d[4]);
         for (int b = 0; b <= p; b++) {
             double *r = q->rhs + (size_t)c * q->ncoef + (jv + (size_t)b) * s->nu + ju;
-            double wb = weight * fc * Nv[0][b];
+            double wb = weight * fc * at.Nv[0][b];
             for (int a = 0; a <= p; a++)
-                r[a] += wb * Nu[0][a];
+                r[a] += wb * at.Nu[0][a];
         }
     }
 }

@@ -43,6 +43,17 @@ void fm_fit_local_eval(const fm_fit_surface *s, double u, double v, double P[3],
  * NULL, d = {f_u, f_v, f_uu, f_uv, f_vv}. */
 double fm_fit_component(const fm_fit_surface *s, int comp, double u, double v, double d[5]);
 
+/* The spans and basis values at (u, v) (derivatives too when deriv), for
+ * evaluating several components at one point: fm_fit_component_at gives
+ * exactly what fm_fit_component does (d only when at->deriv). */
+typedef struct fm_fit_at {
+    size_t ju, jv;
+    int deriv;
+    double Nu[3][FM_FIT_MAX_DEGREE + 1], Nv[3][FM_FIT_MAX_DEGREE + 1];
+} fm_fit_at;
+void fm_fit_basis_at(const fm_fit_surface *s, double u, double v, int deriv, fm_fit_at *at);
+double fm_fit_component_at(const fm_fit_surface *s, int comp, const fm_fit_at *at, double d[5]);
+
 /* Closest point by Newton iteration from the start parameters uv (updated
  * in place); q in frame coordinates. */
 fm_status fm_fit_project_from(const fm_fit_surface *s, const double q[3], double uv[2],
