@@ -16,10 +16,11 @@
  * fm_check_fidelity). Read, repair and fit are done once and shared by the
  * sizes; a size's pipeline time is read + repair + fit + its mesh + its
  * check. Printed per size: faults meshed and failed, triangles, mesh time
- * and triangles per second, check time, pipeline time; how mesh time grows
- * with a fault's triangle count (least-squares slope of log time over log
- * triangles across faults, and time per triangle by size class); the
- * slowest faults; and the wall and CPU time of the whole run and its peak RSS
+ * and triangles per second, check time, pipeline time (every stage also in
+ * CPU time of the thread, which other load on the machine hardly moves);
+ * how mesh time grows with a fault's triangle count (least-squares slope
+ * of log time over log triangles across faults, and time per triangle by
+ * size class); the slowest faults; and the wall and CPU time of the whole run and its peak RSS
  * (getrusage; with several sizes it covers all of them: run with one -s
  * for a size's own peak). Exit 1 if any fault failed, 2 on bad usage or
  * unreadable input. */
@@ -52,10 +53,12 @@ typedef struct size_totals {
     size_t tris, nodes, meshed, empty, failed;
     size_t below30, edges, band;
     double mesh, check, worst_dist;
+    double cpu_mesh, cpu_check;
 } size_totals;
 
 typedef struct totals {
     double read, repair, fit;
+    double cpu_read, cpu_repair, cpu_fit;
     size_t objects, fit_failed, in_triangles;
 } totals;
 
@@ -79,10 +82,11 @@ static void mesh_sizes(const fm_model *model, const fm_mesh *orig, const char *n
         fm_remesh_stats ms;
         fm_error err;
         fm_error_clear(&err);
-        double t0 = fm_clock_seconds();
+        double t0 = fm_clock_seconds(), c0 = bench_thread_cpu_seconds();
         fm_status rc = fm_remesh_model(model, &mo, &mesh, &ms, &err);
-        double t1 = fm_clock_seconds();
+        double t1 = fm_clock_seconds(), c1 = bench_thread_cpu_seconds();
         st[k].mesh += t1 - t0;
+        st[k].cpu_mesh += c1 - c0;
         fr->t_mesh[k] += t1 - t0;
         if (rc != FM_OK) {
             fprintf(stderr, "bench_remesh: H %g: %s\n", st[k].H, err.message);
@@ -114,6 +118,7 @@ static void mesh_sizes(const fm_model *model, const fm_mesh *orig, const char *n
         }
         fm_closest_tree_destroy(tree);
         st[k].check += fm_clock_seconds() - t1;
+        st[k].cpu_check += bench_thread_cpu_seconds() - c1;
         fm_mesh_destroy(mesh);
     }
 }
@@ -125,12 +130,13 @@ static int run_file(const char *path, fault_run *fr, totals *tot, size_totals *s
     size_t nobj = 0;
     fm_error err;
     fm_error_clear(&err);
-    double t0 = fm_clock_seconds();
+    double t0 = fm_clock_seconds(), c0 = bench_thread_cpu_seconds();
     if (fm_tsurf_read_file(path, &objs, &nobj, &err) != FM_OK) {
         fprintf(stderr, "bench_remesh: %s\n", err.message);
         return -1;
     }
     tot->read += fm_clock_seconds() - t0;
+    tot->cpu_read += bench_thread_cpu_seconds() - c0;
     const char *base = strrchr(path, '/');
     fr->name = strdup(base ? base + 1 : path);
     for (size_t o = 0; o < nobj; o++) {
@@ -138,11 +144,12 @@ static int run_file(const char *path, fault_run *fr, totals *tot, size_totals *s
         fr->in_triangles += fm_mesh_ntriangles(orig);
         tot->in_triangles += fm_mesh_ntriangles(orig);
         tot->objects++;
-        double ta = fm_clock_seconds();
+        double ta = fm_clock_seconds(), ca = bench_thread_cpu_seconds();
         fm_surface *surf = NULL;
         fm_status rc = fm_repair(orig, NULL, &surf, &err);
-        double tb = fm_clock_seconds();
+        double tb = fm_clock_seconds(), cb = bench_thread_cpu_seconds();
         tot->repair += tb - ta;
+        tot->cpu_repair += cb - ca;
         fm_model *model = NULL;
         if (rc == FM_OK) {
             fm_model_options mo;
@@ -150,6 +157,7 @@ static int run_file(const char *path, fault_run *fr, totals *tot, size_totals *s
             rc = fm_model_build(path, surf, &mo, &model, &err);
         }
         tot->fit += fm_clock_seconds() - tb;
+        tot->cpu_fit += bench_thread_cpu_seconds() - cb;
         if (rc != FM_OK) {
             fprintf(stderr, "bench_remesh: %s\n", err.message);
             tot->fit_failed++;
@@ -295,6 +303,8 @@ int main(int argc, char **argv)
            tot.in_triangles);
     printf("shared stages: read %.2f s, repair %.2f s, fit %.2f s (%zu fit failures)\n",
            tot.read, tot.repair, tot.fit, tot.fit_failed);
+    printf("  CPU: read %.2f s, repair %.2f s, fit %.2f s\n", tot.cpu_read, tot.cpu_repair,
+           tot.cpu_fit);
     size_t failed = 0;
     for (size_t k = 0; k < nsizes; k++) {
         size_totals *s = &st[k];
@@ -307,6 +317,8 @@ int main(int argc, char **argv)
                "mesh + check %.2f s\n",
                s->mesh, s->mesh > 0 ? (double)s->tris / s->mesh : 0, s->check,
                shared + s->mesh + s->check);
+        printf("  CPU: mesh %.2f s, check %.2f s; pipeline %.2f s\n", s->cpu_mesh, s->cpu_check,
+               tot.cpu_read + tot.cpu_repair + tot.cpu_fit + s->cpu_mesh + s->cpu_check);
         printf("  quality: below 30 deg %.3f%%, edges in band %.2f%%, worst node distance %.1f m\n",
                s->tris ? 100.0 * (double)s->below30 / (double)s->tris : 0,
                s->edges ? 100.0 * (double)s->band / (double)s->edges : 0, s->worst_dist);

@@ -1,7 +1,7 @@
 /* The normal equations of the smoothing fit. Every coefficient couples only
  * with the (2p+1)^2 coefficients around it, so the matrix is accumulated in
- * that stencil (one dense row of offsets per coefficient, upper half only)
- * and only then laid out in compressed columns for the solver. */
+ * that stencil (one dense row per coefficient of the offsets of its upper
+ * half) and only then laid out in compressed columns for the solver. */
 #include "fit_internal.h"
 #include "fm_clock.h"
 
@@ -20,21 +20,32 @@
 
 typedef struct normal_eq {
     const fm_fit_surface *s;
-    double *A;    /* ncoef x W^2: A[i][(dv + p) W + du + p] = entry (i, i + du + dv nu) */
+    double *A;    /* ncoef x NS: A[i][stencil(du, dv)] = entry (i, i + du + dv nu) */
     double *rhs;  /* ncomp blocks of ncoef */
     size_t ncoef;
     int ncomp;
     int W;
+    size_t NS;    /* upper-half stencil: p + 1 + p W offsets */
     double *span_area, *span_bend; /* per span: sum of weights, of weight x bending weight */
     int nb;                        /* coefficients alive on a span, (p + 1)^2 */
     size_t coef_off[NB_MAX];       /* k -> coefficient index relative to the span's first */
     size_t stencil_off[NB_MAX][NB_MAX]; /* (k1, k2 >= k1) -> offset in A's row of k1 */
     /* Samples of one triangle mostly share a span: they are summed into a
-     * small dense block first and added to A when the span changes. */
-    int open;
+     * small dense block first and added to A when the span changes. The
+     * first sample of a block sets it (0 + x is x; a -0 there adds to A as
+     * +0 would), so a flushed block needs no clearing. */
+    int open, fresh;
     size_t ju, jv;
     double blk[NB_MAX * NB_MAX], brhs[3][NB_MAX];
 } normal_eq;
+
+/* Where entry (i, i + du + dv nu), dv >= 0 and du >= 0 when dv == 0, lies
+ * in the row of i: that row of the grid first, then the p rows above. */
+static size_t stencil(int p, int du, int dv)
+{
+    return dv == 0 ? (size_t)du : (size_t)(p + 1) + (size_t)(dv - 1) * (size_t)(2 * p + 1) +
+                                      (size_t)(du + p);
+}
 
 double fm_fit_bending_weight(double g2)
 {
@@ -53,7 +64,7 @@ static void init_tables(normal_eq *q)
          * the same row to the right. */
         for (int k2 = k1; k2 < q->nb; k2++) {
             int a2 = k2 % n1, b2 = k2 / n1;
-            q->stencil_off[k1][k2] = (size_t)(b2 - b1 + p) * (size_t)q->W + (size_t)(a2 - a1 + p);
+            q->stencil_off[k1][k2] = stencil(p, a2 - a1, b2 - b1);
         }
     }
 }
@@ -61,9 +72,9 @@ static void init_tables(normal_eq *q)
 /* Adds the upper half of a span block (nb x nb, row-major) times scale to A. */
 static void scatter(normal_eq *q, size_t ju, size_t jv, const double *blk, double scale)
 {
-    size_t base = jv * q->s->nu + ju, WW = (size_t)q->W * (size_t)q->W;
+    size_t base = jv * q->s->nu + ju;
     for (int k1 = 0; k1 < q->nb; k1++) {
-        double *Ar = q->A + (base + q->coef_off[k1]) * WW;
+        double *Ar = q->A + (base + q->coef_off[k1]) * q->NS;
         const double *br = blk + k1 * q->nb;
         for (int k2 = k1; k2 < q->nb; k2++)
             Ar[q->stencil_off[k1][k2]] += scale * br[k2];
@@ -79,8 +90,6 @@ static void flush(normal_eq *q)
     for (int c = 0; c < q->ncomp; c++)
         for (int k = 0; k < q->nb; k++)
             q->rhs[(size_t)c * q->ncoef + base + q->coef_off[k]] += q->brhs[c][k];
-    memset(q->blk, 0, (size_t)(q->nb * q->nb) * sizeof q->blk[0]);
-    memset(q->brhs, 0, sizeof q->brhs);
     q->open = 0;
 }
 
@@ -95,6 +104,7 @@ static void add_sample(void *ctx, const fm_fit_sample *smp)
     if (!q->open || ju != q->ju || jv != q->jv) {
         flush(q);
         q->open = 1;
+        q->fresh = 1;
         q->ju = ju;
         q->jv = jv;
     }
@@ -106,6 +116,18 @@ static void add_sample(void *ctx, const fm_fit_sample *smp)
     for (int b = 0; b <= p; b++)
         for (int a = 0; a <= p; a++)
             phi[b * (p + 1) + a] = Nu[0][a] * Nv[0][b];
+    if (q->fresh) {
+        for (int k1 = 0; k1 < nb; k1++) {
+            double wp = smp->weight * phi[k1];
+            for (int c = 0; c < q->ncomp; c++)
+                q->brhs[c][k1] = wp * smp->val[c];
+            double *br = q->blk + k1 * nb;
+            for (int k2 = k1; k2 < nb; k2++)
+                br[k2] = wp * phi[k2];
+        }
+        q->fresh = 0;
+        return;
+    }
     for (int k1 = 0; k1 < nb; k1++) {
         double wp = smp->weight * phi[k1];
         for (int c = 0; c < q->ncomp; c++)
@@ -156,24 +178,24 @@ typedef struct chord_rhs {
 static void add_sample_rhs(void *ctx, const fm_fit_sample *smp)
 {
     chord_rhs *q = ctx;
-    double u = smp->u, v = smp->v, weight = smp->weight;
+    double weight = smp->weight;
     const double *chord = smp->chord;
     const fm_fit_surface *s = q->s;
     int p = s->p;
-    double tu, tv, Nu[3][FM_FIT_MAX_DEGREE + 1], Nv[3][FM_FIT_MAX_DEGREE + 1];
-    size_t ju = fm_fit_locate(u, s->u0, s->s, s->nsu, &tu);
-    size_t jv = fm_fit_locate(v, s->v0, s->s, s->nsv, &tv);
-    fm_fit_basis_values(p, tu, Nu);
-    fm_fit_basis_values(p, tv, Nv);
+    /* One span lookup and basis for every component; the values N[0] of
+     * the basis with derivatives are those of the basis without. */
+    fm_fit_at at;
+    fm_fit_basis_at(s, smp->u, smp->v, 1, &at);
+    size_t ju = at.ju, jv = at.jv;
     for (int c = 0; c < s->ncomp; c++) {
         double d[5];
-        fm_fit_component(s, c, u, v, d);
+        fm_fit_component_at(s, c, &at, d);
         double fc = smp->val[c] - (chord[0] * d[2] + 2 * chord[1] * d[3] + chord[2] * d[4]);
         for (int b = 0; b <= p; b++) {
             double *r = q->rhs + (size_t)c * q->ncoef + (jv + (size_t)b) * s->nu + ju;
-            double wb = weight * fc * Nv[0][b];
+            double wb = weight * fc * at.Nv[0][b];
             for (int a = 0; a <= p; a++)
-                r[a] += wb * Nu[0][a];
+                r[a] += wb * at.Nu[0][a];
         }
     }
 }
@@ -200,9 +222,10 @@ fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_fit_pmesh *pm, d
     memset(&q, 0, sizeof q);
     q.s = s;
     q.W = W;
+    q.NS = (size_t)(p + 1) + (size_t)p * (size_t)W;
     q.ncoef = n;
     q.ncomp = s->ncomp;
-    q.A = calloc(n * WW, sizeof(double));
+    q.A = calloc(n * q.NS, sizeof(double));
     q.rhs = calloc((size_t)s->ncomp * n, sizeof(double));
     q.span_area = calloc(nspans, sizeof(double));
     q.span_bend = calloc(nspans, sizeof(double));
@@ -239,7 +262,7 @@ fm_status fm_fit_solve_coefficients(fm_fit_surface *s, const fm_fit_pmesh *pm, d
                     size_t row = rv * s->nu + ru;
                     int du = (int)cu - (int)ru, dv = (int)(cv - rv);
                     rowind[nnz] = row;
-                    val[nnz] = q.A[row * WW + (size_t)(dv + p) * (size_t)W + (size_t)(du + p)];
+                    val[nnz] = q.A[row * q.NS + stencil(p, du, dv)];
                     nnz++;
                 }
             }

@@ -2,6 +2,7 @@
 #include "fit_internal.h"
 #include "fm_clock.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -302,13 +303,6 @@ static void work_free(work *w)
     free(w->used);
 }
 
-static fm_status fail(fm_fit_surface *s, work *w, fm_status st)
-{
-    fm_fit_surface_destroy(s);
-    work_free(w);
-    return st;
-}
-
 /* Parameters and values of the chosen kind; vertices the triangles do not
  * use keep their plane projection (they take no part). */
 static fm_status parameterize(fm_fit_surface *s, const fm_mesh *sheet, work *w,
@@ -404,14 +398,35 @@ static fm_status make_starts(fm_fit_surface *s)
     return FM_OK;
 }
 
-static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
-                                fm_fit_surface **out, fm_error *err)
+/* One fit of one kind, run in stages so that a caller can look at it
+ * before it is finished (fm_fit_pending): begun up to the first solve,
+ * passes solved up to a refinement limit, then finished. */
+typedef struct fit_run {
+    fm_fit_surface *s;
+    work w;
+    fm_fit_options opt;
+    double ext[4], sp, lambda, prev_rms;
+    int refine, blend;
+    int pass;   /* the pass being worked on */
+    int solved; /* pass `pass` is solved, its refinement decision not yet taken */
+    int done;   /* no pass follows */
+    double time; /* active time so far */
+} fit_run;
+
+static void run_destroy(fit_run *r)
 {
-    fm_fit_options defaults;
-    if (!opt) {
-        fm_fit_options_default(&defaults);
-        opt = &defaults;
-    }
+    if (!r)
+        return;
+    fm_fit_surface_destroy(r->s);
+    work_free(&r->w);
+    free(r);
+}
+
+/* The options check, frame (computed unless given: it must be the one of
+ * opt->frame), parameters and grid spacing of fm_fit_sheet's fit. */
+static fm_status run_begin(const fm_mesh *sheet, const fm_fit_options *opt,
+                           const fm_fit_frame *frame, fit_run **out, fm_error *err)
+{
     const char *name = opt->name;
     *out = NULL;
     if (!sheet)
@@ -442,18 +457,29 @@ static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
         return fm_error_set(err, FM_ERR_INVALID, name, 0, "fit: max_control_points too small");
 
     double t_start = fm_clock_seconds();
-    work w;
-    memset(&w, 0, sizeof w);
+    fit_run *r = calloc(1, sizeof *r);
     fm_fit_surface *s = calloc(1, sizeof *s);
-    if (!s)
+    if (!r || !s) {
+        free(r);
+        free(s);
         return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory");
-    fm_status st = fm_fit_reference_frame(sheet, &opt->frame, &s->frame, err);
-    if (st != FM_OK) {
-        if (err && name) { /* put the sheet's name in front of the frame's message */
-            fm_error tmp = *err;
-            fm_error_set(err, st, name, 0, "%s", tmp.message);
+    }
+    r->s = s;
+    r->opt = *opt;
+    work *w = &r->w;
+    fm_status st = FM_OK;
+    if (frame) {
+        s->frame = *frame;
+    } else {
+        st = fm_fit_reference_frame(sheet, &opt->frame, &s->frame, err);
+        if (st != FM_OK) {
+            if (err && name) { /* put the sheet's name in front of the frame's message */
+                fm_error tmp = *err;
+                fm_error_set(err, st, name, 0, "%s", tmp.message);
+            }
+            run_destroy(r);
+            return st;
         }
-        return fail(s, &w, st);
     }
     s->p = p;
     s->stats.degree = p;
@@ -463,35 +489,41 @@ static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
     const double *X = fm_mesh_vertices(sheet);
     const int32_t *T = fm_mesh_triangles(sheet);
     size_t nt = fm_mesh_ntriangles(sheet), nv = fm_mesh_nvertices(sheet);
-    w.pm.nv = nv;
-    w.pm.nt = nt;
-    w.pm.tri = T;
-    w.local = malloc((nv ? nv : 1) * 3 * sizeof *w.local);
-    w.pm.uv = malloc((nv ? nv : 1) * 2 * sizeof *w.pm.uv);
-    w.used = calloc(nv ? nv : 1, 1);
-    if (!w.local || !w.pm.uv || !w.used || median_edge(sheet, &s->stats.edge_median) != FM_OK)
-        return fail(s, &w, fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory"));
+    w->pm.nv = nv;
+    w->pm.nt = nt;
+    w->pm.tri = T;
+    w->local = malloc((nv ? nv : 1) * 3 * sizeof *w->local);
+    w->pm.uv = malloc((nv ? nv : 1) * 2 * sizeof *w->pm.uv);
+    w->used = calloc(nv ? nv : 1, 1);
+    if (!w->local || !w->pm.uv || !w->used || median_edge(sheet, &s->stats.edge_median) != FM_OK) {
+        run_destroy(r);
+        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory");
+    }
     for (size_t i = 0; i < nv; i++)
-        fm_fit_frame_to_local(&s->frame, X + 3 * i, w.local + 3 * i);
+        fm_fit_frame_to_local(&s->frame, X + 3 * i, w->local + 3 * i);
     for (size_t i = 0; i < 3 * nt; i++)
-        w.used[T[i]] = 1;
-    st = parameterize(s, sheet, &w, opt, err);
-    if (st != FM_OK)
-        return fail(s, &w, st);
+        w->used[T[i]] = 1;
+    st = parameterize(s, sheet, w, opt, err);
+    if (st != FM_OK) {
+        run_destroy(r);
+        return st;
+    }
 
     /* Extent of the sheet in the parameter plane. */
-    double ext[4] = {INFINITY, -INFINITY, INFINITY, -INFINITY};
+    double *ext = r->ext;
+    ext[0] = ext[2] = INFINITY;
+    ext[1] = ext[3] = -INFINITY;
     for (size_t i = 0; i < nv; i++)
-        if (w.used[i]) {
-            ext[0] = fmin(ext[0], w.pm.uv[2 * i]);
-            ext[1] = fmax(ext[1], w.pm.uv[2 * i]);
-            ext[2] = fmin(ext[2], w.pm.uv[2 * i + 1]);
-            ext[3] = fmax(ext[3], w.pm.uv[2 * i + 1]);
+        if (w->used[i]) {
+            ext[0] = fmin(ext[0], w->pm.uv[2 * i]);
+            ext[1] = fmax(ext[1], w->pm.uv[2 * i]);
+            ext[2] = fmin(ext[2], w->pm.uv[2 * i + 1]);
+            ext[3] = fmax(ext[3], w->pm.uv[2 * i + 1]);
         }
 
     double e = s->stats.edge_median;
     double sp = opt->knot_spacing;
-    int refine = sp == 0 ? opt->max_refinements : 0;
+    r->refine = sp == 0 ? opt->max_refinements : 0;
     if (sp == 0) {
         sp = opt->knot_factor * e;
         if (!(sp > 0)) /* unreachable for a sheet with area; keeps the loop finite */
@@ -501,6 +533,7 @@ static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
         while (grid_size(sp, ext, opt->extend, p) > opt->max_control_points)
             sp *= 1.01;
     }
+    r->sp = sp;
     double lambda = opt->smoothing;
     if (lambda == 0) {
         /* Tied to the data's spacing, not the knots': the triangles cannot
@@ -509,38 +542,64 @@ static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
         double c = opt->smoothing_wavelength * e / (2 * FM_PI);
         lambda = c * c * c * c;
     }
+    r->lambda = lambda;
     s->stats.smoothing = lambda;
     /* A partial chord correction is the blend of the uncorrected and the
      * corrected solution (the right-hand side is linear in the values).
      * The refinement judges the corrected one, which passes through the
      * vertices where the grid can follow the sheet: the offset the blend
      * leaves at the vertices is meant, not a sign of too coarse a grid. */
-    int blend = opt->chord_passes > 0 && opt->chord_weight < 1;
-    double prev_rms = INFINITY;
-    for (int pass = 0;; pass++) {
-        st = make_grid(s, sp, ext, opt->extend, name, err);
-        if (st == FM_OK && blend) {
-            free(w.plain);
-            w.plain = malloc((size_t)s->ncomp * s->nu * s->nv * sizeof *w.plain);
-            if (!w.plain)
-                st = fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory");
+    r->blend = opt->chord_passes > 0 && opt->chord_weight < 1;
+    r->prev_rms = INFINITY;
+    s->stats.time_frame = t_frame - t_start;
+    r->time = fm_clock_seconds() - t_start;
+    *out = r;
+    return FM_OK;
+}
+
+/* Solves passes and refines the grid until the fit is done or pass `limit`
+ * is solved; a later call with a higher limit goes on from there, exactly
+ * as if it had never stopped. */
+static fm_status run_passes(fit_run *r, int limit, fm_error *err)
+{
+    double t0 = fm_clock_seconds();
+    fm_fit_surface *s = r->s;
+    work *w = &r->w;
+    const fm_fit_options *opt = &r->opt;
+    const char *name = opt->name;
+    int p = s->p;
+    fm_status st = FM_OK;
+    while (!r->done && st == FM_OK) {
+        if (!r->solved) {
+            st = make_grid(s, r->sp, r->ext, opt->extend, name, err);
+            if (st == FM_OK && r->blend) {
+                free(w->plain);
+                w->plain = malloc((size_t)s->ncomp * s->nu * s->nv * sizeof *w->plain);
+                if (!w->plain)
+                    st = fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory");
+            }
+            if (st == FM_OK)
+                st = fm_fit_solve_coefficients(s, &w->pm, r->lambda, opt->chord_passes, w->plain,
+                                               name, err);
+            for (size_t i = 0; st == FM_OK && i < (size_t)s->ncomp * s->nu * s->nv; i++)
+                if (!isfinite(s->coef[i]))
+                    st = fm_error_set(err, FM_ERR_NUMERIC, name, 0, "fit: solution is not finite");
+            if (st != FM_OK)
+                break;
+            s->stats.passes = r->pass;
+            r->solved = 1;
         }
-        if (st == FM_OK)
-            st = fm_fit_solve_coefficients(s, &w.pm, lambda, opt->chord_passes, w.plain, name,
-                                           err);
-        if (st != FM_OK)
-            return fail(s, &w, st);
-        for (size_t i = 0; i < (size_t)s->ncomp * s->nu * s->nv; i++)
-            if (!isfinite(s->coef[i]))
-                return fail(s, &w, fm_error_set(err, FM_ERR_NUMERIC, name, 0,
-                                                "fit: solution is not finite"));
-        s->stats.passes = pass;
-        if (pass >= refine)
+        if (r->pass >= r->refine) {
+            r->done = 1;
+            break;
+        }
+        if (r->pass >= limit)
             break;
         /* Refine while the vertices miss the target: half the spacing, as
          * long as the grid stays in the budget. */
         double rms, max;
-        quick_errors(s, &w.pm, w.local, w.used, &rms, &max);
+        quick_errors(s, &w->pm, w->local, w->used, &rms, &max);
+        r->done = 1;
         if (rms <= opt->target_rms && max <= opt->target_max)
             break;
         /* Near the targets one halving is worth its cost; a sheet whose
@@ -551,30 +610,77 @@ static fm_status fit_sheet_kind(const fm_mesh *sheet, const fm_fit_options *opt,
         /* ... and only while halving pays: a sheet whose misfit is not at
          * the scale of the knots (a fold of a few triangles, a distorted
          * map) gains nothing from a finer grid but its cost. */
-        if (pass >= 1 && (!far || rms > 0.8 * prev_rms))
+        if (r->pass >= 1 && (!far || rms > 0.8 * r->prev_rms))
             break;
-        prev_rms = rms;
+        r->prev_rms = rms;
         size_t budget = far ? 2 * opt->max_control_points : opt->max_control_points;
-        if (grid_size(0.5 * sp, ext, opt->extend, p) > budget)
+        if (grid_size(0.5 * r->sp, r->ext, opt->extend, p) > budget)
             break;
-        sp *= 0.5;
+        r->sp *= 0.5;
+        r->pass++;
+        r->solved = 0;
+        r->done = 0;
     }
-    if (blend) {
-        double cw = opt->chord_weight;
+    r->time += fm_clock_seconds() - t0;
+    return st;
+}
+
+/* The final coefficients of the passes solved so far (the blend of a
+ * partial chord correction) in s->coef. */
+static void run_blend(fit_run *r)
+{
+    fm_fit_surface *s = r->s;
+    if (r->blend) {
+        double cw = r->opt.chord_weight;
         for (size_t i = 0; i < (size_t)s->ncomp * s->nu * s->nv; i++)
-            s->coef[i] = cw * s->coef[i] + (1 - cw) * w.plain[i];
+            s->coef[i] = cw * s->coef[i] + (1 - cw) * r->w.plain[i];
     }
-    if (s->kind == FM_FIT_PARAMETRIC && make_starts(s) != FM_OK)
-        return fail(s, &w, fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory"));
+}
+
+/* The statistics the fit would have if it were finished now without
+ * closest points (vertex errors along w or at the own parameters), the
+ * run left as it was. */
+static fm_status run_peek(fit_run *r, fm_fit_stats *out)
+{
+    fm_fit_surface *s = r->s;
+    size_t n = (size_t)s->ncomp * s->nu * s->nv;
+    double *keep = malloc((n ? n : 1) * sizeof *keep);
+    if (!keep)
+        return FM_ERR_NOMEM;
+    memcpy(keep, s->coef, n * sizeof *keep);
+    fm_fit_stats saved = s->stats;
+    run_blend(r);
+    fm_status st = compute_stats(s, &r->w.pm, r->w.local, r->w.used, 0);
+    *out = s->stats;
+    s->stats = saved;
+    memcpy(s->coef, keep, n * sizeof *keep);
+    free(keep);
+    return st;
+}
+
+/* The finished surface (fm_fit_sheet's statistics); r is consumed. */
+static fm_status run_finish(fit_run *r, fm_fit_surface **out, fm_error *err)
+{
+    double t0 = fm_clock_seconds();
+    fm_fit_surface *s = r->s;
+    const char *name = r->opt.name;
+    *out = NULL;
+    run_blend(r);
+    if (s->kind == FM_FIT_PARAMETRIC && make_starts(s) != FM_OK) {
+        run_destroy(r);
+        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory");
+    }
     double t_solved = fm_clock_seconds();
-    if (compute_stats(s, &w.pm, w.local, w.used, opt->closest_point_stats) != FM_OK)
-        return fail(s, &w, fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory"));
+    if (compute_stats(s, &r->w.pm, r->w.local, r->w.used, r->opt.closest_point_stats) != FM_OK) {
+        run_destroy(r);
+        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "fit: out of memory");
+    }
     double t_end = fm_clock_seconds();
     fm_fit_stats *fs = &s->stats;
-    fs->time_frame = t_frame - t_start;
     fs->time_stats = t_end - t_solved;
-    fs->time_total = t_end - t_start;
-    work_free(&w);
+    fs->time_total = r->time + (t_end - t0);
+    r->s = NULL;
+    run_destroy(r);
     *out = s;
     return FM_OK;
 }
@@ -590,34 +696,145 @@ static double fit_score(const fm_fit_stats *st, const fm_fit_options *opt)
     return fmax(rms / opt->target_rms, max / opt->target_max);
 }
 
-fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_surface **out,
-                       fm_error *err)
+/* A steep or stacked height field that misses the targets (see fm_fit.h)
+ * is fitted as a parametric surface too, and the closer of the two to the
+ * targets is kept. */
+static int wants_parametric(const fm_fit_options *opt, const fm_fit_frame *frame,
+                            const fm_fit_stats *st)
+{
+    return opt->kind == FM_FIT_AUTO && st->kind == FM_FIT_HEIGHT_FIELD &&
+           (frame->min_dot < FM_FIT_STEEP_DOT || st->stacked > 0 ||
+            st->max_border_offset > 2 * opt->target_max) &&
+           fit_score(st, opt) > 1;
+}
+
+struct fm_fit_pending {
+    const fm_mesh *sheet;
+    fm_fit_options opt;
+    fm_fit_frame frame;
+    fit_run *run; /* the fit of the options' kind */
+    fit_run *alt; /* the parametric one, when a trial looked at it */
+    int alt_failed;
+};
+
+void fm_fit_pending_destroy(fm_fit_pending *pf)
+{
+    if (!pf)
+        return;
+    run_destroy(pf->run);
+    run_destroy(pf->alt);
+    free(pf);
+}
+
+fm_status fm_fit_pending_begin(const fm_mesh *sheet, const fm_fit_options *opt,
+                               const fm_fit_frame *frame, fm_fit_pending **out, fm_error *err)
 {
     fm_fit_options defaults;
     if (!opt) {
         fm_fit_options_default(&defaults);
         opt = &defaults;
     }
-    fm_status st = fit_sheet_kind(sheet, opt, out, err);
-    if (st != FM_OK || opt->kind != FM_FIT_AUTO || (*out)->kind != FM_FIT_HEIGHT_FIELD ||
-        !((*out)->frame.min_dot < FM_FIT_STEEP_DOT || (*out)->stats.stacked > 0 ||
-          (*out)->stats.max_border_offset > 2 * opt->target_max) ||
-        fit_score(&(*out)->stats, opt) <= 1)
+    *out = NULL;
+    fm_fit_pending *pf = calloc(1, sizeof *pf);
+    if (!pf)
+        return fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "fit: out of memory");
+    pf->sheet = sheet;
+    pf->opt = *opt;
+    fm_status st = run_begin(sheet, opt, frame, &pf->run, err);
+    if (st != FM_OK) {
+        free(pf);
         return st;
-    /* A steep or stacked height field that misses the targets (see
-     * fm_fit.h): the parametric kind too, and the closer of the two to the
-     * targets. */
-    fm_fit_options po = *opt;
-    po.kind = FM_FIT_PARAMETRIC;
-    fm_fit_surface *alt = NULL;
-    fm_error e2;
-    if (fit_sheet_kind(sheet, &po, &alt, &e2) != FM_OK)
-        return FM_OK;
-    if (fit_score(&alt->stats, opt) < fit_score(&(*out)->stats, opt)) {
-        fm_fit_surface_destroy(*out);
-        *out = alt;
-    } else {
-        fm_fit_surface_destroy(alt);
     }
+    pf->frame = pf->run->s->frame;
+    *out = pf;
     return FM_OK;
+}
+
+const fm_fit_frame *fm_fit_pending_frame(const fm_fit_pending *pf) { return &pf->frame; }
+const fm_fit_stats *fm_fit_pending_stats(const fm_fit_pending *pf) { return &pf->run->s->stats; }
+
+/* The parametric run of a height field that wants one, begun when needed;
+ * NULL when it failed (as fm_fit_sheet, the height field then stays). */
+static fit_run *pending_alt(fm_fit_pending *pf)
+{
+    if (!pf->alt && !pf->alt_failed) {
+        fm_fit_options po = pf->opt;
+        po.kind = FM_FIT_PARAMETRIC;
+        fm_error e2;
+        if (run_begin(pf->sheet, &po, &pf->frame, &pf->alt, &e2) != FM_OK)
+            pf->alt_failed = 1;
+    }
+    return pf->alt;
+}
+
+static void alt_failed(fm_fit_pending *pf)
+{
+    run_destroy(pf->alt);
+    pf->alt = NULL;
+    pf->alt_failed = 1;
+}
+
+fm_status fm_fit_pending_trial(fm_fit_pending *pf, int refinements, fm_fit_stats *out)
+{
+    fm_error e;
+    fm_fit_options to = pf->opt;
+    to.closest_point_stats = 0;
+    fm_status st = run_passes(pf->run, refinements, &e);
+    if (st == FM_OK)
+        st = run_peek(pf->run, out);
+    if (st != FM_OK || !wants_parametric(&to, &pf->frame, out))
+        return st;
+    fit_run *alt = pending_alt(pf);
+    if (alt && run_passes(alt, refinements, &e) != FM_OK)
+        alt_failed(pf);
+    fm_fit_stats as;
+    if (!pf->alt || run_peek(pf->alt, &as) != FM_OK)
+        return FM_OK;
+    if (fit_score(&as, &to) < fit_score(out, &to))
+        *out = as;
+    return FM_OK;
+}
+
+fm_status fm_fit_pending_finish(fm_fit_pending *pf, fm_fit_surface **out, fm_error *err)
+{
+    *out = NULL;
+    fit_run *run = pf->run;
+    pf->run = NULL;
+    fm_status st = run_passes(run, INT_MAX, err);
+    if (st != FM_OK) {
+        run_destroy(run);
+        fm_fit_pending_destroy(pf);
+        return st;
+    }
+    const fm_fit_options *opt = &pf->opt;
+    st = run_finish(run, out, err);
+    if (st != FM_OK || !wants_parametric(opt, &(*out)->frame, &(*out)->stats)) {
+        fm_fit_pending_destroy(pf);
+        return st;
+    }
+    fit_run *alt = pending_alt(pf);
+    pf->alt = NULL;
+    fm_fit_surface *as = NULL;
+    fm_error e2;
+    if (alt && run_passes(alt, INT_MAX, &e2) == FM_OK)
+        run_finish(alt, &as, &e2);
+    else
+        run_destroy(alt);
+    if (as && fit_score(&as->stats, opt) < fit_score(&(*out)->stats, opt)) {
+        fm_fit_surface_destroy(*out);
+        *out = as;
+    } else {
+        fm_fit_surface_destroy(as);
+    }
+    fm_fit_pending_destroy(pf);
+    return FM_OK;
+}
+
+fm_status fm_fit_sheet(const fm_mesh *sheet, const fm_fit_options *opt, fm_fit_surface **out,
+                       fm_error *err)
+{
+    fm_fit_pending *pf = NULL;
+    *out = NULL;
+    fm_status st = fm_fit_pending_begin(sheet, opt, NULL, &pf, err);
+    return st == FM_OK ? fm_fit_pending_finish(pf, out, err) : st;
 }

@@ -43,6 +43,17 @@ void fm_fit_local_eval(const fm_fit_surface *s, double u, double v, double P[3],
  * NULL, d = {f_u, f_v, f_uu, f_uv, f_vv}. */
 double fm_fit_component(const fm_fit_surface *s, int comp, double u, double v, double d[5]);
 
+/* The spans and basis values at (u, v) (derivatives too when deriv), for
+ * evaluating several components at one point: fm_fit_component_at gives
+ * exactly what fm_fit_component does (d only when at->deriv). */
+typedef struct fm_fit_at {
+    size_t ju, jv;
+    int deriv;
+    double Nu[3][FM_FIT_MAX_DEGREE + 1], Nv[3][FM_FIT_MAX_DEGREE + 1];
+} fm_fit_at;
+void fm_fit_basis_at(const fm_fit_surface *s, double u, double v, int deriv, fm_fit_at *at);
+double fm_fit_component_at(const fm_fit_surface *s, int comp, const fm_fit_at *at, double d[5]);
+
 /* Closest point by Newton iteration from the start parameters uv (updated
  * in place); q in frame coordinates. */
 fm_status fm_fit_project_from(const fm_fit_surface *s, const double q[3], double uv[2],
@@ -51,6 +62,31 @@ fm_status fm_fit_project_from(const fm_fit_surface *s, const double q[3], double
 /* Weight of the thin-plate energy of a facet with squared slope g2 over the
  * plane: (1 + g2)^(-5/2), see fm_fit.h. */
 double fm_fit_bending_weight(double g2);
+
+/* --- fit.c --- */
+
+/* fm_fit_sheet in stages, so that a look at a sheet's fit costs no second
+ * fit: the split decision (model_split.c) begins the fit, looks at its
+ * kind and at a trial with fewer refinements, and the model finishes the
+ * same fit with the result fm_fit_sheet would give. */
+typedef struct fm_fit_pending fm_fit_pending;
+
+/* Checks the options and does all that comes before the first solve:
+ * frame (frame, when not NULL, must be that of opt->frame), vertex
+ * parameters, kind. opt NULL for defaults. */
+fm_status fm_fit_pending_begin(const fm_mesh *sheet, const fm_fit_options *opt,
+                               const fm_fit_frame *frame, fm_fit_pending **out, fm_error *err);
+/* Before fm_fit_pending_finish: the frame, and the statistics known so far
+ * (kind, overlap, stacked, convex_map, edge_median). */
+const fm_fit_frame *fm_fit_pending_frame(const fm_fit_pending *pf);
+const fm_fit_stats *fm_fit_pending_stats(const fm_fit_pending *pf);
+/* The statistics fm_fit_sheet would give with max_refinements at most
+ * `refinements` and closest_point_stats off (the parametric kind too where
+ * it would try it); what it solves stays for the finish. */
+fm_status fm_fit_pending_trial(fm_fit_pending *pf, int refinements, fm_fit_stats *out);
+/* The surface fm_fit_sheet(sheet, opt) gives; pf is consumed. */
+fm_status fm_fit_pending_finish(fm_fit_pending *pf, fm_fit_surface **out, fm_error *err);
+void fm_fit_pending_destroy(fm_fit_pending *pf);
 
 /* --- basis.c --- */
 

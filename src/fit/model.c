@@ -474,9 +474,10 @@ static void snap_boundary(const fm_fit_surface *surf, const fm_surface *s, size_
     }
 }
 
+/* pf: the sheet's fit as the split decision began it (consumed), or NULL. */
 static fm_status build_sheet(const char *name, const fm_surface *s, size_t sheet,
                              const fm_model_options *opt, const fm_split_cut *cuts,
-                             size_t ncuts, sheet_model *sm, fm_error *err)
+                             size_t ncuts, fm_fit_pending *pf, sheet_model *sm, fm_error *err)
 {
     double t0 = fm_clock_seconds();
     const fm_mesh *mesh = fm_surface_sheet_mesh(s, sheet);
@@ -484,7 +485,8 @@ static fm_status build_sheet(const char *name, const fm_surface *s, size_t sheet
     sm->report.triangles = fm_mesh_ntriangles(mesh);
     fm_fit_options fo = opt->fit;
     fo.name = name;
-    fm_status st = fm_fit_sheet(mesh, &fo, &sm->surface, err);
+    fm_status st = pf ? fm_fit_pending_finish(pf, &sm->surface, err)
+                      : fm_fit_sheet(mesh, &fo, &sm->surface, err);
     if (st != FM_OK)
         return st;
     const fm_fit_stats *fs = fm_fit_surface_stats(sm->surface);
@@ -535,8 +537,11 @@ static fm_status fm_model_build_split(fm_model *m, const char *name, const fm_su
     for (size_t k = 0; st == FM_OK && k < add; k++) {
         sheet_model *sm = &m->sheets[m->nsheets++];
         memset(sm, 0, sizeof *sm);
-        st = sp.npieces ? build_sheet(name, sp.pieces[k], 0, opt, sp.cuts, sp.ncuts, sm, err)
-                        : build_sheet(name, s, i, opt, NULL, 0, sm, err);
+        fm_fit_pending **pf = sp.npieces ? &sp.fits[k] : &sp.whole;
+        fm_fit_pending *fit = *pf;
+        *pf = NULL;
+        st = sp.npieces ? build_sheet(name, sp.pieces[k], 0, opt, sp.cuts, sp.ncuts, fit, sm, err)
+                        : build_sheet(name, s, i, opt, NULL, 0, fit, sm, err);
         sm->report.repair_sheet = i;
     }
     for (size_t c = 0; st == FM_OK && c < sp.ncuts; c++) {

@@ -50,6 +50,10 @@ typedef struct fm_split_cut {
 
 typedef struct fm_model_split {
     fm_surface **pieces; /* one sheet each */
+    /* Per piece (NULL when none), or for the sheet itself when it stays
+     * whole: the fit the decision began (fit_internal.h), to be finished. */
+    struct fm_fit_pending **fits;
+    struct fm_fit_pending *whole;
     size_t npieces;
     fm_split_cut *cuts;
     size_t ncuts;

@@ -12,7 +12,6 @@
 #include <string.h>
 
 #include "fit_internal.h"
-#include "fm_sort.h"
 #include "model_internal.h"
 
 /* Nested ring splits, at most: a ring of rings is rarer than a bad sheet. */
@@ -288,94 +287,50 @@ static void pick_rims(const fm_surface *s, size_t sheet, graph *g, size_t *ra, s
 
 /* A sheet is cut when the fit it would get is not good: no one-to-one
  * plane and a parametric fit that needs the convex map or misses the
- * figures above. */
+ * figures above. The fit is begun here and, when the sheet stays whole,
+ * handed on in *keep for the model to finish (no second fit). */
 static int needs_split(const char *name, const fm_mesh *mesh, size_t nloops,
-                       const fm_fit_options *fit)
+                       const fm_fit_options *fit, fm_fit_pending **keep)
 {
+    *keep = NULL;
     /* A sheet of a few triangles has no neck worth a cut: its pieces would
      * be a triangle or two each, fitted no better (a 6-vertex sheet of
      * Coronado Bank north went from 54 to 121 m off its outline cut). */
     if (nloops < 1 || fm_mesh_ntriangles(mesh) < SPLIT_MIN_TRIANGLES)
         return 0;
-    /* A height field serves: nothing to decide (the cheap test first). */
     fm_fit_frame fr;
     fm_error e;
     if (fm_fit_reference_frame(mesh, &fit->frame, &fr, &e) != FM_OK)
         return 0;
-    if (fr.projectable) {
-        size_t nv = fm_mesh_nvertices(mesh);
-        const double *X = fm_mesh_vertices(mesh);
-        fm_fit_pmesh pm;
-        memset(&pm, 0, sizeof pm);
-        pm.nv = nv;
-        pm.nt = fm_mesh_ntriangles(mesh);
-        pm.tri = fm_mesh_triangles(mesh);
-        pm.ncomp = 1;
-        pm.uv = malloc((2 * nv + 1) * sizeof *pm.uv);
-        if (!pm.uv)
-            return 0;
-        for (size_t i = 0; i < nv; i++) {
-            double l[3];
-            fm_fit_frame_to_local(&fr, X + 3 * i, l);
-            pm.uv[2 * i] = l[0];
-            pm.uv[2 * i + 1] = l[1];
-        }
-        double ov = fm_fit_overlap_area(&pm);
-        /* ... unless the fit turns from it: a steep or stacked height field
-         * that misses its targets is fitted parametric (fm_fit.h), and
-         * such a sheet can be as far from one smooth map as a folded one
-         * (Clark north: strands stacked 30 m apart, 101 m off its outline
-         * whole, 47 m as two disks). */
-        int serves = !(ov > 0) && fr.min_dot >= FM_FIT_STEEP_DOT;
-        if (serves) {
-            double *val = malloc((nv + 1) * sizeof *val);
-            unsigned char *used = calloc(nv + 1, 1);
-            double *len = malloc((3 * pm.nt + 1) * sizeof *len);
-            if (val && used && len) {
-                for (size_t i = 0; i < nv; i++) {
-                    double l[3];
-                    fm_fit_frame_to_local(&fr, X + 3 * i, l);
-                    val[i] = l[2];
-                }
-                size_t nl = 0;
-                for (size_t t = 0; t < pm.nt; t++)
-                    for (int k = 0; k < 3; k++) {
-                        int32_t a = pm.tri[3 * t + k], b = pm.tri[3 * t + (k + 1) % 3];
-                        used[a] = 1;
-                        const double *p = X + 3 * a, *q = X + 3 * b;
-                        double d = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                                        (p[2] - q[2]) * (p[2] - q[2]));
-                        if (d > 0)
-                            len[nl++] = d;
-                    }
-                double em = nl ? fm_median(len, nl) : 0;
-                double smax = sqrt(fmax(1 - fr.min_dot * fr.min_dot, 0)) / fr.min_dot;
-                pm.val = val;
-                serves = fm_fit_stacked_vertices(&pm, used, 2 * em, 0.5 * em, 2 * smax + 1) == 0;
-            }
-            free(val);
-            free(used);
-            free(len);
-        }
-        free(pm.uv);
-        if (serves)
-            return 0;
-    }
     fm_fit_options o = *fit;
     o.name = name;
-    o.closest_point_stats = 0;
-    /* The decision needs the fit at the usual grid, not the best a ring
-     * would get from the further halvings (on the whole ring, at every
-     * level of the recursion). */
-    if (o.max_refinements > 1)
-        o.max_refinements = 1;
-    fm_fit_surface *fs = NULL;
-    if (fm_fit_sheet(mesh, &o, &fs, &e) != FM_OK)
+    fm_fit_pending *pf = NULL;
+    if (fm_fit_pending_begin(mesh, &o, &fr, &pf, &e) != FM_OK)
         return 1;
-    const fm_fit_stats *st = fm_fit_surface_stats(fs);
-    int bad = st->kind == FM_FIT_PARAMETRIC &&
-              (st->convex_map || st->rms_w > SPLIT_RMS || st->max_w > SPLIT_MAX);
-    fm_fit_surface_destroy(fs);
+    const fm_fit_stats *st = fm_fit_pending_stats(pf);
+    int bad;
+    if (st->kind == FM_FIT_HEIGHT_FIELD && fr.min_dot >= FM_FIT_STEEP_DOT && st->stacked == 0) {
+        /* A height field serves: nothing to decide. Not a steep or
+         * stacked one, though: missing its targets, it is fitted parametric
+         * (fm_fit.h), and such a sheet can be as far from one smooth map as
+         * a folded one (Clark north: strands stacked 30 m apart, 101 m off
+         * its outline whole, 47 m as two disks). */
+        bad = 0;
+    } else if (st->kind == FM_FIT_PARAMETRIC && st->convex_map) {
+        bad = 1; /* known before any solve */
+    } else {
+        /* The decision needs the fit at the usual grid, not the best a
+         * ring would get from the further halvings (on the whole ring, at
+         * every level of the recursion). */
+        fm_fit_stats t;
+        bad = fm_fit_pending_trial(pf, 1, &t) != FM_OK ||
+              (t.kind == FM_FIT_PARAMETRIC &&
+               (t.convex_map || t.rms_w > SPLIT_RMS || t.max_w > SPLIT_MAX));
+    }
+    if (bad)
+        fm_fit_pending_destroy(pf);
+    else
+        *keep = pf;
     return bad;
 }
 
@@ -784,9 +739,14 @@ static fm_status cut_ring(const fm_surface *s, size_t sheet, size_t repair_sheet
 
 void fm_model_split_free(fm_model_split *sp)
 {
-    for (size_t i = 0; i < sp->npieces; i++)
+    for (size_t i = 0; i < sp->npieces; i++) {
         fm_surface_destroy(sp->pieces[i]);
+        if (sp->fits)
+            fm_fit_pending_destroy(sp->fits[i]);
+    }
     free(sp->pieces);
+    free(sp->fits);
+    fm_fit_pending_destroy(sp->whole);
     for (size_t i = 0; i < sp->ncuts; i++)
         free(sp->cuts[i].xyz);
     free(sp->cuts);
@@ -816,13 +776,19 @@ static long piece_with_edge(fm_surface *const *pieces, size_t from, size_t to, c
     return -1;
 }
 
-static fm_status append(fm_model_split *acc, fm_surface *piece, const fm_split_cut *cut)
+static fm_status append(fm_model_split *acc, fm_surface *piece, fm_fit_pending *fit,
+                        const fm_split_cut *cut)
 {
     if (piece) {
         fm_surface **p = realloc(acc->pieces, (acc->npieces + 1) * sizeof *p);
-        if (!p)
+        if (p)
+            acc->pieces = p;
+        fm_fit_pending **f = realloc(acc->fits, (acc->npieces + 1) * sizeof *f);
+        if (f)
+            acc->fits = f;
+        if (!p || !f)
             return FM_ERR_NOMEM;
-        acc->pieces = p;
+        acc->fits[acc->npieces] = fit;
         acc->pieces[acc->npieces++] = piece;
     }
     if (cut) {
@@ -841,8 +807,8 @@ static fm_status split_rec(const char *name, const fm_surface *s, size_t sheet,
                            fm_model_split *out, fm_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (depth >= SPLIT_MAX_DEPTH ||
-        !needs_split(name, fm_surface_sheet_mesh(s, sheet), fm_surface_sheet_nloops(s, sheet), fit))
+    if (depth >= SPLIT_MAX_DEPTH || !needs_split(name, fm_surface_sheet_mesh(s, sheet),
+                                                 fm_surface_sheet_nloops(s, sheet), fit, &out->whole))
         return FM_OK;
     fm_model_split sp;
     memset(&sp, 0, sizeof sp);
@@ -863,22 +829,27 @@ static fm_status split_rec(const char *name, const fm_surface *s, size_t sheet,
         if (st != FM_OK)
             break;
         if (!sub.npieces) {
-            st = append(&acc, sp.pieces[i], NULL);
-            if (st == FM_OK)
+            st = append(&acc, sp.pieces[i], sub.whole, NULL);
+            if (st == FM_OK) {
                 sp.pieces[i] = NULL;
+                sub.whole = NULL;
+            }
+            fm_model_split_free(&sub);
             continue;
         }
         for (size_t q = 0; st == FM_OK && q < sub.npieces; q++) {
-            st = append(&acc, sub.pieces[q], NULL);
-            if (st == FM_OK)
+            st = append(&acc, sub.pieces[q], sub.fits[q], NULL);
+            if (st == FM_OK) {
                 sub.pieces[q] = NULL;
+                sub.fits[q] = NULL;
+            }
         }
         for (size_t q = 0; st == FM_OK && q < sub.ncuts; q++) {
             fm_split_cut cq = sub.cuts[q];
             for (int k = 0; k < 2; k++)
                 if (cq.sheets[k] >= 0)
                     cq.sheets[k] += (long)first[i];
-            st = append(&acc, NULL, &cq);
+            st = append(&acc, NULL, NULL, &cq);
             if (st == FM_OK)
                 sub.cuts[q].xyz = NULL;
         }
@@ -894,7 +865,7 @@ static fm_status split_rec(const char *name, const fm_surface *s, size_t sheet,
                 cq.sheets[k] = piece_with_edge(acc.pieces, first[c], first[c + 1], cq.xyz,
                                                cq.xyz + 3);
             }
-        st = append(&acc, NULL, &cq);
+        st = append(&acc, NULL, NULL, &cq);
         if (st == FM_OK)
             sp.cuts[i].xyz = NULL;
     }

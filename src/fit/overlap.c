@@ -159,6 +159,9 @@ size_t fm_fit_stacked_vertices(const fm_fit_pmesh *pm, const unsigned char *used
     for (size_t i = 0; i < nv; i++)
         if (used[i])
             items[fill[cellof[i]]++] = i;
+    /* Relative margins of 1e-9 dwarf the few units in the last place that
+     * squares, hypot and the products can be off by. */
+    double r2_out = radius * radius * (1 + 1e-9), s2_in = slope * slope * (1 - 1e-9);
     for (size_t i = 0; i < nv; i++) {
         if (!used[i])
             continue;
@@ -171,9 +174,18 @@ size_t fm_fit_stacked_vertices(const fm_fit_pmesh *pm, const unsigned char *used
                 size_t c = (size_t)y * gx + (size_t)x;
                 for (size_t k = start[c]; k < start[c + 1] && !hit; k++) {
                     size_t j = items[k];
-                    double d = hypot(uv[2 * j] - uv[2 * i], uv[2 * j + 1] - uv[2 * i + 1]);
+                    double du = uv[2 * j] - uv[2 * i], dv = uv[2 * j + 1] - uv[2 * i + 1];
                     double dh = fabs(h[j] - h[i]);
-                    if (d < radius && dh > min_dh && dh > slope * d)
+                    if (!(dh > min_dh))
+                        continue;
+                    /* Most pairs are settled by squares, well clear of
+                     * rounding; only those near a threshold take hypot,
+                     * so the count is exactly that of the hypot test. */
+                    double d2 = du * du + dv * dv;
+                    if (d2 > r2_out || dh * dh < s2_in * d2)
+                        continue;
+                    double d = hypot(du, dv);
+                    if (d < radius && dh > slope * d)
                         hit = 1;
                 }
             }

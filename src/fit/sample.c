@@ -58,6 +58,8 @@ size_t fm_fit_sample_sheet(const fm_fit_pmesh *pm, double max_side, fm_fit_sampl
     const int32_t *T = pm->tri;
     size_t nt = pm->nt, count = 0;
     int nc = pm->ncomp;
+    /* 1e-9 below max_side^2 dwarfs the rounding of squares and hypot. */
+    double max2 = max_side * max_side * (1 - 1e-9);
     for (size_t i = 0; i < nt; i++) {
         tri t;
         t.ncomp = nc;
@@ -70,12 +72,12 @@ size_t fm_fit_sample_sheet(const fm_fit_pmesh *pm, double max_side, fm_fit_sampl
             for (int k = nc; k < 3; k++)
                 t.q[c][2 + k] = 0;
         }
-        double longest = 0;
+        double longest2 = 0;
         for (int e = 0; e < 3; e++) {
             const double *a = t.q[(e + 1) % 3], *b = t.q[(e + 2) % 3];
             t.d[e][0] = b[0] - a[0];
             t.d[e][1] = b[1] - a[1];
-            longest = fmax(longest, hypot(t.d[e][0], t.d[e][1]));
+            longest2 = fmax(longest2, t.d[e][0] * t.d[e][0] + t.d[e][1] * t.d[e][1]);
         }
         /* Weighted by parameter area: the data term then approximates the
          * integral over the plane that the thin-plate term is measured in. A
@@ -95,9 +97,16 @@ size_t fm_fit_sample_sheet(const fm_fit_pmesh *pm, double max_side, fm_fit_sampl
             double gu = (e1h * e2v - e2h * e1v) / det, gv = (e1u * e2h - e2u * e1h) / det;
             t.slope2 = gu * gu + gv * gv;
         }
+        /* Squares settle a side well below max_side (the usual case);
+         * hypot, as ever, decides near and above it. */
         int m = 1;
-        if (longest > max_side)
-            m = (int)fmin(64.0, ceil(longest / max_side));
+        if (!(longest2 <= max2)) {
+            double longest = 0;
+            for (int e = 0; e < 3; e++)
+                longest = fmax(longest, hypot(t.d[e][0], t.d[e][1]));
+            if (longest > max_side)
+                m = (int)fmin(64.0, ceil(longest / max_side));
+        }
         /* Regular split into m^2 similar triangles on a barycentric grid
          * (m = 1: the triangle itself). */
         double sub = area / ((double)m * m);

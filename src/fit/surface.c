@@ -74,20 +74,27 @@ double fm_fit_surface_height(const fm_fit_surface *s, double u, double v, double
     return fm_fit_component(s, s->ncomp - 1, u, v, dh);
 }
 
-double fm_fit_component(const fm_fit_surface *s, int comp, double u, double v, double dh[5])
+void fm_fit_basis_at(const fm_fit_surface *s, double u, double v, int deriv, fm_fit_at *at)
+{
+    double tu, tv;
+    at->ju = fm_fit_locate(u, s->u0, s->s, s->nsu, &tu);
+    at->jv = fm_fit_locate(v, s->v0, s->s, s->nsv, &tv);
+    at->deriv = deriv;
+    if (deriv) {
+        fm_fit_basis(s->p, tu, at->Nu);
+        fm_fit_basis(s->p, tv, at->Nv);
+    } else {
+        fm_fit_basis_values(s->p, tu, at->Nu);
+        fm_fit_basis_values(s->p, tv, at->Nv);
+    }
+}
+
+double fm_fit_component_at(const fm_fit_surface *s, int comp, const fm_fit_at *at, double dh[5])
 {
     const double *coef = s->coef + (size_t)comp * s->nu * s->nv;
     int p = s->p;
-    double tu, tv, Nu[3][FM_FIT_MAX_DEGREE + 1], Nv[3][FM_FIT_MAX_DEGREE + 1];
-    size_t ju = fm_fit_locate(u, s->u0, s->s, s->nsu, &tu);
-    size_t jv = fm_fit_locate(v, s->v0, s->s, s->nsv, &tv);
-    if (dh) {
-        fm_fit_basis(p, tu, Nu);
-        fm_fit_basis(p, tv, Nv);
-    } else {
-        fm_fit_basis_values(p, tu, Nu);
-        fm_fit_basis_values(p, tv, Nv);
-    }
+    size_t ju = at->ju, jv = at->jv;
+    const double(*Nu)[FM_FIT_MAX_DEGREE + 1] = at->Nu, (*Nv)[FM_FIT_MAX_DEGREE + 1] = at->Nv;
     /* Contract along u first: r[k][b] = sum_a N_u^(k)[a] c[a][b]. */
     double r[3][FM_FIT_MAX_DEGREE + 1];
     int kmax = dh ? 3 : 1;
@@ -122,6 +129,13 @@ double fm_fit_component(const fm_fit_surface *s, int comp, double u, double v, d
     return h;
 }
 
+double fm_fit_component(const fm_fit_surface *s, int comp, double u, double v, double dh[5])
+{
+    fm_fit_at at;
+    fm_fit_basis_at(s, u, v, dh != NULL, &at);
+    return fm_fit_component_at(s, comp, &at, dh);
+}
+
 void fm_fit_local_eval(const fm_fit_surface *s, double u, double v, double P[3],
                        double D[5][3])
 {
@@ -141,8 +155,10 @@ void fm_fit_local_eval(const fm_fit_surface *s, double u, double v, double P[3],
         }
         return;
     }
+    fm_fit_at at;
+    fm_fit_basis_at(s, u, v, D != NULL, &at);
     for (int c = 0; c < 3; c++) {
-        P[c] = fm_fit_component(s, c, u, v, D ? d : NULL);
+        P[c] = fm_fit_component_at(s, c, &at, D ? d : NULL);
         if (D)
             for (int k = 0; k < 5; k++)
                 D[k][c] = d[k];
