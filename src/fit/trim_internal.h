@@ -38,7 +38,8 @@ typedef struct trim_piece {
     int rounds;     /* refinement rounds used */
     /* Measured by trim_measure_piece. */
     double max_dev, sum_dev2, max_curve_dev, max_sys;
-    size_t worst_span; /* the span holding the point at max_dev */
+    size_t worst_span; /* the span farthest off: holding the point at max_dev,
+                          or the curve place at max_curve_dev when further */
 } trim_piece;
 
 struct fm_trim_loop {
@@ -118,9 +119,11 @@ fm_status trim_fit_piece(const trim_input *in, trim_piece *pc, double beta, cons
  * spans holding a point whose tent-averaged signed deviation (half-width
  * H) exceeds tol, TRIM_FLAG_RAW (raw_tol > 0) for those holding a point
  * whose own distance exceeds raw_tol and raw_share times the largest
- * (raw_share > 0: the farthest points first). */
+ * (raw_share > 0: the farthest points first), and with `curve` also for
+ * those where the curve (8 places per span) is that much further from the
+ * polyline. */
 fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, double tol,
-                             double raw_tol, double raw_share, unsigned char *flag);
+                             double raw_tol, double raw_share, int curve, unsigned char *flag);
 /* Distance from p to the segment a-b, in the form M (NULL: identity). */
 double trim_segment_distance(const double p[2], const double a[2], const double b[2],
                              const double *M);

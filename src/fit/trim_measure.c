@@ -164,7 +164,7 @@ static double curve_to_polyline(const trim_input *in, const trim_piece *pc, doub
 }
 
 fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, double tol,
-                             double raw_tol, double raw_share, unsigned char *flag)
+                             double raw_tol, double raw_share, int curve, unsigned char *flag)
 {
     size_t m = pc->npts;
     double *r = malloc(m * sizeof *r);
@@ -221,14 +221,37 @@ fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, dou
             flag[trim_span(pc, pc->t[j])] |= TRIM_FLAG_SYSTEMATIC;
     }
     free(r);
+    /* The curve between the points: eight places per span, each measured
+     * to the polyline. A curve within max_deviation at every point can
+     * still swing out between two of them (one overshot 120 m past a
+     * corner of Rose Canyon); with `curve`, such a span is flagged like a
+     * far point. */
     double R = 2 * H + hmax;
+    double *cd = malloc((8 * pc->nspans + 1) * sizeof *cd);
+    size_t curve_span = 0;
+    if (!cd)
+        return FM_ERR_NOMEM;
     for (size_t s = 0; s < pc->nspans; s++) {
         double h = pc->brk[s + 1] - pc->brk[s];
         for (int i = 0; i < 8; i++) {
             double t = pc->brk[s] + (i + 0.5) / 8 * h, c[3][2];
             trim_eval(pc, t, 0, c);
-            pc->max_curve_dev = fmax(pc->max_curve_dev, curve_to_polyline(in, pc, t, c[0], R));
+            cd[8 * s + (size_t)i] = curve_to_polyline(in, pc, t, c[0], R);
+            if (cd[8 * s + (size_t)i] > pc->max_curve_dev) {
+                pc->max_curve_dev = cd[8 * s + (size_t)i];
+                curve_span = s;
+            }
         }
     }
+    /* the span refinement narrows down to (fit_piece): the farthest either way */
+    if (curve && pc->max_curve_dev > pc->max_dev)
+        pc->worst_span = curve_span;
+    if (raw_tol > 0 && curve) {
+        double cut = fmax(raw_tol, raw_share * pc->max_curve_dev);
+        for (size_t k = 0; k < 8 * pc->nspans; k++)
+            if (cd[k] > cut)
+                flag[k / 8] |= TRIM_FLAG_RAW;
+    }
+    free(cd);
     return FM_OK;
 }

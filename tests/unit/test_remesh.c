@@ -6,8 +6,9 @@
  * and --top extend, a sheet wholly above sea level, quality and size in 3D,
  * nodes on the true surface, the (u, v) contract of fm_remesh_sheet, bad
  * arguments, determinism, an outline with bends rounded too wide to be
- * corners, sampled without cutting them off, and one with a slit whose
- * sides are metres apart, meshed without slivers. */
+ * corners, sampled without cutting them off, one with a slit whose
+ * sides are metres apart, meshed without slivers, and a boundary node slid
+ * along its side out of a sliver. */
 #include "fm_check.h"
 #include "fm_mesh.h"
 #include "fm_model.h"
@@ -636,6 +637,92 @@ static void test_close_corners(void)
     fm_model_destroy(model);
 }
 
+/* Smallest 3D angle (degrees) of the triangles, and whether all are
+ * counter-clockwise in (u, v). */
+static double min_angle_ccw(const double *uv, const double *xyz, const int32_t *tri, size_t nt,
+                            int *ccw)
+{
+    double a = 180;
+    *ccw = 1;
+    for (size_t t = 0; t < nt; t++) {
+        const int32_t *T = tri + 3 * t;
+        *ccw &= orient2(uv + 2 * T[0], uv + 2 * T[1], uv + 2 * T[2]) > 0;
+        for (int k = 0; k < 3; k++)
+            a = fmin(a, fm_angle_at(xyz + 3 * T[k], xyz + 3 * T[(k + 1) % 3],
+                                    xyz + 3 * T[(k + 2) % 3]));
+    }
+    return a;
+}
+
+/* A boundary node refinement put on a side (E on A-B, a tenth of the way)
+ * with one inside node F: every node is on the boundary or fixed, so
+ * flips alone leave a 6 degree triangle at F. With the curves given
+ * (slide_boundary) E moves along A-B towards the middle: the triangles
+ * get above 30 degrees, E stays on the side and no other node moves. (As
+ * in the wedges where the outline meets sea level at a shallow angle:
+ * Big Pine east and West Huasna at 500 m had 18.4 and 19.9 degrees.) */
+static void test_slide(void)
+{
+    fm_model *model = build_model(&DIPPING);
+    if (!model)
+        return;
+    const fm_fit_surface *s = fm_model_surface(model, 0);
+    double dom[4];
+    fm_fit_surface_domain(s, dom);
+    double c[2] = {0.5 * (dom[0] + dom[1]), 0.5 * (dom[2] + dom[3])};
+    /* A B C D (the domain's own nodes), E on A-B, F inside */
+    const double P[6][2] = {{0, 0}, {1000, 0}, {1000, 800}, {0, 800}, {100, 0}, {500, 400}};
+    const int32_t T[5][3] = {{0, 4, 5}, {4, 1, 5}, {1, 2, 5}, {2, 3, 5}, {3, 0, 5}};
+    const int32_t cons[5][2] = {{0, 4}, {4, 1}, {1, 2}, {2, 3}, {3, 0}};
+    const int32_t pseg[6] = {0, 0, 1, 2, 0, -1};
+    dom_seg segs[4];
+    double ends[16];
+    for (int k = 0; k < 4; k++) {
+        segs[k] = (dom_seg){SEG_FREE, 0, 0, 0, 0};
+        for (int q = 0; q < 2; q++) {
+            ends[4 * k + q] = c[q] + P[k][q];
+            ends[4 * k + 2 + q] = c[q] + P[(k + 1) % 4][q];
+        }
+    }
+    const unsigned char fixed[6] = {1, 1, 1, 1, 1, 1};
+    double angle[2] = {0, 0}, e_off = 0, moved = 0;
+    int ccw[2] = {0, 0};
+    for (int with = 0; with < 2; with++) {
+        double uv[12], xyz[18];
+        int32_t tri[15];
+        for (int i = 0; i < 6; i++) {
+            uv[2 * i] = c[0] + P[i][0];
+            uv[2 * i + 1] = c[1] + P[i][1];
+            fm_fit_surface_eval(s, uv[2 * i], uv[2 * i + 1], xyz + 3 * i, NULL, NULL);
+        }
+        memcpy(tri, T, sizeof tri);
+        size_t nt = 5;
+        opt_curves cv = {NULL, 0, segs, ends, pseg, 4};
+        opt_result res;
+        CHECK_EQ(optimise_mesh(s, uv, xyz, fixed, 6, tri, &nt, &cons[0][0], 5, with ? &cv : NULL,
+                               2, 600, &res),
+                 FM_OK);
+        angle[with] = min_angle_ccw(uv, xyz, tri, nt, &ccw[with]);
+        if (with) {
+            CHECK(res.slid > 0);
+            /* E on the line A-B (v unchanged), between a quarter and three quarters */
+            e_off = fabs(uv[2 * 4 + 1] - (c[1] + P[0][1]));
+            CHECK(uv[2 * 4] - c[0] >= 250 - 1e-9 && uv[2 * 4] - c[0] <= 750 + 1e-9);
+            for (int i = 0; i < 6; i++)
+                if (i != 4)
+                    moved = fmax(moved, hypot(uv[2 * i] - c[0] - P[i][0], uv[2 * i + 1] - c[1] - P[i][1]));
+        }
+    }
+    printf("slide: smallest angle %.1f deg with flips alone, %.1f deg with the boundary node slid\n",
+           angle[0], angle[1]);
+    CHECK(angle[0] < 20);
+    CHECK(angle[1] >= 30);
+    CHECK(ccw[0] && ccw[1]);
+    CHECK(e_off < 1e-9);
+    CHECK(moved == 0);
+    fm_model_destroy(model);
+}
+
 /* Same input, same output, to the bit (two models built from scratch). */
 static void test_determinism(void)
 {
@@ -669,4 +756,4 @@ static void test_determinism(void)
 FM_TEST_MAIN(FM_CASE(test_cut_plane), FM_CASE(test_keep), FM_CASE(test_extend),
              FM_CASE(test_above_sea_level), FM_CASE(test_cylinder), FM_CASE(test_sheet_uv),
              FM_CASE(test_determinism), FM_CASE(test_rounded_outline),
-             FM_CASE(test_close_corners))
+             FM_CASE(test_close_corners), FM_CASE(test_slide))
