@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "fm_predicates.h"
+#include "fm_sort.h"
 #include "remesh_internal.h"
 
 typedef struct opt_mesh {
@@ -29,24 +30,6 @@ typedef struct opt_mesh {
     unsigned char *cons;  /* 3 per triangle: that edge is constrained */
 } opt_mesh;
 
-typedef struct half {
-    int32_t lo, hi;
-    int32_t t;
-    int32_t i;
-} half;
-
-static int cmp_half(const void *pa, const void *pb)
-{
-    const half *a = pa, *b = pb;
-    if (a->lo != b->lo)
-        return a->lo < b->lo ? -1 : 1;
-    if (a->hi != b->hi)
-        return a->hi < b->hi ? -1 : 1;
-    if (a->t != b->t)
-        return a->t < b->t ? -1 : 1;
-    return (a->i > b->i) - (a->i < b->i);
-}
-
 static int cmp_pair(const void *pa, const void *pb)
 {
     const int32_t *a = pa, *b = pb;
@@ -57,7 +40,9 @@ static int cmp_pair(const void *pa, const void *pb)
 
 static fm_status build_adjacency(opt_mesh *m, const int32_t *cons, size_t ncons)
 {
-    half *h = malloc(3 * m->nt * sizeof *h + 1);
+    /* Half-edges by (lo, hi, triangle, corner): made in triangle order and
+     * sorted stably by the edge. */
+    fm_keyed *h = malloc(3 * m->nt * sizeof *h + 1);
     int32_t *ck = malloc(2 * ncons * sizeof *ck + 1);
     if (!h || !ck) {
         free(h);
@@ -67,11 +52,9 @@ static fm_status build_adjacency(opt_mesh *m, const int32_t *cons, size_t ncons)
     for (size_t t = 0; t < m->nt; t++)
         for (int i = 0; i < 3; i++) {
             int32_t a = m->tri[3 * t + (i + 1) % 3], b = m->tri[3 * t + (i + 2) % 3];
-            half *e = &h[3 * t + (size_t)i];
-            e->lo = a < b ? a : b;
-            e->hi = a < b ? b : a;
-            e->t = (int32_t)t;
-            e->i = i;
+            uint32_t lo = (uint32_t)(a < b ? a : b), hi = (uint32_t)(a < b ? b : a);
+            h[3 * t + (size_t)i].key = (uint64_t)lo << 32 | hi;
+            h[3 * t + (size_t)i].index = 3 * t + (size_t)i;
             m->nbr[3 * t + (size_t)i] = -1;
             m->cons[3 * t + (size_t)i] = 1; /* boundary until a twin is found */
         }
@@ -80,16 +63,20 @@ static fm_status build_adjacency(opt_mesh *m, const int32_t *cons, size_t ncons)
         ck[2 * k] = a < b ? a : b;
         ck[2 * k + 1] = a < b ? b : a;
     }
-    qsort(h, 3 * m->nt, sizeof *h, cmp_half);
+    if (fm_sort_keyed(h, 3 * m->nt) != 0) {
+        free(h);
+        free(ck);
+        return FM_ERR_NOMEM;
+    }
     qsort(ck, ncons, 2 * sizeof *ck, cmp_pair);
     for (size_t k = 0; k + 1 < 3 * m->nt; k++) {
-        if (h[k].lo != h[k + 1].lo || h[k].hi != h[k + 1].hi)
+        if (h[k].key != h[k + 1].key)
             continue;
-        int32_t key[2] = {h[k].lo, h[k].hi};
+        int32_t key[2] = {(int32_t)(h[k].key >> 32), (int32_t)(h[k].key & 0xffffffffu)};
         int c = ncons && bsearch(key, ck, ncons, 2 * sizeof *ck, cmp_pair) != NULL;
-        size_t a = 3 * (size_t)h[k].t + (size_t)h[k].i, b = 3 * (size_t)h[k + 1].t + (size_t)h[k + 1].i;
-        m->nbr[a] = h[k + 1].t;
-        m->nbr[b] = h[k].t;
+        size_t a = h[k].index, b = h[k + 1].index;
+        m->nbr[a] = (int32_t)(b / 3);
+        m->nbr[b] = (int32_t)(a / 3);
         m->cons[a] = m->cons[b] = (unsigned char)c;
         k++;
     }
