@@ -16,14 +16,6 @@ static double angle_at(const double *p, const double *a, const double *b)
                  u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) * (180.0 / 3.14159265358979323846);
 }
 
-static int cmp_edge(const void *pa, const void *pb)
-{
-    const int32_t *a = pa, *b = pb;
-    if (a[0] != b[0])
-        return a[0] < b[0] ? -1 : 1;
-    return (a[1] > b[1]) - (a[1] < b[1]);
-}
-
 fm_status fm_check_quality(const fm_mesh *m, int32_t tag, double H, fm_quality *q)
 {
     memset(q, 0, sizeof *q);
@@ -32,7 +24,7 @@ fm_status fm_check_quality(const fm_mesh *m, int32_t tag, double H, fm_quality *
     const int32_t *T = fm_mesh_triangles(m), *tags = fm_mesh_tags(m);
     double *angle_sum = calloc(nv ? nv : 1, sizeof *angle_sum);
     unsigned char *used = calloc(nv ? nv : 1, 1);
-    int32_t *e = malloc(6 * nt * sizeof *e + 1);
+    fm_keyed *e = malloc(3 * nt * sizeof *e + 1);
     double *len = NULL;
     if (!angle_sum || !used || !e) {
         free(angle_sum);
@@ -54,9 +46,9 @@ fm_status fm_check_quality(const fm_mesh *m, int32_t tag, double H, fm_quality *
             ang[i] = angle_at(X + 3 * v[i], X + 3 * v[(i + 1) % 3], X + 3 * v[(i + 2) % 3]);
             angle_sum[v[i]] += ang[i];
             used[v[i]] = 1;
-            int32_t a = v[(i + 1) % 3], b = v[(i + 2) % 3];
-            e[2 * ne] = a < b ? a : b;
-            e[2 * ne + 1] = a < b ? b : a;
+            uint32_t a = (uint32_t)v[(i + 1) % 3], b = (uint32_t)v[(i + 2) % 3];
+            e[ne].key = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+            e[ne].index = ne;
             ne++;
         }
         double mn = fmin(ang[0], fmin(ang[1], ang[2]));
@@ -70,10 +62,10 @@ fm_status fm_check_quality(const fm_mesh *m, int32_t tag, double H, fm_quality *
     q->angle_mean = q->triangles ? sum_min / (double)q->triangles : 0;
     if (!q->triangles)
         q->angle_min = 0;
-    qsort(e, ne, 2 * sizeof *e, cmp_edge);
+    int sorted = fm_sort_keyed(e, ne) == 0;
     unsigned char *boundary = calloc(nv ? nv : 1, 1);
     len = malloc((ne ? ne : 1) * sizeof *len);
-    if (!boundary || !len) {
+    if (!sorted || !boundary || !len) {
         free(angle_sum);
         free(used);
         free(e);
@@ -84,11 +76,12 @@ fm_status fm_check_quality(const fm_mesh *m, int32_t tag, double H, fm_quality *
     size_t nl = 0, in_band = 0;
     for (size_t k = 0; k < ne;) {
         size_t j = k + 1;
-        while (j < ne && e[2 * j] == e[2 * k] && e[2 * j + 1] == e[2 * k + 1])
+        while (j < ne && e[j].key == e[k].key)
             j++;
+        size_t ea = (size_t)(e[k].key >> 32), eb = (size_t)(e[k].key & 0xffffffffu);
         if (j - k == 1)
-            boundary[e[2 * k]] = boundary[e[2 * k + 1]] = 1;
-        const double *a = X + 3 * e[2 * k], *b = X + 3 * e[2 * k + 1];
+            boundary[ea] = boundary[eb] = 1;
+        const double *a = X + 3 * ea, *b = X + 3 * eb;
         double l = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                         (a[2] - b[2]) * (a[2] - b[2]));
         len[nl++] = l;

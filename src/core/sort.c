@@ -1,6 +1,7 @@
 #include "fm_sort.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -20,4 +21,62 @@ double fm_median(double *v, size_t n)
         return 0.0;
     fm_sort_doubles(v, n);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* 11-bit digits: six passes at most over 64 bits, and a pass whose digit
+ * is the same for every key (the high bits of small vertex numbers) is
+ * skipped; 2048 counts per digit stay in cache. */
+#define RADIX_BITS 11
+#define RADIX_DIGITS 6
+#define RADIX_SIZE (1 << RADIX_BITS)
+
+int fm_sort_keyed(fm_keyed *v, size_t n)
+{
+    if (n < 2)
+        return 0;
+    if (n <= 32) { /* insertion sort: stable */
+        for (size_t i = 1; i < n; i++) {
+            fm_keyed x = v[i];
+            size_t j = i;
+            while (j > 0 && v[j - 1].key > x.key) {
+                v[j] = v[j - 1];
+                j--;
+            }
+            v[j] = x;
+        }
+        return 0;
+    }
+    size_t(*count)[RADIX_SIZE] = calloc(RADIX_DIGITS, sizeof *count);
+    fm_keyed *tmp = malloc(n * sizeof *tmp);
+    if (!count || !tmp) {
+        free(count);
+        free(tmp);
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < RADIX_DIGITS; d++)
+            count[d][(v[i].key >> (RADIX_BITS * d)) & (RADIX_SIZE - 1)]++;
+    fm_keyed *src = v, *dst = tmp;
+    for (int d = 0; d < RADIX_DIGITS; d++) {
+        size_t *c = count[d];
+        unsigned shift = (unsigned)(RADIX_BITS * d);
+        if (c[(src[0].key >> shift) & (RADIX_SIZE - 1)] == n)
+            continue;
+        size_t sum = 0;
+        for (size_t b = 0; b < RADIX_SIZE; b++) {
+            size_t t = c[b];
+            c[b] = sum;
+            sum += t;
+        }
+        for (size_t i = 0; i < n; i++)
+            dst[c[(src[i].key >> shift) & (RADIX_SIZE - 1)]++] = src[i];
+        fm_keyed *t = src;
+        src = dst;
+        dst = t;
+    }
+    if (src != v)
+        memcpy(v, src, n * sizeof *v);
+    free(count);
+    free(tmp);
+    return 0;
 }

@@ -1,6 +1,7 @@
 /* fm_fit_sheet: frame, grid, least squares, statistics. */
 #include "fit_internal.h"
 #include "fm_clock.h"
+#include "fm_sort.h"
 
 #include <limits.h>
 #include <math.h>
@@ -134,12 +135,6 @@ static void quick_errors(const fm_fit_surface *s, const fm_fit_pmesh *pm, const 
     *max = mx;
 }
 
-static int cmp_u64(const void *a, const void *b)
-{
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return (x > y) - (x < y);
-}
-
 /* The parameters of the surface point closest to q (frame coordinates),
  * from its own parameters own, when the projection converges and comes
  * closer; else own. The trimming curves run through these (model.c), so
@@ -165,22 +160,26 @@ static void snap_param(const fm_fit_surface *s, const double q[3], const double 
 static double border_offset(const fm_fit_surface *s, const fm_fit_pmesh *pm, const double *local)
 {
     size_t m = 3 * pm->nt;
-    uint64_t *key = malloc((m ? m : 1) * sizeof *key);
+    fm_keyed *key = malloc((m ? m : 1) * sizeof *key);
     if (!key)
         return -1;
     for (size_t t = 0; t < pm->nt; t++)
         for (int k = 0; k < 3; k++) {
             uint32_t a = (uint32_t)pm->tri[3 * t + k], b = (uint32_t)pm->tri[3 * t + (k + 1) % 3];
-            key[3 * t + k] = a < b ? ((uint64_t)a << 32 | b) : ((uint64_t)b << 32 | a);
+            key[3 * t + k].key = a < b ? ((uint64_t)a << 32 | b) : ((uint64_t)b << 32 | a);
+            key[3 * t + k].index = 3 * t + (size_t)k;
         }
-    qsort(key, m, sizeof *key, cmp_u64);
+    if (fm_sort_keyed(key, m) != 0) {
+        free(key);
+        return -1;
+    }
     double worst = 0;
     for (size_t i = 0; i < m;) {
         size_t j = i;
-        while (j < m && key[j] == key[i])
+        while (j < m && key[j].key == key[i].key)
             j++;
         if (j - i == 1) {
-            size_t e[2] = {(size_t)(key[i] >> 32), (size_t)(key[i] & 0xffffffffu)};
+            size_t e[2] = {(size_t)(key[i].key >> 32), (size_t)(key[i].key & 0xffffffffu)};
             double uv[2][2], P[3], q[3];
             for (int k = 0; k < 2; k++)
                 snap_param(s, local + 3 * e[k], pm->uv + 2 * e[k], uv[k]);

@@ -4,25 +4,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fm_sort.h"
 #include "model_internal.h"
-
-typedef struct {
-    uint64_t key;
-    size_t tri; /* triangle * 3 + local edge */
-} edge_ref;
-
-static int cmp_edge(const void *a, const void *b)
-{
-    const edge_ref *x = a, *y = b;
-    if (x->key != y->key)
-        return x->key < y->key ? -1 : 1;
-    return (x->tri > y->tri) - (x->tri < y->tri);
-}
 
 static fm_status refine_once(fm_submesh *m)
 {
     size_t ne = 3 * m->nt;
-    edge_ref *e = malloc((ne ? ne : 1) * sizeof *e);
+    fm_keyed *e = malloc((ne ? ne : 1) * sizeof *e);
     int32_t *mid = malloc((ne ? ne : 1) * sizeof *mid);
     if (!e || !mid) {
         free(e);
@@ -33,9 +21,14 @@ static fm_status refine_once(fm_submesh *m)
         for (int k = 0; k < 3; k++) {
             uint32_t a = (uint32_t)m->tri[3 * t + k], b = (uint32_t)m->tri[3 * t + (k + 1) % 3];
             e[3 * t + k].key = a < b ? ((uint64_t)a << 32 | b) : ((uint64_t)b << 32 | a);
-            e[3 * t + k].tri = 3 * t + (size_t)k;
+            e[3 * t + k].index = 3 * t + (size_t)k;
         }
-    qsort(e, ne, sizeof *e, cmp_edge);
+    /* By edge, then (as made) by triangle and side. */
+    if (fm_sort_keyed(e, ne) != 0) {
+        free(e);
+        free(mid);
+        return FM_ERR_NOMEM;
+    }
     size_t nedges = 0;
     for (size_t i = 0; i < ne; i++)
         if (i == 0 || e[i].key != e[i - 1].key)
@@ -65,7 +58,7 @@ static fm_status refine_once(fm_submesh *m)
         /* A midpoint is on the boundary only if its edge is (one triangle). */
         m->loop[v] = (j - i == 1 && m->loop[a] >= 0 && m->loop[a] == m->loop[b]) ? m->loop[a] : -1;
         for (size_t k = i; k < j; k++)
-            mid[e[k].tri] = (int32_t)v;
+            mid[e[k].index] = (int32_t)v;
         v++;
         i = j;
     }

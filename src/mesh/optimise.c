@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "fm_predicates.h"
+#include "fm_sort.h"
 #include "remesh_internal.h"
 
 typedef struct opt_mesh {
@@ -27,25 +28,18 @@ typedef struct opt_mesh {
     int32_t *tri;
     int32_t *nbr;         /* 3 per triangle: across the edge opposite corner i */
     unsigned char *cons;  /* 3 per triangle: that edge is constrained */
+    /* What the flips and the smoothing would otherwise compute again, each
+     * value exactly what it stands for (so the mesh is the same):
+     *  - sine[3 t + r]: min_sin of t's corners taken from corner r on
+     *    (rotations may differ in the last bit where sides tie), -1 when
+     *    not known;
+     *  - changed[t]: the clock when t's corners, neighbours, constraints or
+     *    node positions last changed; declined[3 t + i]: the clock when the
+     *    flip of t's edge i was last found not to pay. A flip declined
+     *    after the last change of both its triangles is declined again. */
+    double *sine;
+    uint64_t *changed, *declined, clock;
 } opt_mesh;
-
-typedef struct half {
-    int32_t lo, hi;
-    int32_t t;
-    int32_t i;
-} half;
-
-static int cmp_half(const void *pa, const void *pb)
-{
-    const half *a = pa, *b = pb;
-    if (a->lo != b->lo)
-        return a->lo < b->lo ? -1 : 1;
-    if (a->hi != b->hi)
-        return a->hi < b->hi ? -1 : 1;
-    if (a->t != b->t)
-        return a->t < b->t ? -1 : 1;
-    return (a->i > b->i) - (a->i < b->i);
-}
 
 static int cmp_pair(const void *pa, const void *pb)
 {
@@ -57,7 +51,9 @@ static int cmp_pair(const void *pa, const void *pb)
 
 static fm_status build_adjacency(opt_mesh *m, const int32_t *cons, size_t ncons)
 {
-    half *h = malloc(3 * m->nt * sizeof *h + 1);
+    /* Half-edges by (lo, hi, triangle, corner): made in triangle order and
+     * sorted stably by the edge. */
+    fm_keyed *h = malloc(3 * m->nt * sizeof *h + 1);
     int32_t *ck = malloc(2 * ncons * sizeof *ck + 1);
     if (!h || !ck) {
         free(h);
@@ -67,11 +63,9 @@ static fm_status build_adjacency(opt_mesh *m, const int32_t *cons, size_t ncons)
     for (size_t t = 0; t < m->nt; t++)
         for (int i = 0; i < 3; i++) {
             int32_t a = m->tri[3 * t + (i + 1) % 3], b = m->tri[3 * t + (i + 2) % 3];
-            half *e = &h[3 * t + (size_t)i];
-            e->lo = a < b ? a : b;
-            e->hi = a < b ? b : a;
-            e->t = (int32_t)t;
-            e->i = i;
+            uint32_t lo = (uint32_t)(a < b ? a : b), hi = (uint32_t)(a < b ? b : a);
+            h[3 * t + (size_t)i].key = (uint64_t)lo << 32 | hi;
+            h[3 * t + (size_t)i].index = 3 * t + (size_t)i;
             m->nbr[3 * t + (size_t)i] = -1;
             m->cons[3 * t + (size_t)i] = 1; /* boundary until a twin is found */
         }
@@ -80,16 +74,20 @@ static fm_status build_adjacency(opt_mesh *m, const int32_t *cons, size_t ncons)
         ck[2 * k] = a < b ? a : b;
         ck[2 * k + 1] = a < b ? b : a;
     }
-    qsort(h, 3 * m->nt, sizeof *h, cmp_half);
+    if (fm_sort_keyed(h, 3 * m->nt) != 0) {
+        free(h);
+        free(ck);
+        return FM_ERR_NOMEM;
+    }
     qsort(ck, ncons, 2 * sizeof *ck, cmp_pair);
     for (size_t k = 0; k + 1 < 3 * m->nt; k++) {
-        if (h[k].lo != h[k + 1].lo || h[k].hi != h[k + 1].hi)
+        if (h[k].key != h[k + 1].key)
             continue;
-        int32_t key[2] = {h[k].lo, h[k].hi};
+        int32_t key[2] = {(int32_t)(h[k].key >> 32), (int32_t)(h[k].key & 0xffffffffu)};
         int c = ncons && bsearch(key, ck, ncons, 2 * sizeof *ck, cmp_pair) != NULL;
-        size_t a = 3 * (size_t)h[k].t + (size_t)h[k].i, b = 3 * (size_t)h[k + 1].t + (size_t)h[k + 1].i;
-        m->nbr[a] = h[k + 1].t;
-        m->nbr[b] = h[k].t;
+        size_t a = h[k].index, b = h[k + 1].index;
+        m->nbr[a] = (int32_t)(b / 3);
+        m->nbr[b] = (int32_t)(a / 3);
         m->cons[a] = m->cons[b] = (unsigned char)c;
         k++;
     }
@@ -107,10 +105,39 @@ static double min_sin(const opt_mesh *m, int32_t a, int32_t b, int32_t c)
     return fm_triangle_min_angle_sin(m->xyz + 3 * a, m->xyz + 3 * b, m->xyz + 3 * c);
 }
 
+/* Forgets all that is known of the triangles (their numbers changed). */
+static void forget_all(opt_mesh *m)
+{
+    m->clock++;
+    for (size_t t = 0; t < m->nt; t++) {
+        m->sine[3 * t] = m->sine[3 * t + 1] = m->sine[3 * t + 2] = -1;
+        m->changed[t] = m->clock;
+    }
+}
+
+/* Triangle t changed; its sine from corner 0 is s0 (-1: unknown). */
+static void changed(opt_mesh *m, int32_t t, double s0)
+{
+    m->sine[3 * t] = s0;
+    m->sine[3 * t + 1] = m->sine[3 * t + 2] = -1;
+    m->changed[t] = ++m->clock;
+}
+
+static double rot_sin(opt_mesh *m, int32_t t, int r)
+{
+    double *q = &m->sine[3 * t + r];
+    if (*q < 0) {
+        const int32_t *T = m->tri + 3 * t;
+        *q = min_sin(m, T[r], T[(r + 1) % 3], T[(r + 2) % 3]);
+    }
+    return *q;
+}
+
 static void set_back(opt_mesh *m, int32_t t, int32_t from, int32_t to)
 {
     if (t < 0)
         return;
+    m->changed[t] = ++m->clock;
     for (int k = 0; k < 3; k++)
         if (m->nbr[3 * t + k] == from) {
             m->nbr[3 * t + k] = to;
@@ -125,6 +152,10 @@ static int try_flip(opt_mesh *m, int32_t t, int i)
     int32_t u = m->nbr[3 * t + i];
     if (u < 0 || m->cons[3 * t + i])
         return 0;
+    uint64_t *seen = &m->declined[3 * t + i];
+    if (*seen >= m->changed[t] && *seen >= m->changed[u])
+        return 0;
+    *seen = m->clock;
     int32_t *T = m->tri + 3 * t, *U = m->tri + 3 * u;
     int j = 0;
     while (j < 3 && m->nbr[3 * u + j] != t)
@@ -135,8 +166,12 @@ static int try_flip(opt_mesh *m, int32_t t, int i)
     const double *A = m->uv + 2 * a, *B = m->uv + 2 * b, *C = m->uv + 2 * c, *D = m->uv + 2 * d;
     if (fm_orient2d(A, B, D) <= 0 || fm_orient2d(A, D, C) <= 0)
         return 0;
-    double before = fmin(min_sin(m, a, b, c), min_sin(m, d, c, b));
-    double after = fmin(min_sin(m, a, b, d), min_sin(m, a, d, c));
+    /* (d, c, b) is u from corner j when u runs the shared edge backwards,
+     * as in a mesh oriented throughout. */
+    double su = U[(j + 1) % 3] == c && U[(j + 2) % 3] == b ? rot_sin(m, u, j) : min_sin(m, d, c, b);
+    double before = fmin(rot_sin(m, t, i), su);
+    double sabd = min_sin(m, a, b, d), sadc = min_sin(m, a, d, c);
+    double after = fmin(sabd, sadc);
     if (!(after > before + 1e-8))
         return 0;
     int32_t N1 = m->nbr[3 * t + (i + 1) % 3], N2 = m->nbr[3 * t + (i + 2) % 3];
@@ -153,6 +188,8 @@ static int try_flip(opt_mesh *m, int32_t t, int i)
     cu[0] = cM2, cu[1] = cN1, cu[2] = 0;
     set_back(m, M1, u, t);
     set_back(m, N1, t, u);
+    changed(m, t, sabd);
+    changed(m, u, sadc);
     return 1;
 }
 
@@ -202,8 +239,9 @@ static fm_status incidence(const opt_mesh *m, size_t **start, int32_t **list)
 }
 
 /* Smallest 3D angle (its sine) of the triangles around v, and whether all
- * are counter-clockwise in (u, v). */
-static double ring_quality(const opt_mesh *m, const int32_t *ring, size_t n, int *valid)
+ * are counter-clockwise in (u, v): from what is known of them (fresh ==
+ * NULL), or computed anew into fresh (one per triangle) after v moved. */
+static double ring_quality(opt_mesh *m, const int32_t *ring, size_t n, int *valid, double *fresh)
 {
     double q = 1;
     *valid = 1;
@@ -211,12 +249,15 @@ static double ring_quality(const opt_mesh *m, const int32_t *ring, size_t n, int
         const int32_t *T = m->tri + 3 * ring[k];
         if (fm_orient2d(m->uv + 2 * T[0], m->uv + 2 * T[1], m->uv + 2 * T[2]) <= 0)
             *valid = 0;
-        q = fmin(q, min_sin(m, T[0], T[1], T[2]));
+        if (fresh)
+            q = fmin(q, fresh[k] = min_sin(m, T[0], T[1], T[2]));
+        else
+            q = fmin(q, rot_sin(m, ring[k], 0));
     }
     return q;
 }
 
-static size_t smooth_pass(opt_mesh *m, const size_t *start, const int32_t *list)
+static size_t smooth_pass(opt_mesh *m, const size_t *start, const int32_t *list, double *fresh)
 {
     size_t moved = 0;
     for (size_t v = 0; v < m->np; v++) {
@@ -240,7 +281,7 @@ static size_t smooth_pass(opt_mesh *m, const size_t *start, const int32_t *list)
         for (int q = 0; q < 3; q++)
             target[q] /= w;
         int valid;
-        double before = ring_quality(m, ring, n, &valid);
+        double before = ring_quality(m, ring, n, &valid, NULL);
         double old_uv[2] = {m->uv[2 * v], m->uv[2 * v + 1]};
         double old_xyz[3] = {m->xyz[3 * v], m->xyz[3 * v + 1], m->xyz[3 * v + 2]};
         double uv[2] = {old_uv[0], old_uv[1]};
@@ -262,9 +303,11 @@ static size_t smooth_pass(opt_mesh *m, const size_t *start, const int32_t *list)
         m->uv[2 * v] = uv[0];
         m->uv[2 * v + 1] = uv[1];
         fm_fit_surface_eval(m->s, uv[0], uv[1], m->xyz + 3 * v, NULL, NULL);
-        double after = ring_quality(m, ring, n, &valid);
+        double after = ring_quality(m, ring, n, &valid, fresh);
         if (valid && (after >= before - 1e-11 || after >= SIN35)) {
             moved++;
+            for (size_t k = 0; k < n; k++)
+                changed(m, ring[k], fresh[k]);
         } else {
             memcpy(m->uv + 2 * v, old_uv, sizeof old_uv);
             memcpy(m->xyz + 3 * v, old_xyz, sizeof old_xyz);
@@ -278,18 +321,20 @@ fm_status optimise_mesh(const fm_fit_surface *s, double *uv, double *xyz, const 
                         const opt_curves *cv, int passes, double size, opt_result *res)
 {
     memset(res, 0, sizeof *res);
-    opt_mesh m = {s, uv, xyz, fixed, np, *nt, tri, NULL, NULL};
+    opt_mesh m = {s, uv, xyz, fixed, np, *nt, tri, NULL, NULL, NULL, NULL, NULL, 0};
     m.nbr = malloc(3 * m.nt * sizeof *m.nbr + 1);
     m.cons = malloc(3 * m.nt + 1);
+    m.sine = malloc(3 * m.nt * sizeof *m.sine + 1);
+    m.changed = malloc(m.nt * sizeof *m.changed + 1);
+    m.declined = calloc(3 * m.nt + 1, sizeof *m.declined);
+    /* A node's ring is at most every triangle. */
+    double *fresh = malloc(m.nt * sizeof *fresh + 1);
     /* boundary neighbours along the constrained edges (domain on the left) */
     int32_t *prev = cv ? malloc(2 * np * sizeof *prev + 1) : NULL, *next = prev ? prev + np : NULL;
-    if (!m.nbr || !m.cons || (cv && !prev)) {
-        free(m.nbr);
-        free(m.cons);
-        free(prev);
-        return FM_ERR_NOMEM;
-    }
-    if (prev) {
+    fm_status st = FM_OK;
+    if (!m.nbr || !m.cons || !m.sine || !m.changed || !m.declined || !fresh || (cv && !prev))
+        st = FM_ERR_NOMEM;
+    if (st == FM_OK && prev) {
         for (size_t v = 0; v < 2 * np; v++)
             prev[v] = -1;
         for (size_t k = 0; k < ncons; k++) {
@@ -297,7 +342,10 @@ fm_status optimise_mesh(const fm_fit_surface *s, double *uv, double *xyz, const 
             prev[cons[2 * k + 1]] = cons[2 * k];
         }
     }
-    fm_status st = build_adjacency(&m, cons, ncons);
+    if (st == FM_OK) {
+        forget_all(&m);
+        st = build_adjacency(&m, cons, ncons);
+    }
     for (int p = 0; st == FM_OK && p < passes; p++) {
         /* Collapses first, while the short edges are still short: flips
          * and smoothing would spread them into slivers. */
@@ -308,8 +356,10 @@ fm_status optimise_mesh(const fm_fit_surface *s, double *uv, double *xyz, const 
             break;
         }
         res->collapsed += c;
-        if (c)
+        if (c) {
+            forget_all(&m);
             st = build_adjacency(&m, cons, ncons);
+        }
         if (st != FM_OK)
             break;
         res->flips += flip_pass(&m);
@@ -318,7 +368,7 @@ fm_status optimise_mesh(const fm_fit_surface *s, double *uv, double *xyz, const 
         st = incidence(&m, &start, &list);
         if (st != FM_OK)
             break;
-        size_t moved = smooth_pass(&m, start, list);
+        size_t moved = smooth_pass(&m, start, list, fresh);
         res->smoothed += moved;
         free(start);
         free(list);
@@ -342,11 +392,17 @@ fm_status optimise_mesh(const fm_fit_surface *s, double *uv, double *xyz, const 
         res->slid += slid;
         if (!slid)
             break;
+        /* slid nodes changed their triangles: no remembered angle holds */
+        forget_all(&m);
         res->flips += flip_pass(&m);
     }
     *nt = m.nt;
     free(m.nbr);
     free(m.cons);
     free(prev);
+    free(m.sine);
+    free(m.changed);
+    free(m.declined);
+    free(fresh);
     return st;
 }
