@@ -177,16 +177,54 @@ static int find_node(const pl_curve *c, int64_t key)
     return -1;
 }
 
+/* Keys of points found twice (two pairs of curves meeting at the same
+ * triple point) are one: a union-find over keys. */
+typedef struct keyset {
+    int64_t *parent;
+    size_t n, cap;
+} keyset;
+
+static int64_t key_new(keyset *ks)
+{
+    if (ks->n == ks->cap) {
+        size_t cap = ks->cap ? 2 * ks->cap : 64;
+        int64_t *p = realloc(ks->parent, cap * sizeof *p);
+        if (!p)
+            return -1;
+        ks->parent = p;
+        ks->cap = cap;
+    }
+    ks->parent[ks->n] = (int64_t)ks->n;
+    return (int64_t)ks->n++;
+}
+
+static int64_t key_find(keyset *ks, int64_t k)
+{
+    while (ks->parent[k] != k) {
+        ks->parent[k] = ks->parent[ks->parent[k]];
+        k = ks->parent[k];
+    }
+    return k;
+}
+
 /* Puts point T (key) on curve c: at the node within `snap` of it (ends
  * first), else into the segment nearest to it, if within `reach`. The
  * uv of T on c's sides come from projecting it, or from uvs[] when the
  * sheet is one of the three (so that one sheet sees one (u, v) for it). */
 static int put_point(pl_curve *c, const fm_connect_junction *j, const double T[3], int64_t key,
                      const size_t fs[3][2], const double uvs[6], const fm_model *const *models,
-                     double snap, double reach)
+                     double snap, double reach, keyset *ks)
 {
     if (find_node(c, key) >= 0)
         return 0;
+    /* the same point found before through another pair of curves */
+    for (size_t i = 0; i < c->n; i++)
+        if (c->key[i] >= 0 && dist3(c->xyz + 3 * i, T) <= 1e-3 * snap) {
+            int64_t a = key_find(ks, c->key[i]), b = key_find(ks, key);
+            if (a != b)
+                ks->parent[b] = a;
+            return 0;
+        }
     double uv[2][2];
     for (int s = 0; s < 2; s++) {
         int which = -1;
@@ -235,7 +273,7 @@ int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
                         size_t *made)
 {
     *made = 0;
-    int64_t next_key = 0;
+    keyset ks = {0};
     for (size_t x = 0; x < nj; x++) {
         if (!C[x].n)
             continue;
@@ -293,12 +331,12 @@ int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
                 /* with the top cut, nothing may rise above sea level */
                 if (level && T[2] > *level)
                     continue;
-                if (ensure_keys(a) || ensure_keys(b))
-                    return -1;
-                int64_t key = next_key++;
-                if (put_point(a, &J[x], T, key, fs, uvs, models, 0.3 * H, 0.5 * H) < 0 ||
-                    put_point(b, &J[y], T, key, fs, uvs, models, 0.3 * H, 0.5 * H) < 0)
-                    return -1;
+                int64_t key = key_new(&ks);
+                if (key < 0 || ensure_keys(a) || ensure_keys(b))
+                    goto nomem;
+                if (put_point(a, &J[x], T, key, fs, uvs, models, 0.3 * H, 0.5 * H, &ks) < 0 ||
+                    put_point(b, &J[y], T, key, fs, uvs, models, 0.3 * H, 0.5 * H, &ks) < 0)
+                    goto nomem;
                 /* the curve of the other two, when it passes there */
                 for (size_t z = 0; z < nj; z++) {
                     if (z == x || z == y || !C[z].n)
@@ -307,12 +345,22 @@ int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
                     if (z1 < 0 || z2 < 0)
                         continue;
                     if (ensure_keys(&C[z]) ||
-                        put_point(&C[z], &J[z], T, key, fs, uvs, models, 0.3 * H, 0.5 * H) < 0)
-                        return -1;
+                        put_point(&C[z], &J[z], T, key, fs, uvs, models, 0.3 * H, 0.5 * H,
+                                  &ks) < 0)
+                        goto nomem;
                 }
                 (*made)++;
             }
         }
     }
+    /* one key per point */
+    for (size_t x = 0; x < nj; x++)
+        for (size_t i = 0; C[x].key && i < C[x].n; i++)
+            if (C[x].key[i] >= 0)
+                C[x].key[i] = key_find(&ks, C[x].key[i]);
+    free(ks.parent);
     return 0;
+nomem:
+    free(ks.parent);
+    return -1;
 }

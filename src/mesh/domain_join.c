@@ -462,6 +462,11 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
             /* ends put on the loops, nodes the loops were rerouted through,
              * and points curves share where three faults meet */
             pi = find_point(fd, np, uv);
+            /* a node another curve has already (one node, however its
+             * (u, v) was rounded on the way) */
+            for (size_t q = 0; pi < 0 && q < np; q++)
+                if (fd->shared[q] == cv[c].node[i])
+                    pi = (int32_t)q;
             if (pi < 0) {
                 pi = (int32_t)np;
                 memcpy(fd->uv + 2 * np, uv, 2 * sizeof *fd->uv);
