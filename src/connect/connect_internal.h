@@ -73,5 +73,9 @@ int cn_edge_crosses_triangle(const double *p, const double *q, int64_t ip, int64
 /* Any intersection between two triangles (no perturbation needed: a touch counts). */
 int cn_triangles_intersect(const double *const a[3], const double *const b[3]);
 
+/* Calls fn(user, k) once for every k in [0, n), on nthreads threads (the
+ * caller's among them), in no fixed order: fn stores its results by k. */
+typedef void (*cn_task_fn)(void *user, size_t k);
+void cn_parallel_for(size_t n, int nthreads, cn_task_fn fn, void *user);
 
 #endif

@@ -203,6 +203,8 @@ typedef struct fm_connect_duplicate_options {
     double tolerance;     /* m; default 50 */
     double min_share;     /* in (0, 1]; default 0.5 */
     fm_connect_keep keep;
+    int nthreads;         /* faults measured on this many threads (default 1); the
+                             result does not depend on it */
 } fm_connect_duplicate_options;
 
 void fm_connect_duplicate_options_default(fm_connect_duplicate_options *opt);
