@@ -34,6 +34,19 @@ fm_status cn_sheet_build(const fm_model *m, size_t fault, size_t sheet, double r
                          cn_sheet *out, fm_error *err);
 void cn_sheet_free(cn_sheet *s);
 
+/* Every sheet of models[0 .. n-1] (NULL entries skipped), in model then
+ * sheet order, built on nthreads threads; the first that fails, in that
+ * order, gives the error. */
+fm_status cn_sheets_build(const fm_model *const *models, size_t n, double reach, int nthreads,
+                          cn_sheet **out, size_t *nout, fm_error *err);
+void cn_sheets_free(cn_sheet *s, size_t n);
+
+/* fm_connect_find_pairs on sheets built by cn_sheets_build at the reach
+ * of opt (not NULL, checked); stats.time_sample is left 0. */
+fm_status cn_find_pairs(const cn_sheet *sh, size_t ns, const fm_connect_options *opt,
+                        fm_connect_pairs **out, fm_error *err);
+void cn_pairs_set_time_sample(fm_connect_pairs *p, double seconds);
+
 /* 1 when (u, v) lies inside the sampled trimming loops (even-odd). */
 int cn_sheet_inside(const cn_sheet *s, double u, double v);
 /* Signed distance of S(u, v) = xyz to the outline (< 0 inside). */

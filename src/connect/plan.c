@@ -459,6 +459,8 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
     fm_connect_options_default(&co);
     co.distance = o.distance;
     co.reach = o.distance;
+    co.nthreads = o.nthreads;
+    o.duplicates.nthreads = o.nthreads;
     fm_connect_pairs *pairs = NULL;
     fm_status st = fm_connect_find_pairs(models, n, &co, &pairs, err);
     if (st != FM_OK) {

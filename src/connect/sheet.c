@@ -151,7 +151,7 @@ static fm_status sample_loops(cn_sheet *s, const fm_model *m, size_t sheet, fm_e
             fm_mesh_add_triangle(om, a, b, b, 0);
         }
     }
-    s->outline = fm_closest_tree_create(om, err);
+    s->outline = fm_closest_tree_create_quick(om, err);
     fm_mesh_destroy(om);
     return s->outline ? FM_OK : (err ? err->code : FM_ERR_NOMEM);
 }
@@ -261,7 +261,7 @@ fm_status cn_sheet_build(const fm_model *m, size_t fault, size_t sheet, double r
         cn_sheet_free(s);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     }
-    s->cells = fm_closest_tree_create(bm, err);
+    s->cells = fm_closest_tree_create_quick(bm, err);
     fm_mesh_destroy(bm);
     if (!s->cells) {
         cn_sheet_free(s);
@@ -302,4 +302,76 @@ size_t cn_select_cells(const cn_sheet *a, const cn_sheet *b, double margin, unsi
         }
     }
     return n;
+}
+
+/* Sheets sampled on N threads: slot k is model sheet ref[k]. */
+typedef struct sample_work {
+    const fm_model *const *models;
+    const size_t (*ref)[2];
+    double reach;
+    cn_sheet *sh;
+    fm_status *st;
+    fm_error *err;
+} sample_work;
+
+static void sample_task(void *user, size_t k)
+{
+    sample_work *w = user;
+    size_t f = w->ref[k][0], s = w->ref[k][1];
+    w->st[k] = cn_sheet_build(w->models[f], f, s, w->reach, &w->sh[k], &w->err[k]);
+}
+
+fm_status cn_sheets_build(const fm_model *const *models, size_t n, double reach, int nthreads,
+                          cn_sheet **out, size_t *nout, fm_error *err)
+{
+    *out = NULL;
+    *nout = 0;
+    size_t ns = 0;
+    for (size_t i = 0; i < n; i++)
+        ns += models && models[i] ? fm_model_nsheets(models[i]) : 0;
+    cn_sheet *sh = calloc(ns ? ns : 1, sizeof *sh);
+    size_t(*ref)[2] = malloc((ns ? ns : 1) * sizeof *ref);
+    fm_status *sst = calloc(ns ? ns : 1, sizeof *sst);
+    fm_error *serr = calloc(ns ? ns : 1, sizeof *serr);
+    if (!sh || !ref || !sst || !serr) {
+        free(sh);
+        free(ref);
+        free(sst);
+        free(serr);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+    }
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t s = 0; models[i] && s < fm_model_nsheets(models[i]); s++, k++) {
+            ref[k][0] = i;
+            ref[k][1] = s;
+        }
+    sample_work w = {models, (const size_t(*)[2])ref, reach, sh, sst, serr};
+    cn_parallel_for(ns, nthreads, sample_task, &w);
+    /* the first sheet in order that failed decides the error, as on one thread */
+    fm_status st = FM_OK;
+    for (k = 0; k < ns; k++)
+        if (sst[k] != FM_OK) {
+            st = sst[k];
+            if (err)
+                *err = serr[k];
+            break;
+        }
+    free(ref);
+    free(sst);
+    free(serr);
+    if (st != FM_OK) {
+        cn_sheets_free(sh, ns);
+        return st;
+    }
+    *out = sh;
+    *nout = ns;
+    return FM_OK;
+}
+
+void cn_sheets_free(cn_sheet *s, size_t n)
+{
+    for (size_t k = 0; s && k < n; k++)
+        cn_sheet_free(&s[k]);
+    free(s);
 }
