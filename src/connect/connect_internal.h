@@ -47,6 +47,11 @@ fm_status cn_find_pairs(const cn_sheet *sh, size_t ns, const fm_connect_options 
                         fm_connect_pairs **out, fm_error *err);
 void cn_pairs_set_time_sample(fm_connect_pairs *p, double seconds);
 
+/* fm_connect_intersect on sheets built at the reach of opt (INFINITY when
+ * opt->clip_to_reach is 0); opt not NULL, checked. */
+fm_status cn_intersect(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_options *opt,
+                       fm_connect_curves **out, fm_error *err);
+
 /* 1 when (u, v) lies inside the sampled trimming loops (even-odd). */
 int cn_sheet_inside(const cn_sheet *s, double u, double v);
 /* Signed distance of S(u, v) = xyz to the outline (< 0 inside). */
