@@ -67,7 +67,8 @@ size_t cn_select_cells(const cn_sheet *a, const cn_sheet *b, double margin, unsi
 
 /* The selected cells subdivided sub x sub and triangulated on one lattice
  * (shared vertices, shared edges). Edge k of triangle t joins tri[3t + k]
- * and tri[3t + (k + 1) % 3]. */
+ * and tri[3t + (k + 1) % 3]; edges numbered (tedge, ev) only when asked
+ * for (the intersection chains through them, distances do not). */
 typedef struct cn_zone {
     size_t nv, nt, ne;
     double *xyz, *uv, *sd;   /* per vertex */
@@ -76,7 +77,8 @@ typedef struct cn_zone {
     int32_t *ev;             /* 2 per edge, lower vertex id first */
 } cn_zone;
 
-fm_status cn_zone_build(const cn_sheet *s, const unsigned char *sel, int sub, cn_zone *z);
+fm_status cn_zone_build(const cn_sheet *s, const unsigned char *sel, int sub, int edges,
+                        cn_zone *z);
 void cn_zone_free(cn_zone *z);
 int cn_subdivision(const cn_sheet *s, double sample_spacing);
 

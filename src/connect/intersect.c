@@ -829,8 +829,8 @@ fm_status cn_intersect(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_
     }
     if (!cn_select_cells(sa, sb, 0.0, sel_a) || !cn_select_cells(sb, sa, 0.0, sel_b))
         goto done;
-    if (cn_zone_build(sa, sel_a, cn_subdivision(sa, j.o.sample_spacing), &za) != FM_OK ||
-        cn_zone_build(sb, sel_b, cn_subdivision(sb, j.o.sample_spacing), &zb) != FM_OK) {
+    if (cn_zone_build(sa, sel_a, cn_subdivision(sa, j.o.sample_spacing), 1, &za) != FM_OK ||
+        cn_zone_build(sb, sel_b, cn_subdivision(sb, j.o.sample_spacing), 1, &zb) != FM_OK) {
         st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
         goto done;
     }
