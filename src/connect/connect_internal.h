@@ -25,6 +25,12 @@ typedef struct cn_sheet {
     double *loop_uv;
     size_t *loop_start;      /* nloops + 1 */
     size_t nloops;
+    /* the loops' segments by band of v (point-in-loop tests): segment k
+     * joins points seg[2k] and seg[2k + 1]; band j lists band_seg[band_start[j]
+     * .. band_start[j + 1] - 1], the segments whose v range meets it */
+    uint32_t *seg, *band_seg;
+    size_t *band_start, nband;
+    double band_v0, band_h;
     fm_closest_tree *outline;  /* outline segments in 3D (degenerate triangles) */
     fm_closest_tree *cells;    /* active cell boxes (degenerate triangles lo, hi, lo) */
     int32_t *cell_id;          /* tree triangle -> cell */

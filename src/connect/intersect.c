@@ -233,7 +233,7 @@ static fm_status build_graph(const cn_zone *za, const cn_zone *zb, graph *g, fm_
     c.xb = xb;
     for (size_t t = 0; t < zb->nt; t++)
         fm_mesh_add_triangle(mb, zb->tri[3 * t], zb->tri[3 * t + 1], zb->tri[3 * t + 2], 0);
-    fm_closest_tree *tree = fm_closest_tree_create(mb, err);
+    fm_closest_tree *tree = fm_closest_tree_create_quick(mb, err);
     fm_mesh_destroy(mb);
     if (!tree) {
         free(xb);

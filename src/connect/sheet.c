@@ -16,27 +16,107 @@ void cn_sheet_free(cn_sheet *s)
     free(s->active);
     free(s->loop_uv);
     free(s->loop_start);
+    free(s->seg);
+    free(s->band_seg);
+    free(s->band_start);
     fm_closest_tree_destroy(s->outline);
     fm_closest_tree_destroy(s->cells);
     free(s->cell_id);
     memset(s, 0, sizeof *s);
 }
 
+/* Band of v (NaN and values outside the loops' v range: none). */
+static int band_of(const cn_sheet *s, double v, size_t *j)
+{
+    double f = (v - s->band_v0) / s->band_h;
+    if (!(f >= 0) || !(f < (double)s->nband + 1))
+        return 0;
+    *j = f >= (double)(s->nband - 1) ? s->nband - 1 : (size_t)f;
+    return 1;
+}
+
+/* Even-odd over the segments of v's band: the segments that can cross
+ * the horizontal through v, each tested as a scan of all would test it. */
 int cn_sheet_inside(const cn_sheet *s, double u, double v)
 {
+    size_t j;
+    if (!s->nband || !band_of(s, v, &j))
+        return 0;
     int in = 0;
-    for (size_t l = 0; l < s->nloops; l++) {
-        size_t a0 = s->loop_start[l], n = s->loop_start[l + 1] - a0;
-        for (size_t i = 0; i < n; i++) {
-            const double *a = s->loop_uv + 2 * (a0 + i), *b = s->loop_uv + 2 * (a0 + (i + 1) % n);
-            if ((a[1] > v) != (b[1] > v)) {
-                double x = a[0] + (v - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
-                if (x > u)
-                    in ^= 1;
-            }
+    for (size_t k = s->band_start[j]; k < s->band_start[j + 1]; k++) {
+        const uint32_t *e = s->seg + 2 * (size_t)s->band_seg[k];
+        const double *a = s->loop_uv + 2 * (size_t)e[0], *b = s->loop_uv + 2 * (size_t)e[1];
+        if ((a[1] > v) != (b[1] > v)) {
+            double x = a[0] + (v - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+            if (x > u)
+                in ^= 1;
         }
     }
     return in;
+}
+
+/* The segments binned by v: about 8 per band, each in every band its v
+ * range meets (band_of is monotone, so a v inside the range lands in one
+ * of them). */
+static fm_status build_bands(cn_sheet *s)
+{
+    size_t total = s->loop_start[s->nloops];
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < total; i++) {
+        lo = fmin(lo, s->loop_uv[2 * i + 1]);
+        hi = fmax(hi, s->loop_uv[2 * i + 1]);
+    }
+    if (total == 0 || !(hi >= lo))
+        return FM_OK;
+    s->nband = total / 8 + 1;
+    if (s->nband > 4096)
+        s->nband = 4096;
+    s->band_v0 = lo;
+    s->band_h = hi > lo ? (hi - lo) / (double)s->nband : 1.0;
+    s->seg = malloc(2 * total * sizeof *s->seg);
+    s->band_start = calloc(s->nband + 1, sizeof *s->band_start);
+    if (!s->seg || !s->band_start)
+        return FM_ERR_NOMEM;
+    size_t k = 0;
+    for (size_t l = 0; l < s->nloops; l++) {
+        size_t a0 = s->loop_start[l], n = s->loop_start[l + 1] - a0;
+        for (size_t i = 0; i < n; i++, k++) {
+            s->seg[2 * k] = (uint32_t)(a0 + i);
+            s->seg[2 * k + 1] = (uint32_t)(a0 + (i + 1) % n);
+        }
+    }
+    for (int pass = 0; pass < 2; pass++) {
+        size_t *fill = pass ? malloc((s->nband + 1) * sizeof *fill) : NULL;
+        if (pass) {
+            if (!fill)
+                return FM_ERR_NOMEM;
+            for (size_t j = 0; j < s->nband; j++)
+                s->band_start[j + 1] += s->band_start[j];
+            memcpy(fill, s->band_start, (s->nband + 1) * sizeof *fill);
+            s->band_seg = malloc((s->band_start[s->nband] + 1) * sizeof *s->band_seg);
+            if (!s->band_seg) {
+                free(fill);
+                return FM_ERR_NOMEM;
+            }
+        }
+        for (k = 0; k < total; k++) {
+            double va = s->loop_uv[2 * (size_t)s->seg[2 * k] + 1];
+            double vb = s->loop_uv[2 * (size_t)s->seg[2 * k + 1] + 1];
+            size_t j0 = 0, j1 = s->nband - 1; /* all bands if unsure */
+            if (!band_of(s, fmin(va, vb), &j0) || !band_of(s, fmax(va, vb), &j1)) {
+                j0 = 0;
+                j1 = s->nband - 1;
+            }
+            for (size_t j = j0; j <= j1; j++) {
+                if (pass)
+                    s->band_seg[fill[j]++] = (uint32_t)k;
+                else
+                    s->band_start[j + 1]++;
+            }
+        }
+        free(fill);
+    }
+    return FM_OK;
 }
 
 double cn_sheet_outline_distance(const cn_sheet *s, double u, double v, const double xyz[3])
@@ -133,6 +213,8 @@ static fm_status sample_loops(cn_sheet *s, const fm_model *m, size_t sheet, fm_e
         s->loop_start[l + 1] = total;
         s->nloops = l + 1;
     }
+    if (build_bands(s) != FM_OK)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     /* The outline in 3D as segments (degenerate triangles a, b, b). */
     fm_mesh *om = fm_mesh_create();
     if (!om || fm_mesh_reserve(om, total, total) != FM_OK) {
