@@ -55,9 +55,9 @@
  * distance over the surface, at right angles to the curve, to the outline
  * on the nearer side (a flap under D is an overshoot to trim).
  *
- * Everything is deterministic (fixed orders; find_pairs may use threads, its
- * results stored by candidate and independent of their number); nothing
- * prints.
+ * Everything is deterministic: fixed orders; find_pairs, find_duplicates
+ * and the plan may run on threads, but store every result by index, so
+ * nothing depends on their number. Nothing prints.
  * Limitations: a lattice cell of the fine sampling that contains a closed
  * curve smaller than itself, or a tangential touch, can be missed; distances
  * between the sampled meshes are vertex-to-mesh (an edge-to-edge closest
