@@ -25,6 +25,12 @@ typedef struct cn_sheet {
     double *loop_uv;
     size_t *loop_start;      /* nloops + 1 */
     size_t nloops;
+    /* the loops' segments by band of v (point-in-loop tests): segment k
+     * joins points seg[2k] and seg[2k + 1]; band j lists band_seg[band_start[j]
+     * .. band_start[j + 1] - 1], the segments whose v range meets it */
+    uint32_t *seg, *band_seg;
+    size_t *band_start, nband;
+    double band_v0, band_h;
     fm_closest_tree *outline;  /* outline segments in 3D (degenerate triangles) */
     fm_closest_tree *cells;    /* active cell boxes (degenerate triangles lo, hi, lo) */
     int32_t *cell_id;          /* tree triangle -> cell */
@@ -33,6 +39,24 @@ typedef struct cn_sheet {
 fm_status cn_sheet_build(const fm_model *m, size_t fault, size_t sheet, double reach,
                          cn_sheet *out, fm_error *err);
 void cn_sheet_free(cn_sheet *s);
+
+/* Every sheet of models[0 .. n-1] (NULL entries skipped), in model then
+ * sheet order, built on nthreads threads; the first that fails, in that
+ * order, gives the error. */
+fm_status cn_sheets_build(const fm_model *const *models, size_t n, double reach, int nthreads,
+                          cn_sheet **out, size_t *nout, fm_error *err);
+void cn_sheets_free(cn_sheet *s, size_t n);
+
+/* fm_connect_find_pairs on sheets built by cn_sheets_build at the reach
+ * of opt (not NULL, checked); stats.time_sample is left 0. */
+fm_status cn_find_pairs(const cn_sheet *sh, size_t ns, const fm_connect_options *opt,
+                        fm_connect_pairs **out, fm_error *err);
+void cn_pairs_set_time_sample(fm_connect_pairs *p, double seconds);
+
+/* fm_connect_intersect on sheets built at the reach of opt (INFINITY when
+ * opt->clip_to_reach is 0); opt not NULL, checked. */
+fm_status cn_intersect(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_options *opt,
+                       fm_connect_curves **out, fm_error *err);
 
 /* 1 when (u, v) lies inside the sampled trimming loops (even-odd). */
 int cn_sheet_inside(const cn_sheet *s, double u, double v);
@@ -49,7 +73,8 @@ size_t cn_select_cells(const cn_sheet *a, const cn_sheet *b, double margin, unsi
 
 /* The selected cells subdivided sub x sub and triangulated on one lattice
  * (shared vertices, shared edges). Edge k of triangle t joins tri[3t + k]
- * and tri[3t + (k + 1) % 3]. */
+ * and tri[3t + (k + 1) % 3]; edges numbered (tedge, ev) only when asked
+ * for (the intersection chains through them, distances do not). */
 typedef struct cn_zone {
     size_t nv, nt, ne;
     double *xyz, *uv, *sd;   /* per vertex */
@@ -58,7 +83,8 @@ typedef struct cn_zone {
     int32_t *ev;             /* 2 per edge, lower vertex id first */
 } cn_zone;
 
-fm_status cn_zone_build(const cn_sheet *s, const unsigned char *sel, int sub, cn_zone *z);
+fm_status cn_zone_build(const cn_sheet *s, const unsigned char *sel, int sub, int edges,
+                        cn_zone *z);
 void cn_zone_free(cn_zone *z);
 int cn_subdivision(const cn_sheet *s, double sample_spacing);
 
@@ -73,5 +99,9 @@ int cn_edge_crosses_triangle(const double *p, const double *q, int64_t ip, int64
 /* Any intersection between two triangles (no perturbation needed: a touch counts). */
 int cn_triangles_intersect(const double *const a[3], const double *const b[3]);
 
+/* Calls fn(user, k) once for every k in [0, n), on nthreads threads (the
+ * caller's among them), in no fixed order: fn stores its results by k. */
+typedef void (*cn_task_fn)(void *user, size_t k);
+void cn_parallel_for(size_t n, int nthreads, cn_task_fn fn, void *user);
 
 #endif

@@ -10,6 +10,7 @@
 #include "connect_internal.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -18,6 +19,7 @@ void fm_connect_duplicate_options_default(fm_connect_duplicate_options *opt)
     opt->tolerance = 50.0;
     opt->min_share = 0.5;
     opt->keep = FM_CONNECT_KEEP_SMALLER;
+    opt->nthreads = 1;
 }
 
 /* All sheets' samples of the trimmed surface, as one mesh. */
@@ -36,55 +38,238 @@ static fm_mesh *fault_samples(const fm_model *m)
     return all;
 }
 
-/* Area of a fault's sampled trimmed surface (all sheets) and, when tree
- * is given, the part of it (by triangle centroids) within tol of the tree.
- * Sample triangles are a few hundred metres at most, far below the
- * kilometres a duplicate shares, so centroids weigh the area well. */
-static double model_area(const fm_model *m, const fm_closest_tree *tree, double tol)
+static int stop_at_first(int32_t t, void *user)
 {
-    double sum = 0;
+    (void)t;
+    *(int *)user = 1;
+    return 1;
+}
+
+static void centroid(const double *p, const double *q, const double *r, double c[3])
+{
+    for (int k = 0; k < 3; k++)
+        c[k] = (p[k] + q[k] + r[k]) / 3;
+}
+
+/* A fault's sample triangles in runs of consecutive ones (about a sheet
+ * triangle's worth: each is subdivided into 16, so a few hundred metres
+ * across), with the box of each run's vertices and a tree of those boxes:
+ * a run whose box stays more than the tolerance from another fault's
+ * samples is done with at once. */
+#define RUN 16
+
+typedef struct fault_runs {
+    size_t n;
+    size_t *sheet, *t0;    /* per run: sheet and first triangle; it ends at t0 + RUN or
+                              at the end of the sheet */
+    double *box;           /* per run: lo[3], hi[3] */
+    double lo[3], hi[3];   /* of all runs */
+    double area;           /* of all triangles, summed in order */
+    fm_closest_tree *tree; /* run boxes as degenerate triangles (lo, hi, lo) */
+} fault_runs;
+
+static void runs_free(fault_runs *r)
+{
+    free(r->sheet);
+    free(r->t0);
+    free(r->box);
+    fm_closest_tree_destroy(r->tree);
+    memset(r, 0, sizeof *r);
+}
+
+static fm_status runs_build(const fm_model *m, fault_runs *r, fm_error *err)
+{
+    memset(r, 0, sizeof *r);
+    size_t n = 0;
+    for (size_t s = 0; s < fm_model_nsheets(m); s++) {
+        const fm_mesh *a = fm_model_samples(m, s);
+        n += a ? (fm_mesh_ntriangles(a) + RUN - 1) / RUN : 0;
+    }
+    r->sheet = malloc((n + 1) * sizeof *r->sheet);
+    r->t0 = malloc((n + 1) * sizeof *r->t0);
+    r->box = malloc(6 * (n + 1) * sizeof *r->box);
+    fm_mesh *bm = fm_mesh_create();
+    if (!r->sheet || !r->t0 || !r->box || !bm || fm_mesh_reserve(bm, 2 * n, n) != FM_OK) {
+        fm_mesh_destroy(bm);
+        runs_free(r);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+    }
+    for (int k = 0; k < 3; k++) {
+        r->lo[k] = INFINITY;
+        r->hi[k] = -INFINITY;
+    }
     for (size_t s = 0; s < fm_model_nsheets(m); s++) {
         const fm_mesh *a = fm_model_samples(m, s);
         if (!a)
             continue;
         const double *X = fm_mesh_vertices(a);
         const int32_t *T = fm_mesh_triangles(a);
-        for (size_t t = 0; t < fm_mesh_ntriangles(a); t++) {
+        size_t nt = fm_mesh_ntriangles(a);
+        for (size_t t0 = 0; t0 < nt; t0 += RUN) {
+            double *lo = r->box + 6 * r->n, *hi = lo + 3;
+            for (int k = 0; k < 3; k++) {
+                lo[k] = INFINITY;
+                hi[k] = -INFINITY;
+            }
+            for (size_t t = t0; t < t0 + RUN && t < nt; t++) {
+                const double *P[3] = {X + 3 * (size_t)T[3 * t], X + 3 * (size_t)T[3 * t + 1],
+                                      X + 3 * (size_t)T[3 * t + 2]};
+                r->area += fm_triangle_area(P[0], P[1], P[2]);
+                for (int c = 0; c < 3; c++)
+                    for (int k = 0; k < 3; k++) {
+                        lo[k] = P[c][k] < lo[k] ? P[c][k] : lo[k];
+                        hi[k] = P[c][k] > hi[k] ? P[c][k] : hi[k];
+                    }
+            }
+            for (int k = 0; k < 3; k++) {
+                r->lo[k] = fmin(r->lo[k], lo[k]);
+                r->hi[k] = fmax(r->hi[k], hi[k]);
+            }
+            int32_t v = fm_mesh_add_vertex(bm, lo[0], lo[1], lo[2]);
+            fm_mesh_add_vertex(bm, hi[0], hi[1], hi[2]);
+            fm_mesh_add_triangle(bm, v, v + 1, v, 0);
+            r->sheet[r->n] = s;
+            r->t0[r->n] = t0;
+            r->n++;
+        }
+    }
+    r->tree = fm_closest_tree_create_quick(bm, err);
+    fm_mesh_destroy(bm);
+    if (!r->tree) {
+        runs_free(r);
+        return err ? err->code : FM_ERR_NOMEM;
+    }
+    return FM_OK;
+}
+
+/* Whether the box [lo - d, hi + d] meets a triangle (box) of the tree. */
+static int box_meets(const fm_closest_tree *t, const double *lo, const double *hi, double d)
+{
+    double a[3], b[3];
+    for (int k = 0; k < 3; k++) {
+        a[k] = lo[k] - d;
+        b[k] = hi[k] + d;
+    }
+    int hit = 0;
+    fm_closest_tree_box_query(t, a, b, stop_at_first, &hit);
+    return hit;
+}
+
+/* Rounding allowance (m) on top of the tolerance when boxes decide that
+ * nothing can lie within it. */
+#define PAD 1e-3
+
+/* The tree of the part of fault m's samples (one mesh, all sheets, as one
+ * tree of them would see it) whose runs come within tol of a run of one
+ * of the other faults: the only triangles that can lie within tol of the
+ * others' samples. */
+static fm_closest_tree *near_part(const fm_model *m, const fault_runs *own,
+                                  const fault_runs *const *other, size_t nother, double tol,
+                                  fm_error *err)
+{
+    unsigned char *mark = calloc(own->n + 1, 1);
+    fm_mesh *all = fault_samples(m);
+    size_t ns = fm_model_nsheets(m);
+    size_t *base = calloc(ns + 1, sizeof *base);
+    int32_t *part = NULL;
+    fm_closest_tree *tree = NULL;
+    if (!mark || !all || !base)
+        goto done;
+    for (size_t o = 0; o < nother; o++) {
+        const fault_runs *q = other[o];
+        for (size_t r = 0; r < own->n; r++) {
+            const double *lo = own->box + 6 * r, *hi = lo + 3;
+            int apart = 0;
+            for (int k = 0; k < 3; k++)
+                apart |= lo[k] - tol - PAD > q->hi[k] || hi[k] + tol + PAD < q->lo[k];
+            if (!mark[r] && !apart)
+                mark[r] = (unsigned char)box_meets(q->tree, lo, hi, tol + PAD);
+        }
+    }
+    /* triangle numbers in the one mesh of all sheets (fault_samples) */
+    for (size_t s = 0; s < ns; s++) {
+        const fm_mesh *a = fm_model_samples(m, s);
+        base[s + 1] = base[s] + (a ? fm_mesh_ntriangles(a) : 0);
+    }
+    part = malloc((base[ns] + 1) * sizeof *part);
+    if (!part)
+        goto done;
+    size_t np = 0;
+    for (size_t r = 0; r < own->n; r++) {
+        if (!mark[r])
+            continue;
+        size_t s = own->sheet[r], nt = base[s + 1] - base[s];
+        for (size_t t = own->t0[r]; t < own->t0[r] + RUN && t < nt; t++)
+            part[np++] = (int32_t)(base[s] + t);
+    }
+    tree = fm_closest_tree_create_part(all, part, np, NULL);
+done:
+    if (!tree)
+        fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+    free(mark);
+    free(base);
+    free(part);
+    fm_mesh_destroy(all);
+    return tree;
+}
+
+/* The part of fault m's sampled area (by triangle centroids) within tol of
+ * the tree, summed triangle by triangle in order. Sample triangles are a
+ * few hundred metres at most, far below the kilometres a duplicate shares,
+ * so centroids weigh the area well. A run whose box stays more than tol
+ * from the tree adds nothing and is passed over whole. */
+static double near_area(const fm_model *m, const fault_runs *runs, const fm_closest_tree *tree,
+                        double tol)
+{
+    double sum = 0;
+    int32_t hint = -1;
+    for (size_t r = 0; r < runs->n; r++) {
+        const double *lo = runs->box + 6 * r, *hi = lo + 3;
+        if (!box_meets(tree, lo, hi, tol + PAD))
+            continue;
+        const fm_mesh *a = fm_model_samples(m, runs->sheet[r]);
+        const double *X = fm_mesh_vertices(a);
+        const int32_t *T = fm_mesh_triangles(a);
+        size_t nt = fm_mesh_ntriangles(a);
+        for (size_t t = runs->t0[r]; t < runs->t0[r] + RUN && t < nt; t++) {
             const double *p = X + 3 * (size_t)T[3 * t], *q = X + 3 * (size_t)T[3 * t + 1],
-                         *r = X + 3 * (size_t)T[3 * t + 2];
-            double c[3] = {(p[0] + q[0] + r[0]) / 3, (p[1] + q[1] + r[1]) / 3,
-                           (p[2] + q[2] + r[2]) / 3};
-            if (!tree || fm_closest_query(tree, c, tol, NULL))
-                sum += fm_triangle_area(p, q, r);
+                         *w = X + 3 * (size_t)T[3 * t + 2];
+            double c[3];
+            centroid(p, q, w, c);
+            if (fm_closest_within(tree, c, tol, &hint))
+                sum += fm_triangle_area(p, q, w);
         }
     }
     return sum;
 }
 
-static fm_closest_tree *fault_tree(const fm_model *m, fm_error *err)
-{
-    fm_mesh *all = fault_samples(m);
-    fm_closest_tree *t = all ? fm_closest_tree_create(all, err) : NULL;
-    fm_mesh_destroy(all);
-    return t;
-}
-
 fm_status fm_connect_overlap(const fm_model *a, const fm_model *b, double tolerance,
                              double share[2], double area[2], fm_error *err)
 {
-    fm_closest_tree *ta = fault_tree(a, err), *tb = ta ? fault_tree(b, err) : NULL;
-    fm_status st = FM_OK;
+    fault_runs ra, rb;
+    fm_status st = runs_build(a, &ra, err);
+    if (st != FM_OK)
+        return st;
+    if ((st = runs_build(b, &rb, err)) != FM_OK) {
+        runs_free(&ra);
+        return st;
+    }
+    const fault_runs *pa = &ra, *pb = &rb;
+    fm_closest_tree *ta = near_part(a, &ra, &pb, 1, tolerance, err);
+    fm_closest_tree *tb = ta ? near_part(b, &rb, &pa, 1, tolerance, err) : NULL;
     if (!ta || !tb) {
         st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory (overlap)");
     } else {
-        area[0] = model_area(a, NULL, 0);
-        area[1] = model_area(b, NULL, 0);
-        double near[2] = {model_area(a, tb, tolerance), model_area(b, ta, tolerance)};
+        area[0] = ra.area;
+        area[1] = rb.area;
+        double near[2] = {near_area(a, &ra, tb, tolerance), near_area(b, &rb, ta, tolerance)};
         for (int k = 0; k < 2; k++)
             share[k] = area[k] > 0 ? near[k] / area[k] : 0.0;
     }
     fm_closest_tree_destroy(ta);
     fm_closest_tree_destroy(tb);
+    runs_free(&ra);
+    runs_free(&rb);
     return st;
 }
 
@@ -151,37 +336,107 @@ static fm_status candidate_pairs(const fm_model *const *models, size_t n,
     return FM_OK;
 }
 
-/* For every candidate pair, the area of each fault near the other. Each
- * fault's tree is built once, in fault order, and serves every pair the
- * fault is in: its partners' samples are queried against it. */
-static fm_status measure_pairs(const fm_model *const *models, size_t n, fpair *fp, size_t m,
-                               double tol, double *area, fm_error *err)
+/* The faults of the candidate pairs: first each fault's area and runs, then
+ * per fault the tree of its part near its partners, and each partner's
+ * area near it. Tasks run on N threads; every result has its own slot. */
+typedef struct measure_work {
+    const fm_model *const *models;
+    fpair *fp;
+    size_t m;
+    const size_t *fault;  /* the faults in some pair, ascending */
+    const size_t *slot;   /* per fault index: its place in fault[] */
+    fault_runs *runs;     /* per place */
+    double tol;
+    double *area;
+    fm_status *st;
+    fm_error *err;
+} measure_work;
+
+static void runs_task(void *user, size_t i)
 {
-    unsigned char *in = calloc(n ? n : 1, 1);
-    if (!in)
-        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
-    for (size_t k = 0; k < m; k++)
-        in[fp[k].a] = in[fp[k].b] = 1;
-    fm_status st = FM_OK;
-    for (size_t f = 0; f < n && st == FM_OK; f++) {
-        if (!in[f])
-            continue;
-        area[f] = model_area(models[f], NULL, 0);
-        fm_closest_tree *tree = fault_tree(models[f], err);
-        if (!tree) {
-            st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
-            break;
-        }
-        for (size_t k = 0; k < m; k++) {
-            if (fp[k].a == f)
-                fp[k].near[1] = model_area(models[fp[k].b], tree, tol);
-            else if (fp[k].b == f)
-                fp[k].near[0] = model_area(models[fp[k].a], tree, tol);
-        }
-        fm_closest_tree_destroy(tree);
+    measure_work *w = user;
+    size_t f = w->fault[i];
+    w->st[i] = runs_build(w->models[f], &w->runs[i], &w->err[i]);
+    w->area[f] = w->runs[i].area;
+}
+
+static void near_task(void *user, size_t i)
+{
+    measure_work *w = user;
+    size_t f = w->fault[i], no = 0;
+    const fault_runs **other = malloc((w->m + 1) * sizeof *other);
+    if (!other) {
+        w->st[i] = fm_error_set(&w->err[i], FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+        return;
     }
-    free(in);
-    return st;
+    for (size_t k = 0; k < w->m; k++)
+        if (w->fp[k].a == f || w->fp[k].b == f)
+            other[no++] = &w->runs[w->slot[w->fp[k].a == f ? w->fp[k].b : w->fp[k].a]];
+    fm_closest_tree *tree = near_part(w->models[f], &w->runs[i], other, no, w->tol, &w->err[i]);
+    free(other);
+    if (!tree) {
+        w->st[i] = FM_ERR_NOMEM;
+        return;
+    }
+    for (size_t k = 0; k < w->m; k++) {
+        fpair *q = &w->fp[k];
+        if (q->a == f)
+            q->near[1] = near_area(w->models[q->b], &w->runs[w->slot[q->b]], tree, w->tol);
+        else if (q->b == f)
+            q->near[0] = near_area(w->models[q->a], &w->runs[w->slot[q->a]], tree, w->tol);
+    }
+    fm_closest_tree_destroy(tree);
+}
+
+static fm_status measure_pairs(const fm_model *const *models, size_t n, fpair *fp, size_t m,
+                               double tol, int nthreads, double *area, fm_error *err)
+{
+    size_t *slot = malloc((n ? n : 1) * sizeof *slot);
+    size_t *fault = malloc((n ? n : 1) * sizeof *fault), nf = 0;
+    fm_status *st = calloc(n ? n : 1, sizeof *st);
+    fm_error *errs = calloc(n ? n : 1, sizeof *errs);
+    fault_runs *runs = calloc(n ? n : 1, sizeof *runs);
+    fm_status rc = FM_OK;
+    if (!slot || !fault || !st || !errs || !runs) {
+        rc = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+        goto done;
+    }
+    for (size_t f = 0; f < n; f++)
+        slot[f] = SIZE_MAX;
+    for (size_t k = 0; k < m; k++)
+        slot[fp[k].a] = slot[fp[k].b] = 0;
+    for (size_t f = 0; f < n; f++)
+        if (slot[f] == 0) {
+            slot[f] = nf;
+            fault[nf++] = f;
+        }
+    measure_work w = {models, fp, m, fault, slot, runs, tol, area, st, errs};
+    /* both rounds report the first fault in order that failed */
+    cn_parallel_for(nf, nthreads, runs_task, &w);
+    for (size_t i = 0; i < nf && rc == FM_OK; i++)
+        if (st[i] != FM_OK) {
+            rc = st[i];
+            if (err)
+                *err = errs[i];
+        }
+    if (rc == FM_OK) {
+        cn_parallel_for(nf, nthreads, near_task, &w);
+        for (size_t i = 0; i < nf && rc == FM_OK; i++)
+            if (st[i] != FM_OK) {
+                rc = st[i];
+                if (err)
+                    *err = errs[i];
+            }
+    }
+done:
+    for (size_t i = 0; runs && i < nf; i++)
+        runs_free(&runs[i]);
+    free(runs);
+    free(slot);
+    free(fault);
+    free(st);
+    free(errs);
+    return rc;
 }
 
 fm_status fm_connect_find_duplicates(const fm_model *const *models, size_t n,
@@ -206,7 +461,7 @@ fm_status fm_connect_find_duplicates(const fm_model *const *models, size_t n,
         free(area);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
     }
-    fm_status st = measure_pairs(models, n, fp, m, opt->tolerance, area, err);
+    fm_status st = measure_pairs(models, n, fp, m, opt->tolerance, opt->nthreads, area, err);
     fm_connect_duplicate *dup = st == FM_OK ? malloc((m ? m : 1) * sizeof *dup) : NULL;
     if (st == FM_OK && !dup)
         st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");

@@ -55,7 +55,9 @@
  * distance over the surface, at right angles to the curve, to the outline
  * on the nearer side (a flap under D is an overshoot to trim).
  *
- * Everything is deterministic (fixed orders, no threads); nothing prints.
+ * Everything is deterministic: fixed orders; find_pairs, find_duplicates
+ * and the plan may run on threads, but store every result by index, so
+ * nothing depends on their number. Nothing prints.
  * Limitations: a lattice cell of the fine sampling that contains a closed
  * curve smaller than itself, or a tangential touch, can be missed; distances
  * between the sampled meshes are vertex-to-mesh (an edge-to-edge closest
@@ -81,6 +83,8 @@ typedef struct fm_connect_options {
     double tolerance;      /* curve points: |S_A - S_B| target (m); default 1e-6 */
     int clip_to_reach;     /* intersect: keep only curve parts within reach of both
                               outlines (1, default) or the whole rectangles (0) */
+    int nthreads;          /* find_pairs: sheets sampled and candidates measured on this
+                              many threads (default 1); the pairs do not depend on it */
 } fm_connect_options;
 
 void fm_connect_options_default(fm_connect_options *opt);
@@ -203,6 +207,8 @@ typedef struct fm_connect_duplicate_options {
     double tolerance;     /* m; default 50 */
     double min_share;     /* in (0, 1]; default 0.5 */
     fm_connect_keep keep;
+    int nthreads;         /* faults measured on this many threads (default 1); the
+                             result does not depend on it */
 } fm_connect_duplicate_options;
 
 void fm_connect_duplicate_options_default(fm_connect_duplicate_options *opt);
@@ -275,7 +281,9 @@ typedef struct fm_connect_plan_options {
     double size;       /* H: node spacing along junction curves (m); default 1000 */
     int cut;           /* 1 (default): clip junction curves to z <= sea_level */
     double sea_level;  /* default 0 */
-    int nthreads;      /* pairs are intersected on this many threads; default 1 */
+    int nthreads;      /* neighbours, near-duplicates and every pair's curves are found
+                          on this many threads (it overrides duplicates.nthreads);
+                          default 1 */
     fm_connect_duplicate_options duplicates;
 } fm_connect_plan_options;
 

@@ -233,7 +233,7 @@ static fm_status build_graph(const cn_zone *za, const cn_zone *zb, graph *g, fm_
     c.xb = xb;
     for (size_t t = 0; t < zb->nt; t++)
         fm_mesh_add_triangle(mb, zb->tri[3 * t], zb->tri[3 * t + 1], zb->tri[3 * t + 2], 0);
-    fm_closest_tree *tree = fm_closest_tree_create(mb, err);
+    fm_closest_tree *tree = fm_closest_tree_create_quick(mb, err);
     fm_mesh_destroy(mb);
     if (!tree) {
         free(xb);
@@ -805,37 +805,21 @@ static int cmp_curve(const void *a, const void *b)
     return (x->info.npoints > y->info.npoints) - (x->info.npoints < y->info.npoints);
 }
 
-fm_status fm_connect_intersect(const fm_model *a, size_t sheet_a, const fm_model *b,
-                               size_t sheet_b, const fm_connect_options *opt,
-                               fm_connect_curves **out, fm_error *err)
+fm_status cn_intersect(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_options *opt,
+                       fm_connect_curves **out, fm_error *err)
 {
     *out = NULL;
     job j;
     memset(&j, 0, sizeof j);
-    if (opt)
-        j.o = *opt;
-    else
-        fm_connect_options_default(&j.o);
-    if (!a || !b || sheet_a >= fm_model_nsheets(a) || sheet_b >= fm_model_nsheets(b))
-        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "connect: no such sheet");
-    if (!(j.o.spacing > 0) || !(j.o.tolerance > 0) || !(j.o.distance >= 0))
-        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "connect: bad options");
+    j.o = *opt;
     j.reach = j.o.reach < 0 ? j.o.distance : j.o.reach;
-    double build_reach = j.o.clip_to_reach ? j.reach : INFINITY;
-    cn_sheet sa, sb;
-    fm_status st = cn_sheet_build(a, 0, sheet_a, build_reach, &sa, err);
-    if (st != FM_OK)
-        return st;
-    if ((st = cn_sheet_build(b, 1, sheet_b, build_reach, &sb, err)) != FM_OK) {
-        cn_sheet_free(&sa);
-        return st;
-    }
-    j.A = sa.surf;
-    j.B = sb.surf;
-    j.sa = &sa;
-    j.sb = &sb;
+    j.A = sa->surf;
+    j.B = sb->surf;
+    j.sa = sa;
+    j.sb = sb;
+    fm_status st = FM_OK;
     fm_connect_curves *cs = calloc(1, sizeof *cs);
-    unsigned char *sel_a = malloc(sa.nsu * sa.nsv + 1), *sel_b = malloc(sb.nsu * sb.nsv + 1);
+    unsigned char *sel_a = malloc(sa->nsu * sa->nsv + 1), *sel_b = malloc(sb->nsu * sb->nsv + 1);
     cn_zone za = {0}, zb = {0};
     graph g = {0};
     chains ch = {0};
@@ -843,10 +827,10 @@ fm_status fm_connect_intersect(const fm_model *a, size_t sheet_a, const fm_model
         st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
         goto done;
     }
-    if (!cn_select_cells(&sa, &sb, 0.0, sel_a) || !cn_select_cells(&sb, &sa, 0.0, sel_b))
+    if (!cn_select_cells(sa, sb, 0.0, sel_a) || !cn_select_cells(sb, sa, 0.0, sel_b))
         goto done;
-    if (cn_zone_build(&sa, sel_a, cn_subdivision(&sa, j.o.sample_spacing), &za) != FM_OK ||
-        cn_zone_build(&sb, sel_b, cn_subdivision(&sb, j.o.sample_spacing), &zb) != FM_OK) {
+    if (cn_zone_build(sa, sel_a, cn_subdivision(sa, j.o.sample_spacing), 1, &za) != FM_OK ||
+        cn_zone_build(sb, sel_b, cn_subdivision(sb, j.o.sample_spacing), 1, &zb) != FM_OK) {
         st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
         goto done;
     }
@@ -877,12 +861,40 @@ done:
     cn_zone_free(&zb);
     free(sel_a);
     free(sel_b);
-    cn_sheet_free(&sa);
-    cn_sheet_free(&sb);
     if (st != FM_OK) {
         fm_connect_curves_destroy(cs);
         return st;
     }
     *out = cs;
     return FM_OK;
+}
+
+fm_status fm_connect_intersect(const fm_model *a, size_t sheet_a, const fm_model *b,
+                               size_t sheet_b, const fm_connect_options *opt,
+                               fm_connect_curves **out, fm_error *err)
+{
+    *out = NULL;
+    fm_connect_options o;
+    if (opt)
+        o = *opt;
+    else
+        fm_connect_options_default(&o);
+    if (!a || !b || sheet_a >= fm_model_nsheets(a) || sheet_b >= fm_model_nsheets(b))
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "connect: no such sheet");
+    if (!(o.spacing > 0) || !(o.tolerance > 0) || !(o.distance >= 0))
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "connect: bad options");
+    double reach = o.reach < 0 ? o.distance : o.reach;
+    double build_reach = o.clip_to_reach ? reach : INFINITY;
+    cn_sheet sa, sb;
+    fm_status st = cn_sheet_build(a, 0, sheet_a, build_reach, &sa, err);
+    if (st != FM_OK)
+        return st;
+    if ((st = cn_sheet_build(b, 1, sheet_b, build_reach, &sb, err)) != FM_OK) {
+        cn_sheet_free(&sa);
+        return st;
+    }
+    st = cn_intersect(&sa, &sb, &o, out, err);
+    cn_sheet_free(&sa);
+    cn_sheet_free(&sb);
+    return st;
 }

@@ -21,6 +21,7 @@ void fm_connect_options_default(fm_connect_options *opt)
     opt->spacing = 250.0;
     opt->tolerance = 1e-6;
     opt->clip_to_reach = 1;
+    opt->nthreads = 1;
 }
 
 void fm_connect_pairs_destroy(fm_connect_pairs *p)
@@ -64,7 +65,8 @@ static int test_triangle(int32_t t, void *user)
 }
 
 /* Crossing and smallest vertex-to-mesh distance (within maxd) of two clipped
- * meshes; returns the distance (INFINITY: none within maxd). */
+ * meshes; returns the distance (INFINITY: none within maxd). The crossing
+ * test needs only B's tree: A's is built when they do not cross. */
 static fm_status measure(const fm_mesh *ma, const fm_mesh *mb, double maxd, int *crosses,
                          double pa[3], double pb[3], double *dist, fm_error *err)
 {
@@ -72,12 +74,9 @@ static fm_status measure(const fm_mesh *ma, const fm_mesh *mb, double maxd, int 
     *dist = INFINITY;
     if (!fm_mesh_ntriangles(ma) || !fm_mesh_ntriangles(mb))
         return FM_OK;
-    fm_closest_tree *ta = fm_closest_tree_create(ma, err);
-    fm_closest_tree *tb = ta ? fm_closest_tree_create(mb, err) : NULL;
-    if (!ta || !tb) {
-        fm_closest_tree_destroy(ta);
+    fm_closest_tree *tb = fm_closest_tree_create_quick(mb, err), *ta = NULL;
+    if (!tb)
         return err ? err->code : FM_ERR_NOMEM;
-    }
     const double *XA = fm_mesh_vertices(ma), *XB = fm_mesh_vertices(mb);
     const int32_t *TA = fm_mesh_triangles(ma);
     size_t nta = fm_mesh_ntriangles(ma);
@@ -101,7 +100,30 @@ static fm_status measure(const fm_mesh *ma, const fm_mesh *mb, double maxd, int 
         }
     }
     if (!*crosses) {
+        ta = fm_closest_tree_create_quick(ma, err);
+        if (!ta) {
+            fm_closest_tree_destroy(tb);
+            return err ? err->code : FM_ERR_NOMEM;
+        }
+        /* Every 16th vertex first: the smallest distance among them bounds
+         * the result from above, and the pass below, bounded by it (a hair
+         * more, so that a vertex at exactly that distance still finds it),
+         * prunes far sooner. It finds the same smallest distance at the
+         * same first vertex, with the same foot, as a pass bounded by maxd:
+         * vertices beyond the bound could only have been replaced later. */
         double best = maxd;
+        for (int side = 0; side < 2; side++) {
+            const fm_mesh *from = side ? mb : ma;
+            const fm_closest_tree *to = side ? ta : tb;
+            const double *X = side ? XB : XA;
+            for (size_t v = 0; v < fm_mesh_nvertices(from); v += 16) {
+                fm_closest_hit h;
+                if (fm_closest_query(to, X + 3 * v, best, &h) && h.dist < best)
+                    best = h.dist;
+            }
+        }
+        if (best < maxd)
+            best = fmin(maxd, best * (1 + 1e-9) + 1e-9);
         for (int side = 0; side < 2; side++) {
             const fm_mesh *from = side ? mb : ma;
             const fm_closest_tree *to = side ? ta : tb;
@@ -129,20 +151,6 @@ static int boxes_near(const cn_sheet *a, const cn_sheet *b, double d)
     return 1;
 }
 
-static fm_status push_pair(fm_connect_pairs *p, const fm_connect_pair *x)
-{
-    if (p->n == p->cap) {
-        size_t cap = p->cap ? 2 * p->cap : 64;
-        fm_connect_pair *np = realloc(p->pair, cap * sizeof *np);
-        if (!np)
-            return FM_ERR_NOMEM;
-        p->pair = np;
-        p->cap = cap;
-    }
-    p->pair[p->n++] = *x;
-    return FM_OK;
-}
-
 /* Measures one candidate pair; *keep is set when it is within D. */
 static fm_status measure_pair(const cn_sheet *a, const cn_sheet *b, const fm_connect_options *o,
                               double reach, unsigned char *sel_a, unsigned char *sel_b,
@@ -155,8 +163,9 @@ static fm_status measure_pair(const cn_sheet *a, const cn_sheet *b, const fm_con
         return FM_OK;
     *meshed = 1;
     cn_zone za, zb;
-    fm_status st = cn_zone_build(a, sel_a, cn_subdivision(a, o->sample_spacing), &za);
-    if (st == FM_OK && (st = cn_zone_build(b, sel_b, cn_subdivision(b, o->sample_spacing), &zb)) != FM_OK)
+    fm_status st = cn_zone_build(a, sel_a, cn_subdivision(a, o->sample_spacing), 0, &za);
+    if (st == FM_OK &&
+        (st = cn_zone_build(b, sel_b, cn_subdivision(b, o->sample_spacing), 0, &zb)) != FM_OK)
         cn_zone_free(&za);
     if (st != FM_OK)
         return fm_error_set(err, st, NULL, 0, "connect: out of memory");
@@ -193,6 +202,127 @@ done:
     return st;
 }
 
+/* Candidates measured on N threads, each into its own slot. */
+typedef struct measure_work {
+    const cn_sheet *sh;
+    const size_t (*cand)[2];
+    const fm_connect_options *o;
+    double reach;
+    fm_connect_pair *pair;
+    unsigned char *keep, *meshed;
+    fm_status *st;
+    fm_error *err;
+} measure_work;
+
+static void measure_task(void *user, size_t k)
+{
+    measure_work *w = user;
+    const cn_sheet *a = &w->sh[w->cand[k][0]], *b = &w->sh[w->cand[k][1]];
+    unsigned char *sel_a = malloc(a->nsu * a->nsv + 1), *sel_b = malloc(b->nsu * b->nsv + 1);
+    int keep = 0, meshed = 0;
+    if (!sel_a || !sel_b)
+        w->st[k] = fm_error_set(&w->err[k], FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+    else
+        w->st[k] = measure_pair(a, b, w->o, w->reach, sel_a, sel_b, &w->pair[k], &keep, &meshed,
+                                &w->err[k]);
+    w->keep[k] = (unsigned char)keep;
+    w->meshed[k] = (unsigned char)meshed;
+    free(sel_a);
+    free(sel_b);
+}
+
+fm_status cn_find_pairs(const cn_sheet *sh, size_t ns, const fm_connect_options *opt,
+                        fm_connect_pairs **out, fm_error *err)
+{
+    const fm_connect_options *o = opt;
+    double reach = o->reach < 0 ? o->distance : o->reach;
+    *out = NULL;
+    fm_connect_pairs *p = calloc(1, sizeof *p);
+    if (!p)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+    for (size_t k = 0; k < ns; k++)
+        p->stats.cells += sh[k].nactive;
+    p->stats.sheets = ns;
+    double t1 = fm_clock_seconds();
+    fm_status st = FM_OK;
+    /* candidates, in the order of the sheets */
+    size_t nc = 0, cap = 0;
+    size_t(*cand)[2] = NULL;
+    for (size_t i = 0; i < ns && st == FM_OK; i++)
+        for (size_t j = i + 1; j < ns && st == FM_OK; j++) {
+            if (sh[i].fault == sh[j].fault || !sh[i].nactive || !sh[j].nactive ||
+                !boxes_near(&sh[i], &sh[j], o->distance))
+                continue;
+            if (nc == cap) {
+                cap = cap ? 2 * cap : 256;
+                size_t(*nw)[2] = realloc(cand, cap * sizeof *nw);
+                if (!nw) {
+                    st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+                    break;
+                }
+                cand = nw;
+            }
+            cand[nc][0] = i;
+            cand[nc][1] = j;
+            nc++;
+        }
+    double t2 = fm_clock_seconds();
+    p->stats.time_candidates = t2 - t1;
+    p->stats.candidates = nc;
+    measure_work mw = {sh, (const size_t(*)[2])cand, o, reach, NULL, NULL, NULL, NULL, NULL};
+    if (st == FM_OK && nc) {
+        mw.pair = malloc(nc * sizeof *mw.pair);
+        mw.keep = calloc(nc, 1);
+        mw.meshed = calloc(nc, 1);
+        mw.st = calloc(nc, sizeof *mw.st);
+        mw.err = calloc(nc, sizeof *mw.err);
+        if (!mw.pair || !mw.keep || !mw.meshed || !mw.st || !mw.err)
+            st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+        else
+            cn_parallel_for(nc, o->nthreads, measure_task, &mw);
+    }
+    /* the first candidate in order that failed decides the error, as on one thread */
+    size_t nkeep = 0;
+    for (size_t k = 0; k < nc && st == FM_OK; k++) {
+        if (mw.st[k] != FM_OK) {
+            st = mw.st[k];
+            if (err)
+                *err = mw.err[k];
+            break;
+        }
+        nkeep += mw.keep[k];
+    }
+    if (st == FM_OK && nkeep) {
+        p->pair = malloc(nkeep * sizeof *p->pair);
+        if (!p->pair)
+            st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+        p->cap = nkeep;
+    }
+    for (size_t k = 0; k < nc && st == FM_OK; k++) {
+        p->stats.measured += mw.meshed[k];
+        if (mw.keep[k])
+            p->pair[p->n++] = mw.pair[k];
+    }
+    p->stats.time_measure = fm_clock_seconds() - t2;
+    free(mw.pair);
+    free(mw.keep);
+    free(mw.meshed);
+    free(mw.st);
+    free(mw.err);
+    free(cand);
+    if (st != FM_OK) {
+        fm_connect_pairs_destroy(p);
+        return st;
+    }
+    *out = p;
+    return FM_OK;
+}
+
+void cn_pairs_set_time_sample(fm_connect_pairs *p, double seconds)
+{
+    p->stats.time_sample = seconds;
+}
+
 fm_status fm_connect_find_pairs(const fm_model *const *models, size_t n,
                                 const fm_connect_options *opt, fm_connect_pairs **out,
                                 fm_error *err)
@@ -206,67 +336,16 @@ fm_status fm_connect_find_pairs(const fm_model *const *models, size_t n,
     if (!(o.distance >= 0) || !isfinite(o.distance))
         return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "connect: bad distance %g", o.distance);
     double reach = o.reach < 0 ? o.distance : o.reach;
-    fm_connect_pairs *p = calloc(1, sizeof *p);
+    cn_sheet *sh = NULL;
     size_t ns = 0;
-    for (size_t i = 0; i < n; i++)
-        ns += models && models[i] ? fm_model_nsheets(models[i]) : 0;
-    cn_sheet *sh = calloc(ns ? ns : 1, sizeof *sh);
-    if (!p || !sh) {
-        free(p);
-        free(sh);
-        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
-    }
-    fm_status st = FM_OK;
     double t0 = fm_clock_seconds();
-    size_t built = 0, maxcells = 0;
-    for (size_t i = 0; i < n && st == FM_OK; i++) {
-        if (!models[i])
-            continue;
-        for (size_t k = 0; k < fm_model_nsheets(models[i]) && st == FM_OK; k++) {
-            st = cn_sheet_build(models[i], i, k, reach, &sh[built], err);
-            if (st == FM_OK) {
-                p->stats.cells += sh[built].nactive;
-                if (sh[built].nsu * sh[built].nsv > maxcells)
-                    maxcells = sh[built].nsu * sh[built].nsv;
-                built++;
-            }
-        }
-    }
-    p->stats.sheets = built;
-    double t1 = fm_clock_seconds();
-    p->stats.time_sample = t1 - t0;
-    unsigned char *sel_a = malloc(maxcells ? maxcells : 1), *sel_b = malloc(maxcells ? maxcells : 1);
-    if (st == FM_OK && (!sel_a || !sel_b))
-        st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
-    double tc = 0;
-    for (size_t i = 0; i < built && st == FM_OK; i++)
-        for (size_t j = i + 1; j < built && st == FM_OK; j++) {
-            if (sh[i].fault == sh[j].fault || !sh[i].nactive || !sh[j].nactive)
-                continue;
-            double c0 = fm_clock_seconds();
-            int near = boxes_near(&sh[i], &sh[j], o.distance);
-            tc += fm_clock_seconds() - c0;
-            if (!near)
-                continue;
-            p->stats.candidates++;
-            fm_connect_pair x;
-            int keep, meshed;
-            st = measure_pair(&sh[i], &sh[j], &o, reach, sel_a, sel_b, &x, &keep, &meshed, err);
-            p->stats.measured += (size_t)meshed;
-            if (st == FM_OK && keep && push_pair(p, &x) != FM_OK)
-                st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
-        }
-    p->stats.time_candidates = tc;
-    p->stats.time_measure = fm_clock_seconds() - t1 - tc;
-    free(sel_a);
-    free(sel_b);
-    for (size_t i = 0; i < built; i++)
-        cn_sheet_free(&sh[i]);
-    free(sh);
-    if (st != FM_OK) {
-        fm_connect_pairs_destroy(p);
+    fm_status st = cn_sheets_build(models, n, reach, o.nthreads, &sh, &ns, err);
+    if (st != FM_OK)
         return st;
-    }
-    *out = p;
-    return FM_OK;
+    double t1 = fm_clock_seconds();
+    st = cn_find_pairs(sh, ns, &o, out, err);
+    if (st == FM_OK)
+        cn_pairs_set_time_sample(*out, t1 - t0);
+    cn_sheets_free(sh, ns);
+    return st;
 }

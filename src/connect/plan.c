@@ -2,7 +2,6 @@
  * pair's curves decided on N threads, conflicts between curves on one
  * sheet resolved longest first, shared nodes numbered. */
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -119,19 +118,19 @@ int fm_connect_plan_dropped(const fm_connect_plan *p, size_t fault,
 /* ---- Pairs on N threads ---- */
 
 typedef struct pair_work {
-    const fm_model *const *models;
     const fm_connect_pairs *pairs;
     const fm_connect_plan_options *opt;
     const unsigned char *dropped;
+    const pl_sheet *sheet;      /* per global sheet */
+    const size_t *base;         /* per fault: its first global sheet */
     pl_pair_result *res;
     fm_status *st;
     fm_error *err;
-    size_t n, next;
-    pthread_mutex_t lock;
 } pair_work;
 
-static void do_pair(pair_work *w, size_t k)
+static void do_pair(void *user, size_t k)
 {
+    pair_work *w = user;
     const fm_connect_pair *p = fm_connect_pairs_get(w->pairs, k);
     if (w->dropped[p->fault_a] || w->dropped[p->fault_b]) {
         fm_connect_junction j;
@@ -154,41 +153,24 @@ static void do_pair(pair_work *w, size_t k)
         r->n = r->cap = 1;
         return;
     }
-    w->st[k] = pl_decide_pair(w->models[p->fault_a], p->fault_a, p->sheet_a,
-                              w->models[p->fault_b], p->fault_b, p->sheet_b, w->opt, &w->res[k],
-                              &w->err[k]);
+    w->st[k] = pl_decide_pair(&w->sheet[w->base[p->fault_a] + p->sheet_a], p->fault_a, p->sheet_a,
+                              &w->sheet[w->base[p->fault_b] + p->sheet_b], p->fault_b, p->sheet_b,
+                              w->opt, &w->res[k], &w->err[k]);
 }
 
-static void *pair_worker(void *arg)
-{
-    pair_work *w = arg;
-    for (;;) {
-        pthread_mutex_lock(&w->lock);
-        size_t k = w->next++;
-        pthread_mutex_unlock(&w->lock);
-        if (k >= w->n)
-            return NULL;
-        do_pair(w, k);
-    }
-}
+/* Outlines of the sheets some pair needs, on N threads. */
+typedef struct outline_work {
+    const fm_model *const *models;
+    const size_t (*ref)[2];     /* fault, sheet */
+    const size_t *slot;         /* global sheet */
+    pl_sheet *sheet;
+} outline_work;
 
-static void run_pairs(pair_work *w, int nthreads)
+static void do_outline(void *user, size_t k)
 {
-    if (nthreads < 1)
-        nthreads = 1;
-    if ((size_t)nthreads > w->n)
-        nthreads = w->n ? (int)w->n : 1;
-    pthread_t *th = nthreads > 1 ? malloc((size_t)(nthreads - 1) * sizeof *th) : NULL;
-    int started = 0;
-    for (int t = 0; th && t < nthreads - 1; t++) {
-        if (pthread_create(&th[t], NULL, pair_worker, w) != 0)
-            break;
-        started++;
-    }
-    pair_worker(w);
-    for (int t = 0; t < started; t++)
-        pthread_join(th[t], NULL);
-    free(th);
+    outline_work *w = user;
+    pl_sheet *s = &w->sheet[w->slot[k]];
+    s->st = pl_outline_build(w->models[w->ref[k][0]], w->ref[k][1], &s->ol, &s->err);
 }
 
 /* ---- Conflicts between curves on one sheet ---- */
@@ -525,15 +507,30 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
     fm_connect_options_default(&co);
     co.distance = o.distance;
     co.reach = o.distance;
-    fm_connect_pairs *pairs = NULL;
-    fm_status st = fm_connect_find_pairs(models, n, &co, &pairs, err);
-    if (st != FM_OK) {
+    co.nthreads = o.nthreads;
+    o.duplicates.nthreads = o.nthreads;
+    /* Every sheet is sampled once: the neighbour search and every pair's
+     * curves share the samples (and the outlines, below). */
+    size_t *base = calloc(n + 1, sizeof *base);
+    if (!base) {
         fm_connect_plan_destroy(p);
-        return st;
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     }
-    st = fm_connect_find_duplicates(models, n, pairs, &o.duplicates, &p->dup, &p->ndup, err);
+    for (size_t f = 0; f < n; f++)
+        base[f + 1] = base[f] + (models[f] ? fm_model_nsheets(models[f]) : 0);
+    cn_sheet *sh = NULL;
+    size_t ns = 0;
+    fm_connect_pairs *pairs = NULL;
+    fm_status st = cn_sheets_build(models, n, co.reach, o.nthreads, &sh, &ns, err);
+    double ts = fm_clock_seconds();
+    if (st == FM_OK && (st = cn_find_pairs(sh, ns, &co, &pairs, err)) == FM_OK) {
+        cn_pairs_set_time_sample(pairs, ts - t0);
+        st = fm_connect_find_duplicates(models, n, pairs, &o.duplicates, &p->dup, &p->ndup, err);
+    }
     if (st != FM_OK) {
         fm_connect_pairs_destroy(pairs);
+        cn_sheets_free(sh, ns);
+        free(base);
         fm_connect_plan_destroy(p);
         return st;
     }
@@ -544,26 +541,59 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
         }
     double t1 = fm_clock_seconds();
     size_t np = fm_connect_pairs_count(pairs);
+    pl_sheet *psh = calloc(ns + 1, sizeof *psh);
+    size_t(*ref)[2] = malloc((2 * np + 1) * sizeof *ref);
+    size_t *slot = malloc((2 * np + 1) * sizeof *slot), nol = 0;
     pair_work w;
     memset(&w, 0, sizeof w);
-    w.models = models;
     w.pairs = pairs;
     w.opt = &o;
     w.dropped = p->dropped;
-    w.n = np;
+    w.sheet = psh;
+    w.base = base;
     w.res = calloc(np + 1, sizeof *w.res);
     w.st = calloc(np + 1, sizeof *w.st);
     w.err = calloc(np + 1, sizeof *w.err);
-    if (!w.res || !w.st || !w.err || pthread_mutex_init(&w.lock, NULL) != 0) {
+    if (!psh || !ref || !slot || !w.res || !w.st || !w.err) {
+        free(psh);
+        free(ref);
+        free(slot);
         free(w.res);
         free(w.st);
         free(w.err);
         fm_connect_pairs_destroy(pairs);
+        cn_sheets_free(sh, ns);
+        free(base);
         fm_connect_plan_destroy(p);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     }
-    run_pairs(&w, o.nthreads);
-    pthread_mutex_destroy(&w.lock);
+    for (size_t g = 0; g < ns; g++)
+        psh[g].s = &sh[g];
+    for (size_t k = 0; k < np; k++) {
+        const fm_connect_pair *pp = fm_connect_pairs_get(pairs, k);
+        if (p->dropped[pp->fault_a] || p->dropped[pp->fault_b])
+            continue;
+        for (int e = 0; e < 2; e++) {
+            size_t f = e ? pp->fault_b : pp->fault_a, s = e ? pp->sheet_b : pp->sheet_a;
+            size_t g = base[f] + s;
+            if (psh[g].st == FM_OK && !psh[g].ol.tree) {
+                psh[g].st = FM_ERR_INVALID; /* marks it wanted until built */
+                ref[nol][0] = f;
+                ref[nol][1] = s;
+                slot[nol++] = g;
+            }
+        }
+    }
+    outline_work ow = {models, (const size_t(*)[2])ref, slot, psh};
+    cn_parallel_for(nol, o.nthreads, do_outline, &ow);
+    cn_parallel_for(np, o.nthreads, do_pair, &w);
+    for (size_t g = 0; g < ns; g++)
+        pl_outline_free(&psh[g].ol);
+    free(psh);
+    free(ref);
+    free(slot);
+    cn_sheets_free(sh, ns);
+    free(base);
     double t2 = fm_clock_seconds();
     for (size_t k = 0; k < np && st == FM_OK; k++)
         if (w.st[k] != FM_OK) {

@@ -643,7 +643,7 @@ done:
     return rc;
 }
 
-fm_status pl_decide_pair(const fm_model *a, size_t fault_a, size_t sheet_a, const fm_model *b,
+fm_status pl_decide_pair(const pl_sheet *a, size_t fault_a, size_t sheet_a, const pl_sheet *b,
                          size_t fault_b, size_t sheet_b, const fm_connect_plan_options *opt,
                          pl_pair_result *out, fm_error *err)
 {
@@ -655,31 +655,28 @@ fm_status pl_decide_pair(const fm_model *a, size_t fault_a, size_t sheet_a, cons
     /* raw points a few per mesh edge, so that cuts land within H/4 */
     co.spacing = fmin(co.spacing, 0.25 * opt->size);
     fm_connect_curves *cs = NULL;
-    fm_status st = fm_connect_intersect(a, sheet_a, b, sheet_b, &co, &cs, err);
+    fm_status st = cn_intersect(a->s, b->s, &co, &cs, err);
     if (st != FM_OK)
         return st;
-    pl_outline ol[2];
-    memset(ol, 0, sizeof ol);
     if (fm_connect_curves_count(cs) > 0) {
-        if ((st = pl_outline_build(a, sheet_a, &ol[0], err)) != FM_OK ||
-            (st = pl_outline_build(b, sheet_b, &ol[1], err)) != FM_OK) {
-            pl_outline_free(&ol[0]);
+        const pl_sheet *bad = a->st != FM_OK ? a : b->st != FM_OK ? b : NULL;
+        if (bad) {
+            if (err)
+                *err = bad->err;
             fm_connect_curves_destroy(cs);
-            return st;
+            return bad->st;
         }
     }
     decider d;
     memset(&d, 0, sizeof d);
-    d.S[0] = fm_model_surface(a, sheet_a);
-    d.S[1] = fm_model_surface(b, sheet_b);
-    d.ol[0] = &ol[0];
-    d.ol[1] = &ol[1];
+    d.S[0] = a->s->surf;
+    d.S[1] = b->s->surf;
+    d.ol[0] = &a->ol;
+    d.ol[1] = &b->ol;
     d.o = opt;
     for (size_t i = 0; i < fm_connect_curves_count(cs) && st == FM_OK; i++)
         if (decide_curve(&d, cs, i, fault_a, sheet_a, fault_b, sheet_b, out))
             st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory (plan)");
-    pl_outline_free(&ol[0]);
-    pl_outline_free(&ol[1]);
     fm_connect_curves_destroy(cs);
     if (st != FM_OK)
         pl_pair_result_free(out);

@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "connect_internal.h"
 #include "fm_closest.h"
 #include "fm_connect.h"
 
@@ -57,8 +58,18 @@ int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
                         const fm_model *const *models, double H, const double *level,
                         size_t *made);
 
+/* A sheet as the plan's pairs share it: sampled once, its outline built
+ * once (st and err: how that went; the outline is needed, and a failure
+ * reported, only by pairs whose sheets have curves). */
+typedef struct pl_sheet {
+    const cn_sheet *s;
+    pl_outline ol;
+    fm_status st;
+    fm_error err;
+} pl_sheet;
+
 /* Intersects the pair's sheets and decides every curve (plan_decide.c). */
-fm_status pl_decide_pair(const fm_model *a, size_t fault_a, size_t sheet_a, const fm_model *b,
+fm_status pl_decide_pair(const pl_sheet *a, size_t fault_a, size_t sheet_a, const pl_sheet *b,
                          size_t fault_b, size_t sheet_b, const fm_connect_plan_options *opt,
                          pl_pair_result *out, fm_error *err);
 

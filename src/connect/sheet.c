@@ -16,27 +16,107 @@ void cn_sheet_free(cn_sheet *s)
     free(s->active);
     free(s->loop_uv);
     free(s->loop_start);
+    free(s->seg);
+    free(s->band_seg);
+    free(s->band_start);
     fm_closest_tree_destroy(s->outline);
     fm_closest_tree_destroy(s->cells);
     free(s->cell_id);
     memset(s, 0, sizeof *s);
 }
 
+/* Band of v (NaN and values outside the loops' v range: none). */
+static int band_of(const cn_sheet *s, double v, size_t *j)
+{
+    double f = (v - s->band_v0) / s->band_h;
+    if (!(f >= 0) || !(f < (double)s->nband + 1))
+        return 0;
+    *j = f >= (double)(s->nband - 1) ? s->nband - 1 : (size_t)f;
+    return 1;
+}
+
+/* Even-odd over the segments of v's band: the segments that can cross
+ * the horizontal through v, each tested as a scan of all would test it. */
 int cn_sheet_inside(const cn_sheet *s, double u, double v)
 {
+    size_t j;
+    if (!s->nband || !band_of(s, v, &j))
+        return 0;
     int in = 0;
-    for (size_t l = 0; l < s->nloops; l++) {
-        size_t a0 = s->loop_start[l], n = s->loop_start[l + 1] - a0;
-        for (size_t i = 0; i < n; i++) {
-            const double *a = s->loop_uv + 2 * (a0 + i), *b = s->loop_uv + 2 * (a0 + (i + 1) % n);
-            if ((a[1] > v) != (b[1] > v)) {
-                double x = a[0] + (v - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
-                if (x > u)
-                    in ^= 1;
-            }
+    for (size_t k = s->band_start[j]; k < s->band_start[j + 1]; k++) {
+        const uint32_t *e = s->seg + 2 * (size_t)s->band_seg[k];
+        const double *a = s->loop_uv + 2 * (size_t)e[0], *b = s->loop_uv + 2 * (size_t)e[1];
+        if ((a[1] > v) != (b[1] > v)) {
+            double x = a[0] + (v - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+            if (x > u)
+                in ^= 1;
         }
     }
     return in;
+}
+
+/* The segments binned by v: about 8 per band, each in every band its v
+ * range meets (band_of is monotone, so a v inside the range lands in one
+ * of them). */
+static fm_status build_bands(cn_sheet *s)
+{
+    size_t total = s->loop_start[s->nloops];
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < total; i++) {
+        lo = fmin(lo, s->loop_uv[2 * i + 1]);
+        hi = fmax(hi, s->loop_uv[2 * i + 1]);
+    }
+    if (total == 0 || !(hi >= lo))
+        return FM_OK;
+    s->nband = total / 8 + 1;
+    if (s->nband > 4096)
+        s->nband = 4096;
+    s->band_v0 = lo;
+    s->band_h = hi > lo ? (hi - lo) / (double)s->nband : 1.0;
+    s->seg = malloc(2 * total * sizeof *s->seg);
+    s->band_start = calloc(s->nband + 1, sizeof *s->band_start);
+    if (!s->seg || !s->band_start)
+        return FM_ERR_NOMEM;
+    size_t k = 0;
+    for (size_t l = 0; l < s->nloops; l++) {
+        size_t a0 = s->loop_start[l], n = s->loop_start[l + 1] - a0;
+        for (size_t i = 0; i < n; i++, k++) {
+            s->seg[2 * k] = (uint32_t)(a0 + i);
+            s->seg[2 * k + 1] = (uint32_t)(a0 + (i + 1) % n);
+        }
+    }
+    for (int pass = 0; pass < 2; pass++) {
+        size_t *fill = pass ? malloc((s->nband + 1) * sizeof *fill) : NULL;
+        if (pass) {
+            if (!fill)
+                return FM_ERR_NOMEM;
+            for (size_t j = 0; j < s->nband; j++)
+                s->band_start[j + 1] += s->band_start[j];
+            memcpy(fill, s->band_start, (s->nband + 1) * sizeof *fill);
+            s->band_seg = malloc((s->band_start[s->nband] + 1) * sizeof *s->band_seg);
+            if (!s->band_seg) {
+                free(fill);
+                return FM_ERR_NOMEM;
+            }
+        }
+        for (k = 0; k < total; k++) {
+            double va = s->loop_uv[2 * (size_t)s->seg[2 * k] + 1];
+            double vb = s->loop_uv[2 * (size_t)s->seg[2 * k + 1] + 1];
+            size_t j0 = 0, j1 = s->nband - 1; /* all bands if unsure */
+            if (!band_of(s, fmin(va, vb), &j0) || !band_of(s, fmax(va, vb), &j1)) {
+                j0 = 0;
+                j1 = s->nband - 1;
+            }
+            for (size_t j = j0; j <= j1; j++) {
+                if (pass)
+                    s->band_seg[fill[j]++] = (uint32_t)k;
+                else
+                    s->band_start[j + 1]++;
+            }
+        }
+        free(fill);
+    }
+    return FM_OK;
 }
 
 double cn_sheet_outline_distance(const cn_sheet *s, double u, double v, const double xyz[3])
@@ -133,6 +213,8 @@ static fm_status sample_loops(cn_sheet *s, const fm_model *m, size_t sheet, fm_e
         s->loop_start[l + 1] = total;
         s->nloops = l + 1;
     }
+    if (build_bands(s) != FM_OK)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     /* The outline in 3D as segments (degenerate triangles a, b, b). */
     fm_mesh *om = fm_mesh_create();
     if (!om || fm_mesh_reserve(om, total, total) != FM_OK) {
@@ -151,7 +233,7 @@ static fm_status sample_loops(cn_sheet *s, const fm_model *m, size_t sheet, fm_e
             fm_mesh_add_triangle(om, a, b, b, 0);
         }
     }
-    s->outline = fm_closest_tree_create(om, err);
+    s->outline = fm_closest_tree_create_quick(om, err);
     fm_mesh_destroy(om);
     return s->outline ? FM_OK : (err ? err->code : FM_ERR_NOMEM);
 }
@@ -261,7 +343,7 @@ fm_status cn_sheet_build(const fm_model *m, size_t fault, size_t sheet, double r
         cn_sheet_free(s);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     }
-    s->cells = fm_closest_tree_create(bm, err);
+    s->cells = fm_closest_tree_create_quick(bm, err);
     fm_mesh_destroy(bm);
     if (!s->cells) {
         cn_sheet_free(s);
@@ -302,4 +384,76 @@ size_t cn_select_cells(const cn_sheet *a, const cn_sheet *b, double margin, unsi
         }
     }
     return n;
+}
+
+/* Sheets sampled on N threads: slot k is model sheet ref[k]. */
+typedef struct sample_work {
+    const fm_model *const *models;
+    const size_t (*ref)[2];
+    double reach;
+    cn_sheet *sh;
+    fm_status *st;
+    fm_error *err;
+} sample_work;
+
+static void sample_task(void *user, size_t k)
+{
+    sample_work *w = user;
+    size_t f = w->ref[k][0], s = w->ref[k][1];
+    w->st[k] = cn_sheet_build(w->models[f], f, s, w->reach, &w->sh[k], &w->err[k]);
+}
+
+fm_status cn_sheets_build(const fm_model *const *models, size_t n, double reach, int nthreads,
+                          cn_sheet **out, size_t *nout, fm_error *err)
+{
+    *out = NULL;
+    *nout = 0;
+    size_t ns = 0;
+    for (size_t i = 0; i < n; i++)
+        ns += models && models[i] ? fm_model_nsheets(models[i]) : 0;
+    cn_sheet *sh = calloc(ns ? ns : 1, sizeof *sh);
+    size_t(*ref)[2] = malloc((ns ? ns : 1) * sizeof *ref);
+    fm_status *sst = calloc(ns ? ns : 1, sizeof *sst);
+    fm_error *serr = calloc(ns ? ns : 1, sizeof *serr);
+    if (!sh || !ref || !sst || !serr) {
+        free(sh);
+        free(ref);
+        free(sst);
+        free(serr);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+    }
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t s = 0; models[i] && s < fm_model_nsheets(models[i]); s++, k++) {
+            ref[k][0] = i;
+            ref[k][1] = s;
+        }
+    sample_work w = {models, (const size_t(*)[2])ref, reach, sh, sst, serr};
+    cn_parallel_for(ns, nthreads, sample_task, &w);
+    /* the first sheet in order that failed decides the error, as on one thread */
+    fm_status st = FM_OK;
+    for (k = 0; k < ns; k++)
+        if (sst[k] != FM_OK) {
+            st = sst[k];
+            if (err)
+                *err = serr[k];
+            break;
+        }
+    free(ref);
+    free(sst);
+    free(serr);
+    if (st != FM_OK) {
+        cn_sheets_free(sh, ns);
+        return st;
+    }
+    *out = sh;
+    *nout = ns;
+    return FM_OK;
+}
+
+void cn_sheets_free(cn_sheet *s, size_t n)
+{
+    for (size_t k = 0; s && k < n; k++)
+        cn_sheet_free(&s[k]);
+    free(s);
 }

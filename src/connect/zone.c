@@ -57,7 +57,8 @@ static double node_sd(const cn_sheet *s, size_t I, size_t J, int sub)
     return (1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d);
 }
 
-fm_status cn_zone_build(const cn_sheet *s, const unsigned char *sel, int sub, cn_zone *z)
+fm_status cn_zone_build(const cn_sheet *s, const unsigned char *sel, int sub, int edges,
+                        cn_zone *z)
 {
     memset(z, 0, sizeof *z);
     size_t NU = s->nsu * (size_t)sub + 1, NV = s->nsv * (size_t)sub + 1;
@@ -116,6 +117,8 @@ fm_status cn_zone_build(const cn_sheet *s, const unsigned char *sel, int sub, cn
                 }
         }
     free(map);
+    if (!edges)
+        return FM_OK;
     edge_key *ek = malloc(3 * z->nt * sizeof *ek);
     z->tedge = malloc(3 * z->nt * sizeof *z->tedge);
     z->ev = malloc(6 * z->nt * sizeof *z->ev);

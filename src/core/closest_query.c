@@ -330,3 +330,66 @@ done:
     }
     return 1;
 }
+
+static double slot_dist2(const fm_closest_tree *t, size_t s, const double q[3])
+{
+    const int32_t *v = t->tri + 3 * s;
+    double f[3], w[3];
+    return closest_on_triangle(q, t->xyz + 3 * (size_t)v[0], t->xyz + 3 * (size_t)v[1],
+                               t->xyz + 3 * (size_t)v[2], f, w);
+}
+
+/* The same search and the same test per triangle as fm_closest_query, but
+ * done at the first triangle within the bound; the hint's triangle (a
+ * slot) is tried before any search. */
+int fm_closest_within(const fm_closest_tree *t, const double p[3], double max_dist,
+                      int32_t *hint)
+{
+    if (!t || t->nnode == 0 || !p || !(max_dist >= 0))
+        return 0;
+    double q[3];
+    for (int a = 0; a < 3; a++) {
+        q[a] = p[a] - t->centre[a];
+        if (!isfinite(q[a]))
+            return 0;
+    }
+    double best = max_dist * max_dist;
+    if (hint && *hint >= 0 && (size_t)*hint < t->ntri && slot_dist2(t, (size_t)*hint, q) <= best)
+        return 1;
+    int32_t stack[CLOSEST_STACK];
+    int sp = 0;
+    int32_t node = 0;
+    if (box_dist2(&t->nodes[0], q) > best)
+        return 0;
+    for (;;) {
+        const closest_node *N = &t->nodes[node];
+        if (N->count == 0) {
+            int32_t near = N->first, far = near + 1;
+            prefetch_below(t, &t->nodes[near]);
+            prefetch_below(t, &t->nodes[far]);
+            double dn = box_dist2(&t->nodes[near], q), df = box_dist2(&t->nodes[far], q);
+            if (df < dn) {
+                int32_t tn = near;
+                near = far, far = tn;
+                double td = dn;
+                dn = df, df = td;
+            }
+            if (dn <= best) {
+                if (df <= best)
+                    stack[sp++] = far;
+                node = near;
+                continue;
+            }
+        } else {
+            for (size_t s = (size_t)N->first; s < (size_t)N->first + (size_t)N->count; s++)
+                if (slot_dist2(t, s, q) <= best) {
+                    if (hint)
+                        *hint = (int32_t)s;
+                    return 1;
+                }
+        }
+        if (sp == 0)
+            return 0;
+        node = stack[--sp];
+    }
+}

@@ -3,10 +3,15 @@
  *
  * Splits are binned SAH over all three axes; the build reads only the
  * triangles' order and coordinates, so the same mesh always gives the same
- * tree. */
+ * tree. The quick build sorts the triangles by the Morton code of their
+ * centroids and splits that order where the leading bit of the code
+ * changes (octree cells): several times faster to build, a little slower
+ * to query. */
 #include "closest_tree.h"
 
+#include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,16 +30,28 @@ typedef struct builder {
     size_t nnode;
 } builder;
 
+/* nextafterf(f, up ? INFINITY : -INFINITY) for f not NaN, without the call. */
+static float float_step(float f, int up)
+{
+    if (f == 0)
+        return up ? FLT_TRUE_MIN : -FLT_TRUE_MIN;
+    uint32_t b;
+    memcpy(&b, &f, sizeof b);
+    b = (f > 0) == (up != 0) ? b + 1 : b - 1;
+    memcpy(&f, &b, sizeof f);
+    return f;
+}
+
 static float float_down(double x)
 {
     float f = (float)x;
-    return (double)f > x ? nextafterf(f, -INFINITY) : f;
+    return (double)f > x ? float_step(f, 0) : f;
 }
 
 static float float_up(double x)
 {
     float f = (float)x;
-    return (double)f < x ? nextafterf(f, INFINITY) : f;
+    return (double)f < x ? float_step(f, 1) : f;
 }
 
 static double half_area(const float lo[3], const float hi[3])
@@ -202,6 +219,133 @@ static void build_node(builder *B, size_t node, size_t b, size_t e, int depth)
     build_node(B, left + 1, mid, e, depth + 1);
 }
 
+/* ---- Quick build: Morton order ---- */
+
+#define MORTON_BITS 16 /* per axis */
+
+/* The low 21 bits of x spread to every third bit. */
+static uint64_t spread(uint64_t x)
+{
+    x &= 0x1fffffu;
+    x = (x | x << 32) & 0x1f00000000ffffull;
+    x = (x | x << 16) & 0x1f0000ff0000ffull;
+    x = (x | x << 8) & 0x100f00f00f00f00full;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
+}
+
+/* Items in Morton order of their centroids (16 bits per axis over the
+ * centroids' box): a stable radix sort of (code, index) pairs, so ties
+ * stay in triangle order, then the items moved once. *codes receives
+ * the sorted codes. */
+static int morton_order(item **items, size_t n, uint64_t **codes)
+{
+    float cmin[3], cmax[3];
+    box_empty(cmin, cmax);
+    for (size_t i = 0; i < n; i++)
+        box_grow(cmin, cmax, (*items)[i].c, (*items)[i].c);
+    uint64_t *code = malloc(n * sizeof *code), *code2 = malloc(n * sizeof *code2);
+    uint32_t *idx = malloc(n * sizeof *idx), *idx2 = malloc(n * sizeof *idx2);
+    size_t *count = malloc(4097 * sizeof *count);
+    item *sorted = malloc(n * sizeof *sorted);
+    if (!code || !code2 || !idx || !idx2 || !count || !sorted) {
+        free(code);
+        free(code2);
+        free(idx);
+        free(idx2);
+        free(count);
+        free(sorted);
+        return -1;
+    }
+    const double top = (double)((1u << MORTON_BITS) - 1);
+    double scale[3];
+    for (int a = 0; a < 3; a++) {
+        double ext = (double)cmax[a] - cmin[a];
+        scale[a] = ext > 0 ? top / ext : 0.0;
+    }
+    for (size_t i = 0; i < n; i++) {
+        uint64_t c = 0;
+        for (int a = 0; a < 3; a++) {
+            double q = ((double)(*items)[i].c[a] - cmin[a]) * scale[a];
+            uint64_t b = q > 0 ? (uint64_t)(q + 0.5) : 0u;
+            c |= spread(b > (uint64_t)top ? (uint64_t)top : b) << a;
+        }
+        code[i] = c;
+        idx[i] = (uint32_t)i;
+    }
+    for (int pass = 0; pass < 4; pass++) { /* 48 bits, 12 per pass */
+        int shift = 12 * pass;
+        memset(count, 0, 4097 * sizeof *count);
+        for (size_t i = 0; i < n; i++)
+            count[((code[i] >> shift) & 0xfffu) + 1]++;
+        for (int b = 0; b < 4096; b++)
+            count[b + 1] += count[b];
+        for (size_t i = 0; i < n; i++) {
+            size_t to = count[(code[i] >> shift) & 0xfffu]++;
+            code2[to] = code[i];
+            idx2[to] = idx[i];
+        }
+        uint64_t *tc = code;
+        code = code2;
+        code2 = tc;
+        uint32_t *ti = idx;
+        idx = idx2;
+        idx2 = ti;
+    }
+    for (size_t i = 0; i < n; i++)
+        sorted[i] = (*items)[idx[i]];
+    free(*items);
+    *items = sorted;
+    free(code2);
+    free(idx);
+    free(idx2);
+    free(count);
+    *codes = code;
+    return 0;
+}
+
+/* Splits [b, e) where the highest bit in which its codes differ turns
+ * from 0 to 1 (an octree cell into two halves), or halves it when all
+ * codes are equal. */
+static void build_quick(builder *B, const uint64_t *code, size_t node, size_t b, size_t e)
+{
+    closest_node *N = &B->nodes[node];
+    box_empty(N->lo, N->hi);
+    if (e - b <= LEAF_MAX) {
+        for (size_t i = b; i < e; i++)
+            box_grow(N->lo, N->hi, B->items[i].lo, B->items[i].hi);
+        N->first = (int32_t)b;
+        N->count = (int32_t)(e - b);
+        return;
+    }
+    size_t mid = b + (e - b) / 2;
+    uint64_t diff = code[b] ^ code[e - 1];
+    if (diff) {
+        int bit = 63;
+        while (!(diff >> bit & 1u))
+            bit--;
+        /* first index in [b, e) with that bit set (codes are sorted) */
+        size_t lo = b, hi = e - 1;
+        while (lo < hi) {
+            size_t m = lo + (hi - lo) / 2;
+            if (code[m] >> bit & 1u)
+                hi = m;
+            else
+                lo = m + 1;
+        }
+        mid = lo;
+    }
+    size_t left = B->nnode;
+    B->nnode += 2;
+    build_quick(B, code, left, b, mid);
+    build_quick(B, code, left + 1, mid, e);
+    N->first = (int32_t)left;
+    N->count = 0;
+    box_grow(N->lo, N->hi, B->nodes[left].lo, B->nodes[left].hi);
+    box_grow(N->lo, N->hi, B->nodes[left + 1].lo, B->nodes[left + 1].hi);
+}
+
 /* Checks the mesh and picks the centre: the rounded middle of the box of
  * the referenced vertices. An integer keeps UTM coordinates exact when
  * subtracted (both are multiples of the coordinates' ulp). */
@@ -234,13 +378,15 @@ static fm_status check_mesh(const fm_mesh *m, double centre[3], fm_error *err)
     return FM_OK;
 }
 
-static void make_items(const fm_mesh *m, const double centre[3], item *items)
+/* Items of the triangles part[0 .. n-1] (NULL: all, in order). */
+static void make_items(const fm_mesh *m, const double centre[3], const int32_t *part, size_t nt,
+                       item *items)
 {
     const double *v = fm_mesh_vertices(m);
     const int32_t *t = fm_mesh_triangles(m);
-    size_t nt = fm_mesh_ntriangles(m);
-    for (size_t i = 0; i < nt; i++) {
-        item *it = &items[i];
+    for (size_t j = 0; j < nt; j++) {
+        size_t i = part ? (size_t)part[j] : j;
+        item *it = &items[j];
         it->tri = (int32_t)i;
         for (int a = 0; a < 3; a++) {
             double r[3];
@@ -303,7 +449,9 @@ static closest_node *aligned_nodes(const closest_node *nodes, size_t n)
     return out;
 }
 
-fm_closest_tree *fm_closest_tree_create(const fm_mesh *m, fm_error *err)
+/* The tree of all of m's triangles (part NULL) or of part[0 .. npart-1]. */
+static fm_closest_tree *create(const fm_mesh *m, const int32_t *part, size_t npart, int quick,
+                               fm_error *err)
 {
     if (!m) {
         fm_error_set(err, FM_ERR_INVALID, NULL, 0, "closest tree: no mesh");
@@ -318,7 +466,14 @@ fm_closest_tree *fm_closest_tree_create(const fm_mesh *m, fm_error *err)
         free(t);
         return NULL;
     }
-    t->ntri = fm_mesh_ntriangles(m);
+    t->ntri = part ? npart : fm_mesh_ntriangles(m);
+    for (size_t k = 0; part && k < npart; k++)
+        if (part[k] < 0 || (size_t)part[k] >= fm_mesh_ntriangles(m)) {
+            fm_error_set(err, FM_ERR_INVALID, NULL, 0, "closest tree: no triangle %d in %zu",
+                         (int)part[k], fm_mesh_ntriangles(m));
+            free(t);
+            return NULL;
+        }
     if (t->ntri == 0)
         return t;
     builder B = {0};
@@ -328,24 +483,53 @@ fm_closest_tree *fm_closest_tree_create(const fm_mesh *m, fm_error *err)
     B.nodes = malloc((2 * t->ntri + 1) * sizeof *B.nodes);
     fm_status st = FM_ERR_NOMEM;
     if (B.items && B.nodes) {
-        make_items(m, t->centre, B.items);
+        make_items(m, t->centre, part, t->ntri, B.items);
         B.nnode = 2;
-        build_node(&B, 0, 0, t->ntri, 0);
-        memset(&B.nodes[1], 0, sizeof B.nodes[1]);
-        t->nodes = aligned_nodes(B.nodes, B.nnode);
-        t->nnode = B.nnode;
-        if (t->nodes)
-            st = pack(t, m, B.items);
+        int ok = 1;
+        uint64_t *code = NULL;
+        if (!quick)
+            build_node(&B, 0, 0, t->ntri, 0);
+        else if ((ok = morton_order(&B.items, t->ntri, &code) == 0))
+            build_quick(&B, code, 0, 0, t->ntri);
+        free(code);
+        if (ok) {
+            memset(&B.nodes[1], 0, sizeof B.nodes[1]);
+            t->nodes = aligned_nodes(B.nodes, B.nnode);
+            t->nnode = B.nnode;
+            if (t->nodes)
+                st = pack(t, m, B.items);
+        }
     }
     free(B.items);
     free(B.nodes);
     if (st != FM_OK) {
+        size_t nt = t->ntri;
         fm_closest_tree_destroy(t);
-        fm_error_set(err, st, NULL, 0, "closest tree: out of memory for %zu triangles",
-                     fm_mesh_ntriangles(m));
+        fm_error_set(err, st, NULL, 0, "closest tree: out of memory for %zu triangles", nt);
         return NULL;
     }
     return t;
+}
+
+fm_closest_tree *fm_closest_tree_create(const fm_mesh *m, fm_error *err)
+{
+    return create(m, NULL, 0, 0, err);
+}
+
+fm_closest_tree *fm_closest_tree_create_quick(const fm_mesh *m, fm_error *err)
+{
+    return create(m, NULL, 0, 1, err);
+}
+
+fm_closest_tree *fm_closest_tree_create_part(const fm_mesh *m, const int32_t *part, size_t n,
+                                             fm_error *err)
+{
+    static const int32_t none[1] = {0};
+    if (!part && n) {
+        fm_error_set(err, FM_ERR_INVALID, NULL, 0, "closest tree: no triangle list");
+        return NULL;
+    }
+    return create(m, part ? part : none, n, 1, err);
 }
 
 void fm_closest_tree_destroy(fm_closest_tree *t)

@@ -48,6 +48,21 @@ typedef struct fm_closest_hit {
  * does not exist, FM_ERR_NUMERIC for a non-finite coordinate,
  * FM_ERR_NOMEM; returns NULL then and fills err (if not NULL). */
 fm_closest_tree *fm_closest_tree_create(const fm_mesh *m, fm_error *err);
+/* The same, built about four times faster (triangles sorted by the Morton
+ * code of their centroids, split where the code's leading bit changes)
+ * into a tree some 1.5 times slower to query: for meshes queried a few
+ * times per triangle (bench/bench_closest). Queries give the same answers
+ * as on fm_closest_tree_create's tree (answers depend only on the mesh and
+ * the query); only the order of box query calls differs. */
+fm_closest_tree *fm_closest_tree_create_quick(const fm_mesh *m, fm_error *err);
+/* A quick tree of some of m's triangles: part[0 .. n-1], mesh indices (a
+ * triangle named twice counts twice). Its queries answer bit for bit as
+ * those of a tree of the whole mesh would if the other triangles were not
+ * there (the same centre, so the same arithmetic), naming triangles by
+ * their mesh index: a caller that knows which triangles can matter to its
+ * queries gets the whole tree's answers from a small tree. */
+fm_closest_tree *fm_closest_tree_create_part(const fm_mesh *m, const int32_t *part, size_t n,
+                                             fm_error *err);
 void fm_closest_tree_destroy(fm_closest_tree *t);
 
 size_t fm_closest_tree_ntriangles(const fm_closest_tree *t);
@@ -59,6 +74,13 @@ size_t fm_closest_tree_ntriangles(const fm_closest_tree *t);
  * several triangles are exactly equally close the lowest index wins. */
 int fm_closest_query(const fm_closest_tree *t, const double p[3], double max_dist,
                      fm_closest_hit *hit);
+
+/* 1 when fm_closest_query(t, p, max_dist, ...) would find a point, found
+ * faster: the search ends at the first triangle within max_dist. hint (may
+ * be NULL) speeds up runs of nearby points: start with -1; a call that
+ * finds a triangle stores it there, and the next call tries it first. */
+int fm_closest_within(const fm_closest_tree *t, const double p[3], double max_dist,
+                      int32_t *hint);
 
 /* Called once per triangle found by a box query; a non-zero return stops
  * the query. */

@@ -775,6 +775,159 @@ static void test_skewed(void)
     fm_mesh_destroy(m);
 }
 
+/* The quick build gives another tree over the same mesh, never other
+ * answers: closest queries bit for bit, box queries the same triangles;
+ * fm_closest_within says what the closest query says, whatever its hint. */
+static void same_answers(fm_mesh *m, size_t nq, uint64_t seed)
+{
+    fm_closest_tree *t1 = fm_closest_tree_create(m, NULL);
+    fm_closest_tree *t2 = fm_closest_tree_create_quick(m, NULL);
+    CHECK(t1 && t2);
+    CHECK_EQ(fm_closest_tree_ntriangles(t2), fm_mesh_ntriangles(m));
+    rng_seed(seed);
+    size_t differ = 0, boxes_differ = 0, within_differ = 0;
+    int32_t hint = -1;
+    for (size_t q = 0; q < nq && t1 && t2; q++) {
+        double p[3];
+        query_point(m, p);
+        fm_closest_hit h1, h2;
+        memset(&h1, 0, sizeof h1);
+        memset(&h2, 0, sizeof h2);
+        double bound = q % 3 == 0 ? INFINITY : pow(10.0, rnd_range(-3, 3));
+        int f1 = fm_closest_query(t1, p, bound, &h1);
+        int f2 = fm_closest_query(t2, p, bound, &h2);
+        differ += f1 != f2 || memcmp(&h1, &h2, sizeof h1) != 0;
+        /* within: the same yes or no, with and without a hint, on both trees */
+        within_differ += fm_closest_within(t1, p, bound, NULL) != f1;
+        within_differ += fm_closest_within(t2, p, bound, &hint) != f1;
+        double lo[3], hi[3], size = pow(10.0, rnd_range(-2, 3));
+        for (int k = 0; k < 3; k++) {
+            lo[k] = p[k] - size * rnd_unit();
+            hi[k] = p[k] + size * rnd_unit();
+        }
+        int32_t *g1 = NULL, *g2 = NULL;
+        size_t n1 = 0, n2 = 0;
+        CHECK(fm_closest_tree_box_collect(t1, lo, hi, &g1, &n1, NULL) == FM_OK);
+        CHECK(fm_closest_tree_box_collect(t2, lo, hi, &g2, &n2, NULL) == FM_OK);
+        boxes_differ += n1 != n2 || (n1 && memcmp(g1, g2, n1 * sizeof *g1) != 0);
+        CHECK_EQ(fm_closest_tree_box_query(t2, lo, hi, NULL, NULL), n1);
+        free(g1);
+        free(g2);
+    }
+    CHECK_EQ(differ, 0);
+    CHECK_EQ(boxes_differ, 0);
+    CHECK_EQ(within_differ, 0);
+    fm_closest_tree_destroy(t1);
+    fm_closest_tree_destroy(t2);
+    fm_mesh_destroy(m);
+}
+
+static void test_quick(void)
+{
+    rng_seed(15);
+    same_answers(soup(4000, utm), 4000, 16);
+    rng_seed(17);
+    same_answers(wavy(120, 90, utm, 50), 4000, 18);
+    fm_mesh *fan = fm_mesh_create(); /* one centroid: nothing to sort by */
+    for (int i = 0; i < 300; i++) {
+        double d[3] = {100 * cos(i * 0.01), 100 * sin(i * 0.01), 0};
+        add_tri(fan, (double[3]){utm[0] - d[0], utm[1] - d[1], utm[2]},
+                (double[3]){utm[0] + d[0], utm[1] + d[1], utm[2]}, utm);
+    }
+    same_answers(fan, 1000, 19);
+    fm_mesh *one = fm_mesh_create();
+    add_tri(one, utm, (double[3]){utm[0] + 10, utm[1], utm[2]},
+            (double[3]){utm[0], utm[1] + 10, utm[2]});
+    same_answers(one, 200, 20);
+    fm_mesh *none = fm_mesh_create();
+    fm_closest_tree *t = fm_closest_tree_create_quick(none, NULL);
+    CHECK(t && fm_closest_tree_ntriangles(t) == 0 && !fm_closest_query(t, utm, INFINITY, NULL));
+    fm_closest_tree_destroy(t);
+    fm_mesh_destroy(none);
+    CHECK(fm_closest_tree_create_quick(NULL, NULL) == NULL);
+    /* within on bad input, and a hint that names no triangle */
+    fm_mesh *m = fm_mesh_create();
+    add_tri(m, utm, (double[3]){utm[0] + 10, utm[1], utm[2]},
+            (double[3]){utm[0], utm[1] + 10, utm[2]});
+    t = fm_closest_tree_create_quick(m, NULL);
+    double nan_p[3] = {NAN, utm[1], utm[2]};
+    int32_t hint = 1 << 30;
+    CHECK(!fm_closest_within(NULL, utm, 1, NULL));
+    CHECK(!fm_closest_within(t, nan_p, 1, NULL));
+    CHECK(!fm_closest_within(t, utm, -1, NULL));
+    CHECK(fm_closest_within(t, utm, 0, &hint) && hint == 0);
+    CHECK(!fm_closest_within(t, (double[3]){utm[0], utm[1], utm[2] + 2}, 1.5, &hint));
+    CHECK(fm_closest_within(t, (double[3]){utm[0], utm[1], utm[2] + 2}, 2, &hint));
+    fm_closest_tree_destroy(t);
+    fm_mesh_destroy(m);
+}
+
+/* A tree of part of a mesh answers as the whole mesh's tree wherever the
+ * answer lies in the part: all triangles in reverse order, and per query
+ * only the triangles whose boxes come within the bound. */
+static void test_part(void)
+{
+    rng_seed(21);
+    fm_mesh *m = wavy(60, 50, utm, 40);
+    size_t nt = fm_mesh_ntriangles(m);
+    const double *v = fm_mesh_vertices(m);
+    const int32_t *tri = fm_mesh_triangles(m);
+    int32_t *part = malloc(nt * sizeof *part);
+    for (size_t i = 0; i < nt; i++)
+        part[i] = (int32_t)(nt - 1 - i);
+    fm_closest_tree *whole = fm_closest_tree_create(m, NULL);
+    fm_closest_tree *rev = fm_closest_tree_create_part(m, part, nt, NULL);
+    CHECK(whole && rev);
+    size_t differ = 0, nonempty = 0;
+    for (int q = 0; q < 2000 && whole && rev; q++) {
+        double p[3];
+        query_point(m, p);
+        double bound = q % 4 == 0 ? INFINITY : pow(10.0, rnd_range(-1, 2.5));
+        fm_closest_hit h1, h2, h3;
+        memset(&h1, 0, sizeof h1);
+        memset(&h2, 0, sizeof h2);
+        memset(&h3, 0, sizeof h3);
+        int f1 = fm_closest_query(whole, p, bound, &h1);
+        int f2 = fm_closest_query(rev, p, bound, &h2);
+        differ += f1 != f2 || memcmp(&h1, &h2, sizeof h1) != 0;
+        if (!isfinite(bound))
+            continue;
+        size_t n = 0;
+        for (size_t i = 0; i < nt; i++) {
+            int in = 1;
+            for (int k = 0; k < 3; k++) {
+                double a = v[3 * tri[3 * i] + k], b = v[3 * tri[3 * i + 1] + k],
+                       c = v[3 * tri[3 * i + 2] + k];
+                in &= fmin(a, fmin(b, c)) <= p[k] + bound + 1 &&
+                      fmax(a, fmax(b, c)) >= p[k] - bound - 1;
+            }
+            if (in)
+                part[n++] = (int32_t)i;
+        }
+        nonempty += n > 0;
+        fm_closest_tree *local = fm_closest_tree_create_part(m, part, n, NULL);
+        CHECK(local != NULL);
+        int f3 = fm_closest_query(local, p, bound, &h3);
+        differ += f1 != f3 || memcmp(&h1, &h3, sizeof h1) != 0;
+        differ += fm_closest_within(local, p, bound, NULL) != f1;
+        fm_closest_tree_destroy(local);
+    }
+    CHECK_EQ(differ, 0);
+    CHECK(nonempty > 100);
+    fm_error err;
+    part[0] = (int32_t)nt;
+    CHECK(fm_closest_tree_create_part(m, part, 1, &err) == NULL && err.code == FM_ERR_INVALID);
+    CHECK(fm_closest_tree_create_part(m, NULL, 1, &err) == NULL && err.code == FM_ERR_INVALID);
+    fm_closest_tree *none = fm_closest_tree_create_part(m, NULL, 0, NULL);
+    CHECK(none && fm_closest_tree_ntriangles(none) == 0);
+    CHECK(!fm_closest_query(none, utm, INFINITY, NULL));
+    fm_closest_tree_destroy(none);
+    fm_closest_tree_destroy(whole);
+    fm_closest_tree_destroy(rev);
+    free(part);
+    fm_mesh_destroy(m);
+}
+
 static void report(void)
 {
     printf("worst error / tolerance: %.3g\n", worst_rel);
@@ -784,4 +937,5 @@ static void report(void)
 FM_TEST_MAIN(FM_CASE(test_on_triangle), FM_CASE(test_soup_utm), FM_CASE(test_soup_origin),
              FM_CASE(test_wavy_utm), FM_CASE(test_tiny_meshes), FM_CASE(test_coincident_centroids), FM_CASE(test_skewed),
              FM_CASE(test_ties), FM_CASE(test_exact_ties), FM_CASE(test_determinism), FM_CASE(test_box),
-             FM_CASE(test_empty_and_bad_input), FM_CASE(report))
+             FM_CASE(test_quick), FM_CASE(test_part), FM_CASE(test_empty_and_bad_input),
+             FM_CASE(report))

@@ -459,6 +459,129 @@ static void test_duplicates(void)
         fm_model_destroy(models[k]);
 }
 
+/* Pairs, near-duplicates and the plan come out the same, to the bit, on
+ * 1, 2 and 5 threads (the synthetic system, plus a composite over a
+ * section 20 m beside it so that one fault is given up). */
+static int same_pairs(const fm_connect_pairs *x, const fm_connect_pairs *y)
+{
+    if (fm_connect_pairs_count(x) != fm_connect_pairs_count(y))
+        return 0;
+    for (size_t i = 0; i < fm_connect_pairs_count(x); i++) {
+        const fm_connect_pair *a = fm_connect_pairs_get(x, i), *b = fm_connect_pairs_get(y, i);
+        if (a->fault_a != b->fault_a || a->sheet_a != b->sheet_a || a->fault_b != b->fault_b ||
+            a->sheet_b != b->sheet_b || a->crosses != b->crosses ||
+            a->trimmed_crosses != b->trimmed_crosses ||
+            memcmp(&a->distance, &b->distance, sizeof a->distance) ||
+            memcmp(&a->trimmed_distance, &b->trimmed_distance, sizeof a->distance) ||
+            memcmp(a->point_a, b->point_a, sizeof a->point_a) ||
+            memcmp(a->point_b, b->point_b, sizeof a->point_b))
+            return 0;
+    }
+    return 1;
+}
+
+static int same_plans(const fm_connect_plan *x, const fm_connect_plan *y, size_t n,
+                      fm_model *const *models)
+{
+    if (fm_connect_plan_njunctions(x) != fm_connect_plan_njunctions(y) ||
+        fm_connect_plan_nnodes(x) != fm_connect_plan_nnodes(y) ||
+        memcmp(fm_connect_plan_nodes(x), fm_connect_plan_nodes(y),
+               3 * fm_connect_plan_nnodes(x) * sizeof(double)))
+        return 0;
+    for (size_t i = 0; i < fm_connect_plan_njunctions(x); i++) {
+        const fm_connect_junction *a = fm_connect_plan_junction(x, i);
+        const fm_connect_junction *b = fm_connect_plan_junction(y, i);
+        if (a->fault[0] != b->fault[0] || a->fault[1] != b->fault[1] ||
+            a->sheet[0] != b->sheet[0] || a->sheet[1] != b->sheet[1] || a->type != b->type ||
+            a->curve != b->curve || a->reason != b->reason ||
+            memcmp(&a->length, &b->length, sizeof a->length) ||
+            memcmp(&a->gap, &b->gap, sizeof a->gap) ||
+            memcmp(&a->overshoot, &b->overshoot, sizeof a->overshoot))
+            return 0;
+    }
+    for (size_t f = 0; f < n; f++) {
+        if (fm_connect_plan_dropped(x, f, NULL) != fm_connect_plan_dropped(y, f, NULL))
+            return 0;
+        for (size_t s = 0; s < fm_model_nsheets(models[f]); s++) {
+            const fm_connect_shared *a, *b;
+            size_t k = fm_connect_plan_sheet(x, f, s, &a);
+            if (k != fm_connect_plan_sheet(y, f, s, &b))
+                return 0;
+            for (size_t q = 0; q < k; q++)
+                if (a[q].n != b[q].n || a[q].end != b[q].end || a[q].curve != b[q].curve ||
+                    memcmp(a[q].uv, b[q].uv, 2 * a[q].n * sizeof(double)) ||
+                    memcmp(a[q].node, b[q].node, a[q].n * sizeof(int64_t)))
+                    return 0;
+        }
+    }
+    return 1;
+}
+
+static void test_threads(void)
+{
+    fm_synth *sy = NULL;
+    fm_error err;
+    CHECK(fm_synth_create(NULL, &sy, &err) == FM_OK);
+    if (!sy)
+        return;
+    size_t ns = fm_synth_nfaults(sy), n = ns + 2;
+    fm_model **models = calloc(n, sizeof *models);
+    for (size_t i = 0; i < ns; i++)
+        models[i] = fit_mesh(fm_synth_fault_name(sy, i), fm_synth_fault_mesh(sy, i));
+    fm_mesh *extra[2] = {plane_part(-8000, 8000, 0, -6000, 500),
+                         plane_part(-8000, 0, 20, -6000, 500)};
+    for (int k = 0; k < 2; k++) {
+        models[ns + (size_t)k] = fit_mesh(k ? "section" : "composite", extra[k]);
+        fm_mesh_destroy(extra[k]);
+    }
+    for (size_t i = 0; i < n; i++)
+        CHECK(models[i] != NULL);
+    const fm_model *const *M = (const fm_model *const *)models;
+    fm_connect_pairs *p1 = NULL;
+    fm_connect_duplicate *d1 = NULL;
+    size_t nd1 = 0;
+    fm_connect_plan *plan1 = NULL;
+    fm_connect_options o;
+    fm_connect_options_default(&o);
+    fm_connect_duplicate_options dopt;
+    fm_connect_duplicate_options_default(&dopt);
+    fm_connect_plan_options po;
+    fm_connect_plan_options_default(&po);
+    CHECK(fm_connect_find_pairs(M, n, &o, &p1, &err) == FM_OK);
+    CHECK(p1 && fm_connect_find_duplicates(M, n, p1, &dopt, &d1, &nd1, &err) == FM_OK);
+    CHECK(nd1 == 1);
+    CHECK(fm_connect_plan_build(M, n, &po, &plan1, &err) == FM_OK);
+    for (int nt = 2; nt <= 5 && p1 && plan1; nt += 3) {
+        o.nthreads = dopt.nthreads = po.nthreads = nt;
+        fm_connect_pairs *p = NULL;
+        fm_connect_duplicate *d = NULL;
+        size_t nd = 0;
+        fm_connect_plan *plan = NULL;
+        CHECK(fm_connect_find_pairs(M, n, &o, &p, &err) == FM_OK);
+        CHECK(p && same_pairs(p1, p));
+        CHECK(p && fm_connect_find_duplicates(M, n, p, &dopt, &d, &nd, &err) == FM_OK);
+        CHECK(nd == nd1);
+        for (size_t k = 0; k < nd && k < nd1; k++)
+            CHECK(d[k].dropped == d1[k].dropped && d[k].kept == d1[k].kept &&
+                  d[k].decided == d1[k].decided &&
+                  !memcmp(d[k].share, d1[k].share, sizeof d[k].share) &&
+                  !memcmp(d[k].area, d1[k].area, sizeof d[k].area));
+        CHECK(fm_connect_plan_build(M, n, &po, &plan, &err) == FM_OK);
+        CHECK(plan && same_plans(plan1, plan, n, models));
+        fm_connect_pairs_destroy(p);
+        free(d);
+        fm_connect_plan_destroy(plan);
+    }
+    CHECK(plan1 && fm_connect_plan_dropped(plan1, ns, NULL)); /* the composite goes */
+    fm_connect_pairs_destroy(p1);
+    free(d1);
+    fm_connect_plan_destroy(plan1);
+    for (size_t i = 0; i < n; i++)
+        fm_model_destroy(models[i]);
+    free(models);
+    fm_synth_destroy(sy);
+}
+
 int main(void)
 {
     static const fm_test_case cases[] = {
@@ -467,6 +590,7 @@ int main(void)
         FM_CASE(test_synth),
         FM_CASE(test_synth_plan),
         FM_CASE(test_duplicates),
+        FM_CASE(test_threads),
         FM_CASE(test_cfm_santa_monica),
     };
     int rc = fm_test_run(cases, sizeof cases / sizeof cases[0]);
