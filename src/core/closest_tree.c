@@ -68,13 +68,14 @@ static void box_empty(float lo[3], float hi[3])
     }
 }
 
+/* Unconditional stores of the same choice as "if (plo < lo) lo = plo": the
+ * compiler makes them min/max instructions instead of branches that random
+ * boxes mispredict (same result for every input, zeros and NaN included). */
 static void box_grow(float lo[3], float hi[3], const float plo[3], const float phi[3])
 {
     for (int k = 0; k < 3; k++) {
-        if (plo[k] < lo[k])
-            lo[k] = plo[k];
-        if (phi[k] > hi[k])
-            hi[k] = phi[k];
+        lo[k] = plo[k] < lo[k] ? plo[k] : lo[k];
+        hi[k] = phi[k] > hi[k] ? phi[k] : hi[k];
     }
 }
 
