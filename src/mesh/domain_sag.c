@@ -34,14 +34,19 @@ static void eval3(const fm_fit_surface *s, const double uv[2], double p[3])
  * point is so near an end that splitting there would leave a sliver of a
  * segment. */
 static double sag_split_t(const fm_fit_surface *s, const fm_trim_loop *const *loops,
-                          const dom_loop *l, size_t i, double h)
+                          const dom_loop *l, size_t i, double h, long *area_loop, double *area)
 {
     const dom_seg *sg = &l->seg[i];
     if (sg->kind != SEG_TRIM)
         return -1;
     /* the domain lies left of the outer loop and right of a hole taken
-     * in its own orientation */
-    int side = (fm_trim_loop_area(loops[sg->loop]) > 0) == (sg->loop == 0) ? 1 : -1;
+     * in its own orientation (the area of the loop of the last segment
+     * kept: a loop's segments come in a row) */
+    if (*area_loop != (long)sg->loop) {
+        *area_loop = (long)sg->loop;
+        *area = fm_trim_loop_area(loops[sg->loop]);
+    }
+    int side = (*area > 0) == (sg->loop == 0) ? 1 : -1;
     double a[3], b[3];
     eval3(s, l->uv + 2 * i, a);
     eval3(s, l->uv + 2 * ((i + 1) % l->n), b);
@@ -80,11 +85,13 @@ static double sag_split_t(const fm_fit_surface *s, const fm_trim_loop *const *lo
 int domain_split_sags(const fm_fit_surface *s, const fm_trim_loop *const *loops,
                       remesh_domain *d, double h)
 {
+    long area_loop = -1;
+    double area = 0;
     for (size_t k = 0; k < d->n; k++) {
         dom_loop *l = &d->loops[k];
         /* a split segment is looked at again: both halves may still stray */
         for (size_t i = 0; i < l->n;) {
-            double t = sag_split_t(s, loops, l, i, h);
+            double t = sag_split_t(s, loops, l, i, h, &area_loop, &area);
             if (t < 0) {
                 i++;
                 continue;
