@@ -89,10 +89,12 @@ void fm_fit_basis_at(const fm_fit_surface *s, double u, double v, int deriv, fm_
     }
 }
 
-double fm_fit_component_at(const fm_fit_surface *s, int comp, const fm_fit_at *at, double dh[5])
+/* The contraction for degree p; inlined with p a constant for cubics, so
+ * that its loops unroll (the same operations in the same order). */
+static inline __attribute__((always_inline)) double
+contract(const fm_fit_surface *s, int p, int comp, const fm_fit_at *at, double dh[5])
 {
     const double *coef = s->coef + (size_t)comp * s->nu * s->nv;
-    int p = s->p;
     size_t ju = at->ju, jv = at->jv;
     const double(*Nu)[FM_FIT_MAX_DEGREE + 1] = at->Nu, (*Nv)[FM_FIT_MAX_DEGREE + 1] = at->Nv;
     /* Contract along u first: r[k][b] = sum_a N_u^(k)[a] c[a][b]. */
@@ -127,6 +129,13 @@ double fm_fit_component_at(const fm_fit_surface *s, int comp, const fm_fit_at *a
         dh[4] = hvv * is * is;
     }
     return h;
+}
+
+double fm_fit_component_at(const fm_fit_surface *s, int comp, const fm_fit_at *at, double dh[5])
+{
+    if (s->p == 3)
+        return dh ? contract(s, 3, comp, at, dh) : contract(s, 3, comp, at, NULL);
+    return contract(s, s->p, comp, at, dh);
 }
 
 double fm_fit_component(const fm_fit_surface *s, int comp, double u, double v, double dh[5])
