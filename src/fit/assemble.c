@@ -111,7 +111,7 @@ static void add_sample(void *ctx, const fm_fit_sample *smp)
     fm_fit_basis_values(p, tu, Nu);
     fm_fit_basis_values(p, tv, Nv);
     q->span_area[jv * s->nsu + ju] += smp->weight;
-    q->span_bend[jv * s->nsu + ju] += smp->weight * fm_fit_bending_weight(smp->slope2);
+    q->span_bend[jv * s->nsu + ju] += smp->weight * smp->bend;
     double phi[NB_MAX];
     for (int b = 0; b <= p; b++)
         for (int a = 0; a <= p; a++)

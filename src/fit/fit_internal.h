@@ -129,6 +129,7 @@ typedef struct fm_fit_sample {
      * f - (C_uu f_uu + 2 C_uv f_uv + C_vv f_vv) there, to second order. */
     double chord[3];
     double slope2;    /* |grad h|^2 of the facet (heights only, else 0) */
+    double bend;      /* fm_fit_bending_weight(slope2), once per facet */
 } fm_fit_sample;
 
 typedef void (*fm_fit_sample_fn)(void *ctx, const fm_fit_sample *smp);

@@ -17,7 +17,7 @@ typedef struct tri {
     double q[3][5]; /* corners: u, v, then the ncomp values */
     int ncomp;
     double d[3][2]; /* plane edge vectors q1-q2, q2-q0, q0-q1 (opposite corner i) */
-    double slope2;
+    double slope2, bend;
 } tri;
 
 /* Emits the rule on the sub-triangle with barycentric corners B[0..2] of
@@ -46,7 +46,7 @@ static void emit_rule(const tri *t, const double B[3][3], double weight, fm_fit_
                 chord[2] += f * t->d[e][1] * t->d[e][1];
             }
             fm_fit_sample out = {smp[0], smp[1], {smp[2], smp[3], smp[4]}, RULE_W[o] * weight,
-                                 {chord[0], chord[1], chord[2]}, t->slope2};
+                                 {chord[0], chord[1], chord[2]}, t->slope2, t->bend};
             fn(ctx, &out);
         }
     }
@@ -97,6 +97,7 @@ size_t fm_fit_sample_sheet(const fm_fit_pmesh *pm, double max_side, fm_fit_sampl
             double gu = (e1h * e2v - e2h * e1v) / det, gv = (e1u * e2h - e2u * e1h) / det;
             t.slope2 = gu * gu + gv * gv;
         }
+        t.bend = fm_fit_bending_weight(t.slope2);
         /* Squares settle a side well below max_side (the usual case);
          * hypot, as ever, decides near and above it. */
         int m = 1;
