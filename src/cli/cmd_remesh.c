@@ -724,6 +724,8 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
         fm_json_kv_number(j, "overshoot_trimmed_m", t == FM_JUNCTION_UNJOINED ? 0 : jn->overshoot);
         fm_json_kv_number(j, "curve_length_m", jn->length);
         fm_json_kv_number(j, "min_crossing_angle_deg", jn->min_angle);
+        if (jn->distance > 0)
+            fm_json_kv_number(j, "surface_distance_m", jn->distance);
         if (why) {
             char msg[600];
             if (jn->curve >= 0)

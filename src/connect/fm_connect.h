@@ -306,6 +306,7 @@ typedef struct fm_connect_junction {
     double overshoot;          /* largest flap trimmed, m (0: none) */
     double length;             /* of the shared curve, m (unjoined: of the raw curve) */
     double min_angle;          /* smallest crossing angle of the surfaces along it, degrees */
+    double distance;           /* smallest distance of the extended surfaces, m (0: they meet) */
     long curve;                /* shared curve index, -1 when unjoined */
     const char *reason;        /* unjoined: why (static text); NULL otherwise */
 } fm_connect_junction;

@@ -128,34 +128,51 @@ typedef struct pair_work {
     fm_error *err;
 } pair_work;
 
+/* The pair's one junction, unjoined for `reason`. */
+static void push_unjoined(pair_work *w, size_t k, const fm_connect_pair *p, const char *reason)
+{
+    fm_connect_junction j;
+    memset(&j, 0, sizeof j);
+    j.fault[0] = p->fault_a;
+    j.sheet[0] = p->sheet_a;
+    j.fault[1] = p->fault_b;
+    j.sheet[1] = p->sheet_b;
+    j.type = FM_JUNCTION_UNJOINED;
+    j.curve = -1;
+    j.distance = p->distance;
+    j.reason = reason;
+    pl_pair_result *r = &w->res[k];
+    r->junction = malloc(sizeof *r->junction);
+    r->curve = calloc(1, sizeof *r->curve);
+    if (!r->junction || !r->curve) {
+        free(r->junction);
+        free(r->curve);
+        r->junction = NULL;
+        r->curve = NULL;
+        w->st[k] = fm_error_set(&w->err[k], FM_ERR_NOMEM, NULL, 0, "out of memory");
+        return;
+    }
+    r->junction[0] = j;
+    r->n = r->cap = 1;
+}
+
 static void do_pair(void *user, size_t k)
 {
     pair_work *w = user;
     const fm_connect_pair *p = fm_connect_pairs_get(w->pairs, k);
     if (w->dropped[p->fault_a] || w->dropped[p->fault_b]) {
-        fm_connect_junction j;
-        memset(&j, 0, sizeof j);
-        j.fault[0] = p->fault_a;
-        j.sheet[0] = p->sheet_a;
-        j.fault[1] = p->fault_b;
-        j.sheet[1] = p->sheet_b;
-        j.type = FM_JUNCTION_UNJOINED;
-        j.curve = -1;
-        j.reason = "one of the pair was given up as a near-duplicate";
-        pl_pair_result *r = &w->res[k];
-        r->junction = malloc(sizeof *r->junction);
-        r->curve = calloc(1, sizeof *r->curve);
-        if (!r->junction || !r->curve) {
-            w->st[k] = fm_error_set(&w->err[k], FM_ERR_NOMEM, NULL, 0, "out of memory");
-            return;
-        }
-        r->junction[0] = j;
-        r->n = r->cap = 1;
+        push_unjoined(w, k, p, "one of the pair was given up as a near-duplicate");
         return;
     }
     w->st[k] = pl_decide_pair(&w->sheet[w->base[p->fault_a] + p->sheet_a], p->fault_a, p->sheet_a,
                               &w->sheet[w->base[p->fault_b] + p->sheet_b], p->fault_b, p->sheet_b,
                               w->opt, &w->res[k], &w->err[k]);
+    /* a pair within the join distance whose surfaces, even extended, never
+     * meet is listed too, so that every near pair has its line in the report */
+    if (w->st[k] == FM_OK && w->res[k].n == 0)
+        push_unjoined(w, k, p,
+                      "the surfaces come within the join distance but do not meet, even "
+                      "extended (no intersection curve)");
 }
 
 /* Outlines of the sheets some pair needs, on N threads. */

@@ -5,10 +5,12 @@
 # Park, Peralta Hills) remeshed at 1 km, connected by default. The
 # independent check_connect must find no two faults crossing or touching
 # anywhere but along shared nodes and edges, and the faults that meet must
-# share nodes. Exit 77 without the CFM.
-# usage: connect_cfm_check.sh FAULTMESH CHECK_CONNECT TMPDIR CFMDIR
+# share nodes; with PYTHON, check_connect_report.py holds report.json to
+# check_connect's pairs (every near pair sharing no edge has a reason).
+# Exit 77 without the CFM.
+# usage: connect_cfm_check.sh FAULTMESH CHECK_CONNECT TMPDIR CFMDIR [PYTHON]
 set -u
-exe=$1 check=$2 tmp=$3 cfm=$4
+exe=$1 check=$2 tmp=$3 cfm=$4 py=${5:-}
 ls "$cfm"/WTRA-PHTS-*.ts >/dev/null 2>&1 || { echo "no CFM at $cfm: skipped"; exit 77; }
 rm -rf "$tmp" && mkdir -p "$tmp/in"
 for f in "$cfm"/WTRA-PHTS-*.ts; do ln -s "$f" "$tmp/in/"; done
@@ -20,4 +22,8 @@ rc=${PIPESTATUS[0]}
 grep -q "fault pairs share" "$tmp/cc.out" || { echo "FAIL: no fault pair shares nodes"; exit 1; }
 shared=$(sed -n 's/^sharing: \([0-9]*\) fault pairs share.*/\1/p' "$tmp/cc.out")
 [ "${shared:-0}" -ge 2 ] || { echo "FAIL: only ${shared:-0} fault pairs share nodes"; exit 1; }
+if [ -n "$py" ]; then
+    "$py" "$(dirname "$0")/check_connect_report.py" "$tmp/out" "$tmp/cc.json" \
+        || { echo "FAIL: report.json misses near pairs"; exit 1; }
+fi
 echo "connect cfm (Puente Hills): ok, $shared fault pairs share nodes"

@@ -6,7 +6,8 @@
 # closed and the 400 m overshoot (462 m over the fault's own surface, which
 # meets the main fault at 60 degrees) trimmed. The same demo with
 # --no-connect must fail the check (the overshoot crosses), so the check
-# can fail.
+# can fail. check_connect_report.py holds report.json to check_connect's
+# pairs: every near pair sharing no edge has a reported reason.
 # usage: connect_demo_check.sh FAULTMESH CHECK_CONNECT TMPDIR PYTHON
 set -u
 exe=$1 check=$2 tmp=$3 py=$4
@@ -17,6 +18,7 @@ fail=0
 rc=$?
 cat "$tmp/on.out"
 [ "$rc" = 0 ] || { echo "FAIL: connected demo: check_connect --criteria exit $rc"; fail=1; }
+"$py" "$(dirname "$0")/check_connect_report.py" "$tmp/on" "$tmp/on.json" || fail=1
 "$exe" demo --quiet --no-connect -o "$tmp/off" >"$tmp/off.log" 2>&1 || { echo "FAIL: faultmesh demo --no-connect"; exit 1; }
 "$check" --criteria "$tmp/off/mesh.obj" >"$tmp/off.out" 2>&1
 rc=$?

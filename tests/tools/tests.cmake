@@ -139,5 +139,5 @@ endif()
 # connected at 1 km, passes check_connect --criteria (skipped without the CFM).
 add_test(NAME cfm_connect_puente_hills
   COMMAND bash ${FM_TOOLS}/connect_cfm_check.sh $<TARGET_FILE:faultmesh_cli> $<TARGET_FILE:check_connect>
-          ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_ph ${FM_CFM_DIR}/CFM5.3/500m)
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_ph ${FM_CFM_DIR}/CFM5.3/500m ${FM_SYSTEM_PYTHON})
 set_tests_properties(cfm_connect_puente_hills PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
