@@ -24,6 +24,74 @@ static int append_ids(int64_t **all, size_t *nall, const int64_t *ids, size_t n)
     return 0;
 }
 
+typedef struct id_at {
+    int64_t id;
+    size_t v;
+} id_at;
+
+static int by_id_then_vertex(const void *a, const void *b)
+{
+    const id_at *x = a, *y = b;
+    if (x->id != y->id)
+        return x->id < y->id ? -1 : 1;
+    return (x->v > y->v) - (x->v < y->v);
+}
+
+/* Sheets of one fault that end at the same triple point (or share a
+ * curve) each carry a vertex of that shared node: one fault must hold it
+ * once, as the fault set does, or the fault's own files and figures count
+ * it twice. The first vertex of each id is kept; the order of the others
+ * is unchanged. */
+static int weld_shared(fm_mesh *all, int64_t *ids)
+{
+    size_t nv = fm_mesh_nvertices(all), n = 0;
+    for (size_t v = 0; v < nv; v++)
+        n += ids[v] >= 0;
+    if (n < 2)
+        return 0;
+    id_at *at = malloc(n * sizeof *at);
+    size_t *map = malloc(nv * sizeof *map);
+    if (!at || !map) {
+        free(at);
+        free(map);
+        return -1;
+    }
+    n = 0;
+    for (size_t v = 0; v < nv; v++) {
+        map[v] = v;
+        if (ids[v] >= 0)
+            at[n++] = (id_at){ids[v], v};
+    }
+    qsort(at, n, sizeof *at, by_id_then_vertex);
+    size_t dup = 0;
+    for (size_t k = 1; k < n; k++)
+        if (at[k].id == at[k - 1].id) {
+            map[at[k].v] = map[at[k - 1].v];
+            dup++;
+        }
+    free(at);
+    if (dup) {
+        /* compact: kept vertices move down, merged ones take their keeper's new index */
+        double *X = fm_mesh_vertices_mut(all);
+        size_t w = 0;
+        for (size_t v = 0; v < nv; v++) {
+            if (map[v] != v) {
+                map[v] = map[map[v]]; /* keepers come first, already renumbered */
+                continue;
+            }
+            memmove(X + 3 * w, X + 3 * v, 3 * sizeof *X);
+            ids[w] = ids[v];
+            map[v] = w++;
+        }
+        int32_t *T = fm_mesh_triangles_mut(all);
+        for (size_t t = 0; t < 3 * fm_mesh_ntriangles(all); t++)
+            T[t] = (int32_t)map[T[t]];
+        fm_mesh_truncate(all, w, fm_mesh_ntriangles(all));
+    }
+    free(map);
+    return 0;
+}
+
 /* The sheet meshed with the largest set of its curves that fits, built
  * up one curve at a time (more nodes first); sc->dropped marks the rest. */
 static fm_status fit_some(const fm_model *m, size_t i, const fm_trim_loop **loops, size_t nl,
@@ -174,6 +242,11 @@ fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves
         fm_mesh_destroy(all);
         free(ids);
         return st;
+    }
+    if (weld_shared(all, ids)) {
+        fm_mesh_destroy(all);
+        free(ids);
+        return fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
     }
     if (stats)
         *stats = sum;

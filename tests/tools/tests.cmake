@@ -97,6 +97,14 @@ if(FM_SYSTEM_PYTHON)
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_remesh_500m_1000 ${FM_CFM_DIR}/CFM5.3/500m
             --size 1000 --no-connect -- --size 1000 --top cut --msh-version 4.1 --criteria ${fm_remesh_criteria})
   set_tests_properties(cfm_remesh_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
+  # cfm_connect_500m_1000: the whole CFM 500 m set at 1 km connected (the
+  # default): report.json agrees with the files (shared nodes counted once
+  # per fault) and the mesh criteria that hold with junctions are asserted.
+  add_test(NAME cfm_connect_500m_1000
+    COMMAND bash ${FM_TOOLS}/remesh_cfm_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_500m_1000 ${FM_CFM_DIR}/CFM5.3/500m
+            --size 1000 -- --size 1000 --top cut --criteria failures,min-angle-30,edge-band,coverage,top)
+  set_tests_properties(cfm_connect_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
 endif()
 
 # check_connect (issue 5, conforming meshes): an independent check of the
