@@ -92,7 +92,9 @@ void fm_connect_options_default(fm_connect_options *opt);
 /* ---- Neighbours ---- */
 
 typedef struct fm_connect_pair {
-    size_t fault_a, sheet_a;  /* fault_a < fault_b (indices into the models array) */
+    size_t fault_a, sheet_a;  /* (fault_a, sheet_a) < (fault_b, sheet_b) (indices into the models
+                                 array; sheets of one fault pair up too: a branching fault
+                                 is rejoined as two faults are) */
     size_t fault_b, sheet_b;
     double distance;          /* grown surfaces: smallest distance found (0: they cross) */
     int crosses;              /* grown surfaces intersect */

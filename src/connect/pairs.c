@@ -250,7 +250,7 @@ fm_status cn_find_pairs(const cn_sheet *sh, size_t ns, const fm_connect_options 
     size_t(*cand)[2] = NULL;
     for (size_t i = 0; i < ns && st == FM_OK; i++)
         for (size_t j = i + 1; j < ns && st == FM_OK; j++) {
-            if (sh[i].fault == sh[j].fault || !sh[i].nactive || !sh[j].nactive ||
+            if (!sh[i].nactive || !sh[j].nactive ||
                 !boxes_near(&sh[i], &sh[j], o->distance))
                 continue;
             if (nc == cap) {

@@ -51,7 +51,9 @@ want(j['proximity']['near_pairs_not_sharing'] == len(near), 'near pairs count')
 want(all(0 <= p['distance'] <= 1000 for p in near), 'near pair distances')
 want(j['proximity']['unjoined_near_edges'] == sum(p['near_edges_a'] + p['near_edges_b'] for p in j['pairs']),
      'unjoined near edges')
-want(j['degenerate_triangles'] == 0 and j['nonmanifold_edges'] == 0, 'demo mesh is clean')
+# the branched splay's sheets rejoined at a T: the edges of its ~12 km
+# branch line carry three triangles each, as the branching input did
+want(j['degenerate_triangles'] == 0 and 8 <= j['nonmanifold_edges'] <= 20, 'demo mesh is clean')
 for w in bad:
     print('FAIL: JSON:', w)
 print('JSON checked: %d pairs, %d intersecting, %d near not sharing' % (len(j['pairs']), len(ip), len(near)))

@@ -607,6 +607,12 @@ def main():
     if len(vf):
         vcount = np.bincount(vf[:, 0], minlength=nv)
         shared_v = vcount > 1
+    # ... and so do nodes of an edge of more than two triangles of one
+    # fault: the curve where a branching fault's sheets meet (a T or a
+    # crossing of two sheets), joined as two faults are
+    nm = ecount > 2
+    shared_v[eu[nm]] = True
+    shared_v[ev[nm]] = True
     at_junction = below20 & ~forced & (shared_v[tris].any(axis=1) if len(tris) else np.zeros(0, bool))
     # sea level: boundary nodes
     bnode = np.unique(np.concatenate([eu[bnd], ev[bnd]]))

@@ -179,15 +179,24 @@ static void test_synth(void)
     long main_f = fm_synth_find(sy, "SYNT-MAIN-SS-Main_strike_slip_fault-SYN1");
     long tj = fm_synth_find(sy, "SYNT-MAIN-TJNC-T_junction_gap_fault-SYN1");
     long xo = fm_synth_find(sy, "SYNT-MAIN-XOVR-Overshooting_fault-SYN1");
-    CHECK(main_f >= 0 && tj >= 0 && xo >= 0);
+    long sp = fm_synth_find(sy, "SYNT-NWFB-SPLY-Branched_splay_fault-SYN1");
+    CHECK(main_f >= 0 && tj >= 0 && xo >= 0 && sp >= 0);
     fm_connect_pairs *pairs = NULL;
     CHECK(fm_connect_find_pairs((const fm_model *const *)models, n, NULL, &pairs, &err) == FM_OK);
-    int seen_tj = 0, seen_xo = 0;
+    int seen_tj = 0, seen_xo = 0, seen_sp = 0;
     for (size_t i = 0; i < fm_connect_pairs_count(pairs); i++) {
         const fm_connect_pair *p = fm_connect_pairs_get(pairs, i);
         printf("pair %zu.%zu - %zu.%zu: distance %.1f crosses %d, trimmed %.1f crosses %d\n",
                p->fault_a, p->sheet_a, p->fault_b, p->sheet_b, p->distance, p->crosses,
                p->trimmed_distance, p->trimmed_crosses);
+        if ((long)p->fault_a == sp) {
+            /* the branching fault's two sheets, split by the foundation
+             * stage, meet again along the branch line */
+            seen_sp = 1;
+            CHECK((long)p->fault_b == sp && p->sheet_a == 0 && p->sheet_b == 1);
+            CHECK(p->crosses);
+            continue;
+        }
         CHECK((long)p->fault_a == main_f);
         if ((long)p->fault_b == tj) {
             seen_tj = 1;
@@ -200,7 +209,7 @@ static void test_synth(void)
             CHECK(0); /* no other pair is meant to meet */
         }
     }
-    CHECK(seen_tj && seen_xo);
+    CHECK(seen_tj && seen_xo && seen_sp);
     fm_connect_pairs_destroy(pairs);
     if (main_f >= 0 && tj >= 0 && xo >= 0) {
         for (int k = 0; k < 2; k++) {
@@ -264,6 +273,7 @@ static void test_synth_plan(void)
     long main_f = fm_synth_find(sy, "SYNT-MAIN-SS-Main_strike_slip_fault-SYN1");
     long tj = fm_synth_find(sy, "SYNT-MAIN-TJNC-T_junction_gap_fault-SYN1");
     long xo = fm_synth_find(sy, "SYNT-MAIN-XOVR-Overshooting_fault-SYN1");
+    long sp = fm_synth_find(sy, "SYNT-NWFB-SPLY-Branched_splay_fault-SYN1");
     fm_connect_plan_options po;
     fm_connect_plan_options_default(&po);
     po.nthreads = 2;
@@ -271,7 +281,7 @@ static void test_synth_plan(void)
     CHECK(fm_connect_plan_build((const fm_model *const *)models, n, &po, &plan, &err) == FM_OK);
     if (!plan)
         goto out;
-    CHECK_EQ(fm_connect_plan_njunctions(plan), 2);
+    CHECK_EQ(fm_connect_plan_njunctions(plan), 3);
     const double *X = fm_connect_plan_nodes(plan);
     for (size_t i = 0; i < fm_connect_plan_njunctions(plan); i++) {
         const fm_connect_junction *j = fm_connect_plan_junction(plan, i);
@@ -279,8 +289,17 @@ static void test_synth_plan(void)
                fm_junction_type_name(j->type), j->fault[0], j->fault[1], j->gap, j->overshoot,
                j->length, j->reason ? ": " : "", j->reason ? j->reason : "");
         CHECK(j->type == FM_JUNCTION_T);
-        CHECK((long)j->fault[0] == main_f);
         CHECK(j->curve >= 0);
+        if ((long)j->fault[0] == sp) {
+            /* the branched splay rejoined: the splay sheet ends on the
+             * main sheet along the branch line, which the split left
+             * exactly where both meet (no gap to close, no flap) */
+            CHECK((long)j->fault[1] == sp && j->sheet[0] != j->sheet[1]);
+            CHECK(j->gap < 50.0 && j->overshoot < 50.0);
+            CHECK(j->length > 5000.0);
+            continue;
+        }
+        CHECK((long)j->fault[0] == main_f);
         if ((long)j->fault[1] == tj) {
             CHECK_NEAR(j->gap, 300.0, 40.0);
         } else {
@@ -291,8 +310,14 @@ static void test_synth_plan(void)
         CHECK_NEAR(j->length, 12000.0, 300.0);
     }
     /* per sheet: the main fault has both curves running through; each of
-     * the others ends at one */
+     * the others ends at one; of the splay's sheets one ends on the other */
     const fm_connect_shared *sh = NULL;
+    int splay_ends = 0;
+    for (size_t s = 0; s < 2; s++) {
+        CHECK_EQ(fm_connect_plan_sheet(plan, (size_t)sp, s, &sh), 1);
+        splay_ends += sh && sh[0].end;
+    }
+    CHECK_EQ(splay_ends, 1);
     CHECK_EQ(fm_connect_plan_sheet(plan, (size_t)main_f, 0, &sh), 2);
     for (size_t k = 0; sh && k < 2; k++)
         CHECK(sh[k].end == 0);
