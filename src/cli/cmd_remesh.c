@@ -34,6 +34,7 @@ typedef struct remesh_cli {
     int jobs;   /* threads */
     int connect;  /* join faults that meet (default 1) */
     double join;  /* D: join tolerance, m */
+    fm_connect_keep keep; /* which of two near-duplicate faults is kept */
 } remesh_cli;
 
 /* What one fault came to, for report.json. */
@@ -84,6 +85,11 @@ static void remesh_usage(FILE *fp)
             "                        share their nodes along the intersection)\n"
             "  --join D              join faults whose surfaces come within D metres\n"
             "                        (default 1000)\n"
+            "  --keep-duplicate smaller|larger\n"
+            "                        of two faults that nearly duplicate each other (half\n"
+            "                        the area of one within 50 m of the other, as rupture\n"
+            "                        composites over their section faults), keep the\n"
+            "                        smaller (default: the sections) or the larger\n"
             "  --quiet               no per-fault lines\n");
     fputs(fm_cli_repair_help, fp);
 }
@@ -880,6 +886,7 @@ static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t 
     po.cut = cli->mesh.top != FM_TOP_KEEP;
     po.sea_level = cli->mesh.sea_level;
     po.nthreads = cli->jobs;
+    po.duplicates.keep = cli->keep;
     fm_connect_plan *plan = NULL;
     fm_error err;
     fm_error_clear(&err);
@@ -899,9 +906,10 @@ static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t 
         char msg[512];
         snprintf(msg, sizeof msg,
                  "near-duplicate of %s (%.0f%% of its area within %.0f m of it); that one is "
-                 "kept (the smaller of the two)",
+                 "kept (the %s of the two)",
                  d ? res[d->kept]->name : "another fault", d ? 100 * d->share[0] : 0,
-                 po.duplicates.tolerance);
+                 po.duplicates.tolerance,
+                 po.duplicates.keep == FM_CONNECT_KEEP_LARGER ? "larger" : "smaller");
         r->status = "dropped";
         r->error = dup_str(msg);
     }
@@ -1028,6 +1036,18 @@ static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     } else if (!strcmp(a, "--join")) {
         if (fm_parse_double(a, val, &cli->join) || !(cli->join > 0))
             return -1;
+    } else if (!strcmp(a, "--keep-duplicate")) {
+        if (!val) {
+            return -1;
+        } else if (!strcmp(val, "smaller")) {
+            cli->keep = FM_CONNECT_KEEP_SMALLER;
+        } else if (!strcmp(val, "larger")) {
+            cli->keep = FM_CONNECT_KEEP_LARGER;
+        } else {
+            fprintf(stderr, "faultmesh remesh: --keep-duplicate takes smaller or larger, not '%s'\n",
+                    val);
+            return -1;
+        }
     } else {
         return fm_cli_repair_option(argc, argv, i, &cli->repair);
     }
@@ -1054,6 +1074,7 @@ static void cli_defaults(remesh_cli *cli)
     cli->crs = "EPSG:26711";
     cli->connect = 1;
     cli->join = 1000;
+    cli->keep = FM_CONNECT_KEEP_SMALLER;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     cli->jobs = ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;
 }

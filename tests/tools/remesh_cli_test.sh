@@ -34,6 +34,8 @@ expect_rc 2 "remesh --top bogus" "$exe" remesh --top bogus -o "$tmp/u1" "$g1"
 expect_rc 2 "remesh --top extend without D" "$exe" remesh -o "$tmp/u1" "$g1" --top extend
 expect_rc 2 "remesh --top extend abc" "$exe" remesh --top extend abc -o "$tmp/u1" "$g1"
 expect_rc 2 "remesh --msh-version 3" "$exe" remesh --msh-version 3 -o "$tmp/u1" "$g1"
+expect_rc 2 "remesh --keep-duplicate biggest" "$exe" remesh --keep-duplicate biggest -o "$tmp/u1" "$g1"
+expect_rc 2 "remesh --keep-duplicate without value" "$exe" remesh -o "$tmp/u1" "$g1" --keep-duplicate
 expect_rc 2 "remesh missing input" "$exe" remesh -o "$tmp/u1" "$tmp/does-not-exist.ts"
 expect_rc 2 "remesh bad repair option" "$exe" remesh --weld-tol abc -o "$tmp/u1" "$g1"
 [ ! -e "$tmp/u1/report.json" ] && ok || bad "bad usage wrote a report"
