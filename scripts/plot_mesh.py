@@ -5,6 +5,8 @@ with the triangle edges, and optionally the original triangulation of one
 fault beside its new mesh.
 
 usage: plot_mesh.py OUT_DIR/mesh.vtu OUT.png [TITLE] [--fault NAME --original FILE.ts]
+                    [--shared] [--view ELEV AZIM]
+--shared draws the edges two faults share (their junction curves) in red.
 Needs Debian's python3-meshio and python3-matplotlib (not needed to build
 or test faultmesh).
 """
@@ -15,7 +17,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import meshio
 import numpy as np
-from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from plot_fit import read_ts  # the same TSurf reading as the fit pictures
 
@@ -42,9 +44,27 @@ def draw(ax, p, t, colours, origin, edge="k", lw=0.15):
     ax.set_zlabel("z (km)")
 
 
+def shared_edges(t, fid):
+    """Edges used by triangles of more than one fault."""
+    e = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]])
+    e.sort(axis=1)
+    f = np.tile(fid, 3)
+    key = np.unique(np.stack([e[:, 0], e[:, 1], f], axis=1), axis=0)
+    pairs, count = np.unique(key[:, :2], axis=0, return_counts=True)
+    return pairs[count > 1]
+
+
 def main():
     args = sys.argv[1:]
     fault = original = None
+    shared = "--shared" in args
+    if shared:
+        args.remove("--shared")
+    view = (28, -60)
+    if "--view" in args:
+        i = args.index("--view")
+        view = (float(args[i + 1]), float(args[i + 2]))
+        del args[i:i + 3]
     if "--fault" in args:
         i = args.index("--fault")
         fault = args[i + 1]
@@ -63,8 +83,17 @@ def main():
     if fault is None:
         fig = plt.figure(figsize=(11, 7))
         ax = fig.add_subplot(1, 1, 1, projection="3d")
-        draw(ax, p, t, [cmap(f % 10) for f in fid], p.min(axis=0))
-        ax.view_init(elev=28, azim=-60)
+        origin = p.min(axis=0)
+        draw(ax, p, t, [cmap(f % 10) for f in fid], origin)
+        if shared:
+            # drawn last and on top: mplot3d's depth sort would bury lines
+            # lying on the surfaces they join
+            ax.computed_zorder = False
+            q = (p - np.array([origin[0], origin[1], 0.0])) / 1000.0
+            lines = Line3DCollection(q[shared_edges(t, fid)], colors="red", linewidths=2.0)
+            lines.set_zorder(10)
+            ax.add_collection3d(lines)
+        ax.view_init(elev=view[0], azim=view[1])
         ax.set_title(title or "%d faults, %d triangles" % (len(names), len(t)))
     else:
         k = names.index(fault)
