@@ -1062,6 +1062,11 @@ static void extend_fit(remesh_cli *cli)
 {
     if (cli->mesh.top == FM_TOP_EXTEND)
         cli->model.fit.extend = fmax(cli->model.fit.extend, 1.5 * cli->mesh.top_extend + cli->mesh.size);
+    /* A gap of D to a fault met at an angle is longer than D over the
+     * ending fault's own surface (D / sin of the angle): twice D covers
+     * angles down to 30 degrees (the default 2 km is that for D = 1 km). */
+    if (cli->connect)
+        cli->model.fit.extend = fmax(cli->model.fit.extend, 2 * cli->join);
 }
 
 static void cli_defaults(remesh_cli *cli)
