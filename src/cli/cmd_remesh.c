@@ -397,6 +397,11 @@ static void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan, file_j
     for (size_t o = 0; o < job->n; o++) {
         fault_result *r = &job->res[o];
         fm_model *model = job->model[o];
+        if (model && r->status) {
+            /* given up before meshing (a near-duplicate): its model goes here */
+            fm_model_destroy(model);
+            job->model[o] = NULL;
+        }
         if (!model || r->status)
             continue;
         fm_mesh *fault = NULL;

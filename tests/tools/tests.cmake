@@ -149,3 +149,11 @@ add_test(NAME cfm_connect_puente_hills
   COMMAND bash ${FM_TOOLS}/connect_cfm_check.sh $<TARGET_FILE:faultmesh_cli> $<TARGET_FILE:check_connect>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_ph ${FM_CFM_DIR}/CFM5.3/500m ${FM_SYSTEM_PYTHON})
 set_tests_properties(cfm_connect_puente_hills PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+# cfm_connect_duplicate: Hector Mine rupture over Lavic Lake, one given up
+# by the documented rule (--keep-duplicate smaller by default, or larger).
+if(FM_SYSTEM_PYTHON)
+  add_test(NAME cfm_connect_duplicate
+    COMMAND bash ${FM_TOOLS}/connect_duplicate_check.sh $<TARGET_FILE:faultmesh_cli>
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_duplicate ${FM_CFM_DIR}/CFM5.3/500m ${FM_SYSTEM_PYTHON})
+  set_tests_properties(cfm_connect_duplicate PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+endif()
