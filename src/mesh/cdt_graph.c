@@ -26,7 +26,7 @@ void cdt_graph_free(cdt_graph *g)
     if (!g)
         return;
     void *arrs[] = {g->in_sid, g->pc,    g->pc_orig, g->first, g->left,
-                    g->right,  g->area,  g->point,   g->tface, g->tc0};
+                    g->right,  g->area,  g->point,   g->open,  g->tface, g->tc0};
     for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++)
         free(arrs[i]);
     free(g);
@@ -342,13 +342,19 @@ static fm_status make_faces(struct fm_cdt *t, cdt_graph *g, fm_error *err)
         return st;
     g->left = malloc((g->npc ? g->npc : 1) * sizeof *g->left);
     g->right = malloc((g->npc ? g->npc : 1) * sizeof *g->right);
-    if (!g->left || !g->right)
+    g->open = calloc(nc ? nc : 1, 1);
+    if (!g->left || !g->right || !g->open)
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     for (size_t p = 0; p < g->npc; p++) {
         int32_t a = g->pc[2 * p], b = g->pc[2 * p + 1];
         int32_t e = cdt_find_edge(t, a, b), f = cdt_find_edge(t, b, a);
         g->left[p] = e >= 0 ? g->tface[e / 3] : -1;
         g->right[p] = f >= 0 ? g->tface[f / 3] : -1;
+        for (int side = 0; side < 2 && p >= g->nuser; side++) {
+            int32_t fc = side ? g->right[p] : g->left[p];
+            if (fc >= 0)
+                g->open[fc] = 1;
+        }
     }
     return FM_OK;
 }
@@ -499,3 +505,4 @@ void fm_cdt_segment_faces(const fm_cdt *t, size_t k, int32_t *left, int32_t *rig
 
 const double *fm_cdt_face_areas(const fm_cdt *t) { return t->graph ? t->graph->area : NULL; }
 const double *fm_cdt_face_points(const fm_cdt *t) { return t->graph ? t->graph->point : NULL; }
+const unsigned char *fm_cdt_face_open(const fm_cdt *t) { return t->graph ? t->graph->open : NULL; }

@@ -45,6 +45,7 @@ typedef struct cdt_graph {
     int32_t *left, *right;   /* per piece: face on either side, -1 outside */
     size_t nfaces;
     double *area, *point;    /* per face: (u, v) area, a point inside */
+    unsigned char *open;     /* per face: 1 when hull pieces bound it */
     int32_t *tface;          /* per triangle slot: face, -1 outside the hull */
     int32_t *tc0;            /* per edge handle: piece */
     size_t nt0;              /* slots tface and tc0 describe; 0: refined */

@@ -714,6 +714,11 @@ static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char
         fm_error_set(err, st, NULL, 0, "shared curves cross the outline");
         goto done;
     }
+    /* A face the convex hull bounds is not closed off by the curve: a
+     * curve that leaves the outline and comes back has on its left the
+     * hull's pocket beyond the outline, whose hull edge would become a
+     * boundary edge no refinement splits. */
+    const unsigned char *open = fm_cdt_face_open(cdt);
     for (size_t k = fd->n; k < ns; k++) {
         if (fd->curve[k] < 0 || !fd->end[k])
             continue;
@@ -721,7 +726,7 @@ static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char
         fm_cdt_segment_faces(cdt, k, &l, &r);
         if (r >= 0 && in[uf_find(par, r)] == 1)
             drop[r] = 1;
-        if (l >= 0 && in[uf_find(par, l)] != 1)
+        if (l >= 0 && in[uf_find(par, l)] != 1 && !open[l])
             fill[l] = 1;
     }
     const double *area = fm_cdt_face_areas(cdt);

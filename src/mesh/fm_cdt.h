@@ -114,6 +114,11 @@ void fm_cdt_segment_faces(const fm_cdt *t, size_t k, int32_t *left, int32_t *rig
  * of rounding. */
 const double *fm_cdt_face_areas(const fm_cdt *t);
 const double *fm_cdt_face_points(const fm_cdt *t);
+/* Per face: 1 when an edge of the convex hull that no segment holds bounds
+ * it, i.e. the segments do not close it off (a pocket between a concave
+ * stretch of a loop and the hull); such a face kept puts an edge on the
+ * domain's boundary that refinement never splits. */
+const unsigned char *fm_cdt_face_open(const fm_cdt *t);
 
 /* The domain becomes the union of the faces f with keep[f] != 0 (keep has
  * fm_cdt_nfaces entries). A piece of a segment (the whole segment unless

@@ -30,6 +30,11 @@ Measured per fault and over all faults (3D, from the VTU):
                   triangles);
   - edge-band     share of edges (each once per fault) within
                   [0.7 H, 1.4 H] (>= 95 %);
+  - boundary-edge every boundary edge of a fault (an edge of one of its
+                  triangles) at most 2 H: refinement splits every boundary
+                  piece it knows the curve of, so a longer one is an
+                  outline stretch the domain lost (a chord across the
+                  fault);
   - failures      report.json lists no failed fault and, with --original,
                   every object of the inputs that reaches below sea level
                   (or any, with --top keep) is in the mesh, unless the
@@ -88,8 +93,8 @@ except ImportError as e:
     print("%s: skipped" % e)
     sys.exit(77)
 
-ALL_CRITERIA = ["failures", "min-angle-30", "angle-20", "edge-band", "distance-max",
-                "distance-rms", "top", "coverage"]
+ALL_CRITERIA = ["failures", "min-angle-30", "angle-20", "edge-band", "boundary-edge",
+                "distance-max", "distance-rms", "top", "coverage"]
 MSH_NAME_MAX = 200
 
 failures = []
@@ -632,6 +637,8 @@ def main():
         "top_edges": fsum(top_e, over=ef), "top_len": fsum(top_e, elen, over=ef),
         "sharp": sharp_f,
     }
+    F["bmax"] = np.zeros(nf)
+    np.maximum.at(F["bmax"], ef[bnd], elen[bnd])
     F["min_angle"] = np.full(nf, np.inf)
     np.minimum.at(F["min_angle"], fid, minang)
     F["zmax"] = np.full(nf, -np.inf)
@@ -772,6 +779,9 @@ def main():
     shareb = inband.sum() / max(len(elen), 1)
     results.append(("edge-band", "%.2f%% of %d edges in [%.0f, %.0f] m" % (
         100 * shareb, len(elen), 0.7 * H, 1.4 * H), ">= 95%", shareb >= 0.95))
+    blong = F["bmax"] > 2 * H
+    results.append(("boundary-edge", "longest %.0f m (%d faults with one over 2 H)" % (
+        F["bmax"].max() if nf else 0, int(blong.sum())), "<= 2 H", not bool(blong.any())))
     if a.original:
         dmax = np.nanmax(F["dmax"]) if nf else 0
         rmsmax = np.nanmax(F["rms"]) if nf else 0
@@ -834,6 +844,8 @@ def main():
             o.append("<20")
         if F["band"][i] / max(F["edges"][i], 1) < 0.95:
             o.append("band")
+        if F["bmax"][i] > 2 * H:
+            o.append("bedge %.0f m" % F["bmax"][i])
         if F["dmax"][i] > 100 + gap_allow.get(names[i], 0.0):
             o.append("max")
         if F["rms"][i] > 10 and names[i] not in gap_allow:

@@ -78,7 +78,7 @@ add_test(NAME cfm_remesh_jobs_identical
   COMMAND bash ${FM_TOOLS}/remesh_jobs_check.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_remesh_jobs ${FM_CFM_DIR}/CFM5.3/500m 12)
 set_tests_properties(cfm_remesh_jobs_identical PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 900)
-set(FM_CFM_REMESH_CRITERIA "failures,min-angle-30,angle-20,edge-band,distance-rms,top" CACHE STRING
+set(FM_CFM_REMESH_CRITERIA "failures,min-angle-30,angle-20,edge-band,boundary-edge,distance-rms,top" CACHE STRING
     "check_remesh.py criteria asserted by cfm_remesh_500m_1000")
 option(FM_CFM_REMESH_ALL_CRITERIA
        "cfm_remesh_500m_1000 asserts every criterion of the mesh issue (not all hold yet)" OFF)
@@ -103,8 +103,21 @@ if(FM_SYSTEM_PYTHON)
   add_test(NAME cfm_connect_500m_1000
     COMMAND bash ${FM_TOOLS}/remesh_cfm_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_500m_1000 ${FM_CFM_DIR}/CFM5.3/500m
-            --size 1000 -- --size 1000 --top cut --criteria failures,min-angle-30,edge-band,coverage,top)
+            --size 1000 -- --size 1000 --top cut --criteria failures,min-angle-30,edge-band,boundary-edge,coverage,top)
   set_tests_properties(cfm_connect_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
+  # cfm_connect_santa_maria_hosgri: Santa Maria Basin thrust A ends at
+  # Hosgri on a curve that dips to its down-dip outline and runs outside
+  # it for 2 km. No boundary edge over 2 H (the hull's pocket beyond that
+  # concave outline was filled: a 21 km chord with a fan of slivers), every
+  # node within 100 m of the original but for the 521 m gap closed, and
+  # triangles under 20 degrees only at the junction (15 were on the chord).
+  add_test(NAME cfm_connect_santa_maria_hosgri
+    COMMAND bash ${FM_TOOLS}/connect_cfm_pair_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_smb_hosgri ${FM_CFM_DIR}/CFM5.3/500m
+            OCCA-OSMB-EAST-Santa_Maria_Basin_thrust_A-CFM5_500m.ts
+            OCCA-HSFZ-MULT-Hosgri_fault-CFM5_500m.ts
+            -- --top cut --criteria failures,angle-20,boundary-edge,distance-max)
+  set_tests_properties(cfm_connect_santa_maria_hosgri PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
 endif()
 
 # check_connect (issue 5, conforming meshes): an independent check of the

@@ -490,6 +490,12 @@ static void test_leaving(void)
     double hull_beyond[] = {1, 0, 1.3, 0.7, 1.3, 0.9, 1, 1};
     CHECK_NEAR(fm_cdt_face_areas(t)[lo] + fm_cdt_face_areas(t)[ro], shoelace(hull_beyond, 4),
                1e-12);
+    /* The square is closed by its segments (its sides on the hull are
+     * segments); the two pockets beyond it reach hull edges no segment
+     * holds. */
+    CHECK_EQ(fm_cdt_face_open(t)[sq], 0);
+    CHECK_EQ(fm_cdt_face_open(t)[lo], 1);
+    CHECK_EQ(fm_cdt_face_open(t)[ro], 1);
     /* Before selection: the whole hull, hull edges listed with id -1. */
     validate(t, 1 + shoelace(hull_beyond, 4), 1);
     size_t nhull = 0;
@@ -920,6 +926,7 @@ static void test_loops_as_graph(void)
     if (u) {
         CHECK_EQ(fm_cdt_nfaces(u), 0);
         CHECK(fm_cdt_face_areas(u) == NULL);
+        CHECK(fm_cdt_face_open(u) == NULL);
         CHECK_EQ(fm_cdt_select_faces(u, keep, &err), FM_ERR_INVALID);
         for (size_t m = 0; m < fm_cdt_nedges(u); m++)
             CHECK_EQ(fm_cdt_edge_interior(u)[m], 0);

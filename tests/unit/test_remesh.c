@@ -7,8 +7,9 @@
  * nodes on the true surface, the (u, v) contract of fm_remesh_sheet, bad
  * arguments, determinism, an outline with bends rounded too wide to be
  * corners, sampled without cutting them off, one with a slit whose
- * sides are metres apart, meshed without slivers, and a boundary node slid
- * along its side out of a sliver. */
+ * sides are metres apart, meshed without slivers, a boundary node slid
+ * along its side out of a sliver, and a curve the sheet ends at that runs
+ * through a notch beyond the outline (nothing of the notch filled). */
 #include "fm_check.h"
 #include "fm_mesh.h"
 #include "fm_model.h"
@@ -637,6 +638,116 @@ static void test_close_corners(void)
     fm_model_destroy(model);
 }
 
+/* A curve the sheet ends at that leaves the outline through a notch in
+ * its bottom side and comes back, as Hosgri's does on Santa Maria Basin
+ * thrust A (CFM, 1 km): the curve's piece in the notch has on its kept
+ * (left) side the convex hull's pocket beyond the outline, which no curve
+ * closes off; taken for a gap and filled, it put the hull's edge across
+ * the notch on the boundary, never split (a 21 km edge with a fan of
+ * slivers there). The sheet keeps the two parts below the curve's arms
+ * and nothing of the notch. */
+static void test_curve_through_notch(void)
+{
+    fm_model *model = build_model(&DIPPING);
+    if (!model)
+        return;
+    const fm_fit_surface *s = fm_model_surface(model, 0);
+    double dom[4];
+    fm_fit_surface_domain(s, dom);
+    double c[2] = {0.5 * (dom[0] + dom[1]), 0.5 * (dom[2] + dom[3])};
+    double P[][2] = {{-8000, -5000}, {-2000, -5000}, {-2000, -1000}, {2000, -1000},
+                     {2000, -5000},  {8000, -5000},  {8000, 5000},   {-8000, 5000}};
+    size_t np = sizeof P / sizeof P[0];
+    double *uv = malloc(2 * 4096 * sizeof *uv);
+    unsigned char *corner = calloc(4096, 1);
+    size_t n = 0;
+    for (size_t k = 0; k < np; k++) {
+        double a[2] = {c[0] + P[k][0], c[1] + P[k][1]};
+        double b[2] = {c[0] + P[(k + 1) % np][0], c[1] + P[(k + 1) % np][1]};
+        corner[n] = 1;
+        n = add_side(uv, n, a, b, 50);
+    }
+    fm_trim_options to;
+    fm_trim_options_default(&to);
+    to.corner_at = corner;
+    fm_trim_loop *loop = NULL;
+    fm_error err;
+    fm_error_clear(&err);
+    CHECK_EQ(fm_trim_fit(uv, n, &to, &loop, &err), FM_OK);
+    free(corner);
+    if (!loop) {
+        free(uv);
+        fm_model_destroy(model);
+        return;
+    }
+    /* from the top side down into the notch, along under its roof, and
+     * back up: the flap between the arms is dropped */
+    double Q[][2] = {{3500, 5000}, {1000, -1300}, {-1000, -1300}, {-3500, 5000}};
+    size_t nq = 0;
+    for (size_t k = 0; k + 1 < sizeof Q / sizeof Q[0]; k++) {
+        double a[2] = {c[0] + Q[k][0], c[1] + Q[k][1]};
+        double b[2] = {c[0] + Q[k + 1][0], c[1] + Q[k + 1][1]};
+        nq = add_side(uv, nq, a, b, 0.9 * H);
+    }
+    uv[2 * nq] = c[0] + Q[3][0];
+    uv[2 * nq + 1] = c[1] + Q[3][1];
+    nq++;
+    int64_t *ids = malloc(nq * sizeof *ids);
+    for (size_t i = 0; i < nq; i++)
+        ids[i] = 100 + (int64_t)i;
+    fm_remesh_curve cv = {uv, nq, ids, 1};
+    const fm_trim_loop *loops[1] = {loop};
+    fm_remesh_options opt;
+    fm_remesh_options_default(&opt);
+    opt.size = H;
+    opt.top = FM_TOP_KEEP;
+    fm_mesh *m = NULL;
+    double *muv = NULL;
+    fm_remesh_stats st;
+    fm_status rc = fm_remesh_sheet_joined(s, loops, 1, &cv, 1, &opt, 0, &m, &muv, NULL, &st, &err);
+    if (rc != FM_OK)
+        fprintf(stderr, "notch: %s\n", err.message);
+    CHECK_EQ(rc, FM_OK);
+    if (m && muv) {
+        size_t nt = fm_mesh_ntriangles(m);
+        const double *X = fm_mesh_vertices(m);
+        const int32_t *T = fm_mesh_triangles(m);
+        edge *e = malloc(3 * nt * sizeof *e);
+        size_t in_notch = 0;
+        for (size_t t = 0; t < nt; t++) {
+            double g[2] = {0, 0};
+            for (int k = 0; k < 3; k++) {
+                int32_t a = T[3 * t + k], b = T[3 * t + (k + 1) % 3];
+                e[3 * t + (size_t)k] = (edge){a < b ? a : b, a < b ? b : a};
+                g[0] += muv[2 * a] / 3;
+                g[1] += muv[2 * a + 1] / 3;
+            }
+            in_notch += fabs(g[0] - c[0]) < 2000 && g[1] - c[1] < -1000;
+        }
+        qsort(e, 3 * nt, sizeof *e, by_edge);
+        double longest = 0;
+        for (size_t i = 0; i < 3 * nt;) {
+            size_t j = i;
+            while (j < 3 * nt && e[j].a == e[i].a && e[j].b == e[i].b)
+                j++;
+            if (j - i == 1)
+                longest = fmax(longest, dist3(X + 3 * e[i].a, X + 3 * e[i].b));
+            i = j;
+        }
+        free(e);
+        printf("notch: %zu triangles, longest boundary edge %.0f m, %zu triangles in the notch\n",
+               nt, longest, in_notch);
+        CHECK(longest <= 1.5 * H);
+        CHECK_EQ(in_notch, 0);
+    }
+    free(muv);
+    free(ids);
+    free(uv);
+    fm_mesh_destroy(m);
+    fm_trim_loop_destroy(loop);
+    fm_model_destroy(model);
+}
+
 /* Smallest 3D angle (degrees) of the triangles, and whether all are
  * counter-clockwise in (u, v). */
 static double min_angle_ccw(const double *uv, const double *xyz, const int32_t *tri, size_t nt,
@@ -756,4 +867,5 @@ static void test_determinism(void)
 FM_TEST_MAIN(FM_CASE(test_cut_plane), FM_CASE(test_keep), FM_CASE(test_extend),
              FM_CASE(test_above_sea_level), FM_CASE(test_cylinder), FM_CASE(test_sheet_uv),
              FM_CASE(test_determinism), FM_CASE(test_rounded_outline),
-             FM_CASE(test_close_corners), FM_CASE(test_slide))
+             FM_CASE(test_close_corners), FM_CASE(test_slide),
+             FM_CASE(test_curve_through_notch))
