@@ -260,7 +260,23 @@ static int put_point(pl_curve *c, const fm_connect_junction *j, const double T[3
         memcpy(c->uv[1] + 2 * at, uv[1], 2 * sizeof(double));
         c->key[at] = key;
     } else {
-        at = best + 1;
+        /* T beyond an end of the curve (its foot on the end segment is
+         * that end node) extends the curve: put between the last two
+         * nodes it would make the curve run back on itself, a sliver
+         * both sheets then have (Big Bear 1992 rupture with the North
+         * Frontal thrust, 1 km) */
+        const double *A = c->xyz + 3 * best, *B = c->xyz + 3 * (best + 1);
+        double ab = 0, at_ = 0;
+        for (int k = 0; k < 3; k++) {
+            ab += (B[k] - A[k]) * (B[k] - A[k]);
+            at_ += (B[k] - A[k]) * (T[k] - A[k]);
+        }
+        if (best == 0 && at_ <= 0)
+            at = 0;
+        else if (best + 2 == c->n && at_ >= ab)
+            at = c->n;
+        else
+            at = best + 1;
         if (insert_node(c, at, T, uv[0], uv[1], key))
             return -1;
     }

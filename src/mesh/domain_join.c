@@ -347,6 +347,140 @@ static int32_t find_point(const flat_domain *fd, size_t n, const double uv[2])
     return -1;
 }
 
+/* 1 if the chord from point a to point b crosses one of the first ns
+ * segments of fd (those ending at a or b aside). */
+static int chord_blocked(const flat_domain *fd, size_t ns, int32_t a, int32_t b)
+{
+    const double *pa = fd->uv + 2 * a, *pb = fd->uv + 2 * b;
+    for (size_t k = 0; k < ns; k++) {
+        int32_t p = fd->seg[2 * k], q = fd->seg[2 * k + 1];
+        if (p == a || p == b || q == a || q == b)
+            continue;
+        if (segments_cross(pa, pb, fd->uv + 2 * p, fd->uv + 2 * q))
+            return 1;
+    }
+    return 0;
+}
+
+/* The loop node (among the first nl points) nearest to point a in 3D,
+ * within reach, whose chord from a crosses none of the first ns segments,
+ * or -1. */
+static int32_t reachable_node(const fm_fit_surface *s, const flat_domain *fd, size_t nl,
+                              size_t ns, int32_t a, double reach)
+{
+    double A[3];
+    eval3(s, fd->uv + 2 * a, A);
+    int32_t best = -1;
+    double bd = reach;
+    for (size_t i = 0; i < nl; i++) {
+        double Q[3];
+        eval3(s, fd->uv + 2 * i, Q);
+        double d = dist3(A, Q);
+        if (d < bd && (int32_t)i != a && !chord_blocked(fd, ns, a, (int32_t)i)) {
+            bd = d;
+            best = (int32_t)i;
+        }
+    }
+    return best;
+}
+
+/* 3D distance from P to the curve's polyline between nodes i0 and i1. */
+static double curve_dist(const fm_fit_surface *s, const fm_remesh_curve *c, size_t i0, size_t i1,
+                         const double P[3])
+{
+    double best = INFINITY, a[3], b[3];
+    eval3(s, c->uv + 2 * i0, a);
+    for (size_t i = i0; i < i1; i++) {
+        eval3(s, c->uv + 2 * (i + 1), b);
+        best = fmin(best, fm_segment_distance3(P, a, b));
+        memcpy(a, b, sizeof a);
+    }
+    return best;
+}
+
+static int find_loop_node(const remesh_domain *dom, const double uv[2], size_t *l, size_t *k)
+{
+    for (size_t m = 0; m < dom->n; m++)
+        for (size_t i = 0; i < dom->loops[m].n; i++)
+            if (pt_eq(dom->loops[m].uv + 2 * i, uv)) {
+                *l = m;
+                *k = i;
+                return 1;
+            }
+    return 0;
+}
+
+/* Where a curve runs along the outline (a T whose sheet already ends at
+ * the other fault), the outline is rerouted through some of its nodes and
+ * keeps its own nodes in between, metres off the curve: the faces between
+ * are slivers that, kept as gaps, become triangles of 180 degrees. The
+ * outline between two consecutive curve nodes on it is replaced by the
+ * curve there when every outline node in between lies within `near` of
+ * the curve and is no other curve's or connector's. Returns -1 when out
+ * of memory. */
+static int hug_curves(const fm_fit_surface *s, remesh_domain *dom, const fm_remesh_curve *cv,
+                      size_t nc, double near, double level, const taken *tk)
+{
+    for (size_t c = 0; c < nc; c++) {
+        size_t pi = 0, pl = 0, pk = 0;
+        int have = 0;
+        for (size_t i = 0; i < cv[c].n; i++) {
+            size_t l, k;
+            if (!find_loop_node(dom, cv[c].uv + 2 * i, &l, &k))
+                continue;
+            if (have && l == pl) {
+                dom_loop *lp = &dom->loops[l];
+                size_t n = lp->n;
+                /* dir 0: the loop runs from pk forward to k; 1: k to pk */
+                for (int dir = 0; dir < 2; dir++) {
+                    size_t from = dir ? k : pk, to = dir ? pk : k;
+                    size_t cnt = (to + n - from) % n - 1; /* nodes strictly between */
+                    if (to == from || cnt == 0 || cnt > i - pi + 2 || cnt + 3 > n)
+                        continue;
+                    int ok = 1;
+                    for (size_t q = 1; q <= cnt && ok; q++) {
+                        const double *u = lp->uv + 2 * ((from + q) % n);
+                        double P[3];
+                        eval3(s, u, P);
+                        ok = !is_taken(tk, u) && curve_dist(s, &cv[c], pi, i, P) <= near;
+                    }
+                    if (!ok)
+                        continue;
+                    /* remove the nodes between, then put the curve's in */
+                    dom_seg sg = lp->seg[from];
+                    for (size_t q = 0; q < cnt; q++) {
+                        size_t at = (from + 1) % lp->n;
+                        memmove(lp->uv + 2 * at, lp->uv + 2 * (at + 1),
+                                2 * (lp->n - at - 1) * sizeof *lp->uv);
+                        memmove(lp->level + at, lp->level + at + 1,
+                                (lp->n - at - 1) * sizeof *lp->level);
+                        memmove(lp->seg + at, lp->seg + at + 1, (lp->n - at - 1) * sizeof *lp->seg);
+                        lp->n--;
+                        if (at < from)
+                            from--;
+                    }
+                    sg.kind = SEG_FREE;
+                    lp->seg[from] = sg;
+                    for (size_t q = 1; q < i - pi; q++) {
+                        const double *u = cv[c].uv + 2 * (dir ? i - q : pi + q);
+                        double P[3];
+                        eval3(s, u, P);
+                        if (loop_insert(lp, from + q, u, fabs(P[2] - level) < 1e-6, &sg))
+                            return -1;
+                    }
+                    break;
+                }
+                find_loop_node(dom, cv[c].uv + 2 * i, &l, &k);
+            }
+            have = 1;
+            pi = i;
+            pl = l;
+            pk = k;
+        }
+    }
+    return 0;
+}
+
 fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_remesh_curve *cv,
                       size_t nc, double h, double level, flat_domain *fd, fm_error *err,
                       const char *name)
@@ -410,6 +544,8 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
         if (!changed)
             break;
     }
+    if (hug_curves(s, dom, cv, nc, 0.1 * h, level, &tk))
+        goto nomem;
     /* flatten: loops first (as domain_triangulate always did), then the
      * curves' own nodes and segments, then the connectors */
     size_t nl = 0, extra_p = 0, extra_s = ncn;
@@ -504,12 +640,29 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
         /* a curve end the outline was rerouted through needs none */
         if (a < 0 || b < 0 || a == b || (size_t)a < nl)
             continue;
+        int lev = cn[k].level;
+        if (chord_blocked(fd, ns, a, b)) {
+            /* The node nearest the curve end can lie beyond another curve
+             * (a short one near a corner of the outline): the connector
+             * goes to the nearest loop node it reaches without crossing
+             * anything, at most a size farther (a longer one would cut
+             * off a strip of the sheet: slivers), or the sheet is left to
+             * fail as before. */
+            double A[3], B[3];
+            eval3(s, fd->uv + 2 * a, A);
+            eval3(s, fd->uv + 2 * b, B);
+            int32_t c = reachable_node(s, fd, nl, ns, a, dist3(A, B) + h);
+            if (c >= 0) {
+                b = c;
+                lev = fd->level[a] && fd->level[b];
+            }
+        }
         fd->seg[2 * ns] = a;
         fd->seg[2 * ns + 1] = b;
         memset(&fd->segs[ns], 0, sizeof fd->segs[ns]);
-        fd->segs[ns].kind = cn[k].level ? SEG_LEVEL : SEG_FREE;
-        memcpy(fd->ends + 4 * ns, cn[k].a, 2 * sizeof *fd->ends);
-        memcpy(fd->ends + 4 * ns + 2, cn[k].b, 2 * sizeof *fd->ends);
+        fd->segs[ns].kind = lev ? SEG_LEVEL : SEG_FREE;
+        memcpy(fd->ends + 4 * ns, fd->uv + 2 * a, 2 * sizeof *fd->ends);
+        memcpy(fd->ends + 4 * ns + 2, fd->uv + 2 * b, 2 * sizeof *fd->ends);
         fd->curve[ns] = -1;
         fd->end[ns] = 0;
         ns++;

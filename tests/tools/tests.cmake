@@ -170,3 +170,7 @@ if(FM_SYSTEM_PYTHON)
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_duplicate ${FM_CFM_DIR}/CFM5.3/500m ${FM_SYSTEM_PYTHON})
   set_tests_properties(cfm_connect_duplicate PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
 endif()
+add_test(NAME cfm_connect_cases
+  COMMAND bash ${FM_TOOLS}/connect_cfm_cases.sh $<TARGET_FILE:faultmesh_cli> $<TARGET_FILE:check_connect>
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_cases ${FM_CFM_DIR}/CFM5.3/500m)
+set_tests_properties(cfm_connect_cases PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
