@@ -52,6 +52,13 @@ typedef struct pl_pair_result {
 
 void pl_pair_result_free(pl_pair_result *r);
 
+/* Where curves a and b, on one sheet (a's side sa, b's side sb), may
+ * meet (plan_meet.c): each crossing of their (u, v) polylines, then the
+ * closest place of each stretch where they come within `near` of each
+ * other in space; at most max points, none within `sep` of another. */
+size_t pl_meet_seeds(const pl_curve *a, int sa, const pl_curve *b, int sb, double near,
+                     double sep, double (*P)[3], size_t max);
+
 /* Gives the curves of junctions that meet on a common sheet their common
  * point (plan_triple.c): keyed nodes; *made counts the points. */
 int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
