@@ -210,26 +210,81 @@ static int near_common(const pl_curve *x, const pl_curve *y, const double *p, do
     return 0;
 }
 
-static int curves_conflict(const pl_curve *x, int sx, const pl_curve *y, int sy, double tol)
+static int find_key(const pl_curve *c, int64_t key)
+{
+    for (size_t i = 0; i < c->n; i++)
+        if (c->key[i] == key)
+            return 1;
+    return 0;
+}
+
+/* Marks the nodes of x that lie within tol of y on a run of such nodes
+ * that holds a keyed node x shares with y, up to `reach` from it: where
+ * two curves meet at a small angle they stay close for a while on either
+ * side of their common point, and that is still the one place where they
+ * meet. Farther on they would run side by side along a strip too thin to
+ * mesh without slivers: that stays a conflict. */
+static void near_runs(const pl_curve *x, const pl_curve *y, double tol, double reach,
+                      unsigned char *mark)
+{
+    size_t run = 0;
+    int common = 0;
+    for (size_t i = 0; i <= x->n; i++) {
+        int near = 0;
+        for (size_t k = 0; i < x->n && k + 1 < y->n && !near; k++)
+            near = fm_segment_distance3(x->xyz + 3 * i, y->xyz + 3 * k, y->xyz + 3 * k + 3) < tol;
+        if (near) {
+            common |= x->key && y->key && x->key[i] >= 0 && find_key(y, x->key[i]);
+            continue;
+        }
+        for (size_t r = run; r < i; r++)
+            mark[r] = common && near_common(x, y, x->xyz + 3 * r, 0.5 * reach);
+        if (i < x->n)
+            mark[i] = 0;
+        run = i + 1;
+        common = 0;
+    }
+}
+
+static int curves_conflict_marked(const pl_curve *x, int sx, const pl_curve *y, int sy, double tol,
+                                  const unsigned char *mx, const unsigned char *my)
 {
     for (size_t i = 0; i + 1 < x->n; i++)
         for (size_t k = 0; k + 1 < y->n; k++)
             if (seg_cross(x->uv[sx] + 2 * i, x->uv[sx] + 2 * i + 2, y->uv[sy] + 2 * k,
                           y->uv[sy] + 2 * k + 2) &&
+                !mx[i] && !mx[i + 1] && !my[k] && !my[k + 1] &&
                 !near_common(x, y, x->xyz + 3 * i, tol) &&
                 !near_common(x, y, x->xyz + 3 * i + 3, tol))
                 return 1;
     for (size_t i = 0; i < x->n; i++)
         for (size_t k = 0; k + 1 < y->n; k++)
-            if (fm_segment_distance3(x->xyz + 3 * i, y->xyz + 3 * k, y->xyz + 3 * k + 3) < tol &&
+            if (!mx[i] &&
+                fm_segment_distance3(x->xyz + 3 * i, y->xyz + 3 * k, y->xyz + 3 * k + 3) < tol &&
                 !near_common(x, y, x->xyz + 3 * i, tol))
                 return 1;
     for (size_t k = 0; k < y->n; k++)
         for (size_t i = 0; i + 1 < x->n; i++)
-            if (fm_segment_distance3(y->xyz + 3 * k, x->xyz + 3 * i, x->xyz + 3 * i + 3) < tol &&
+            if (!my[k] &&
+                fm_segment_distance3(y->xyz + 3 * k, x->xyz + 3 * i, x->xyz + 3 * i + 3) < tol &&
                 !near_common(x, y, y->xyz + 3 * k, tol))
                 return 1;
     return 0;
+}
+
+/* -1: out of memory. */
+static int curves_conflict(const pl_curve *x, int sx, const pl_curve *y, int sy, double tol)
+{
+    unsigned char *mx = calloc(x->n + y->n + 1, 1);
+    if (!mx)
+        return -1;
+    unsigned char *my = mx + x->n;
+    double reach = 4 * tol; /* a size: curves at 14 degrees or more */
+    near_runs(x, y, tol, reach, mx);
+    near_runs(y, x, tol, reach, my);
+    int r = curves_conflict_marked(x, sx, y, sy, tol, mx, my);
+    free(mx);
+    return r;
 }
 
 static void curve_box(const pl_curve *c, double lo[3], double hi[3])
@@ -307,11 +362,16 @@ static int resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj, dou
                     if (same_sheet(ji, s, jo, t))
                         bad = curves_conflict(cs[i].c, s, o->c, t, tol);
         }
+        if (bad < 0) {
+            free(cs);
+            free(acc);
+            return -1;
+        }
         if (bad) {
             fm_connect_junction *j = &J[cs[i].junction];
             j->type = FM_JUNCTION_UNJOINED;
-            j->reason = "crosses or nears another junction curve on one of its sheets "
-                        "(junctions of three faults are not joined yet)";
+            j->reason = "crosses or nears another junction curve on one of its sheets away "
+                        "from any point of the three faults found on both";
             pl_curve_free(cs[i].c);
         } else {
             acc[na++] = i;
