@@ -41,6 +41,7 @@ typedef struct pl_curve {
 
 void pl_curve_free(pl_curve *c);
 
+
 /* The junctions one pair of sheets makes: one per shared curve, plus one
  * unjoined entry per raw curve that gave none. curve[k].n == 0 when
  * junction k is unjoined. */
@@ -64,6 +65,11 @@ size_t pl_meet_seeds(const pl_curve *a, int sa, const pl_curve *b, int sb, doubl
 int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
                         const fm_model *const *models, double H, const double *level,
                         size_t *made);
+
+/* Accepts curves longest first; one that crosses or nears an accepted
+ * curve on a shared sheet is cut to its longest clear stretch, or left
+ * unjoined with a reason (plan_conflict.c). -1: out of memory. */
+int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj, double H);
 
 /* A sheet as the plan's pairs share it: sampled once, its outline built
  * once (st and err: how that went; the outline is needed, and a failure
