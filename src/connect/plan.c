@@ -6,7 +6,6 @@
 #include <string.h>
 
 #include "fm_clock.h"
-#include "fm_predicates.h"
 #include "plan_internal.h"
 
 void fm_connect_plan_options_default(fm_connect_plan_options *opt)
@@ -190,155 +189,6 @@ static void do_outline(void *user, size_t k)
     s->st = pl_outline_build(w->models[w->ref[k][0]], w->ref[k][1], &s->ol, &s->err);
 }
 
-/* ---- Conflicts between curves on one sheet ---- */
-
-static int seg_cross(const double *a, const double *b, const double *c, const double *d)
-{
-    int o1 = fm_orient2d(a, b, c), o2 = fm_orient2d(a, b, d);
-    int o3 = fm_orient2d(c, d, a), o4 = fm_orient2d(c, d, b);
-    if (o1 * o2 < 0 && o3 * o4 < 0)
-        return 1;
-    /* touching or collinear overlap counts too: both would need a common node */
-    if (o1 == 0 && o2 == 0)
-        return fmax(fmin(a[0], b[0]), fmin(c[0], d[0])) <= fmin(fmax(a[0], b[0]), fmax(c[0], d[0])) &&
-               fmax(fmin(a[1], b[1]), fmin(c[1], d[1])) <= fmin(fmax(a[1], b[1]), fmax(c[1], d[1]));
-    return (o1 == 0 || o2 == 0 || o3 == 0 || o4 == 0) && o1 * o2 <= 0 && o3 * o4 <= 0;
-}
-
-/* Curve x (side sx) and curve y (side sy) lie on the same sheet: do they
- * cross, touch or come within tol of each other? */
-/* Near a point the two curves share (a keyed node of both), they may
- * touch: that is where they meet. */
-static int near_common(const pl_curve *x, const pl_curve *y, const double *p, double tol)
-{
-    if (!x->key || !y->key)
-        return 0;
-    for (size_t i = 0; i < x->n; i++) {
-        if (x->key[i] < 0)
-            continue;
-        for (size_t k = 0; k < y->n; k++)
-            if (y->key[k] == x->key[i]) {
-                const double *c = x->xyz + 3 * i;
-                double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
-                if (sqrt(dx * dx + dy * dy + dz * dz) < 2 * tol + 1e-9)
-                    return 1;
-            }
-    }
-    return 0;
-}
-
-static int curves_conflict(const pl_curve *x, int sx, const pl_curve *y, int sy, double tol)
-{
-    for (size_t i = 0; i + 1 < x->n; i++)
-        for (size_t k = 0; k + 1 < y->n; k++)
-            if (seg_cross(x->uv[sx] + 2 * i, x->uv[sx] + 2 * i + 2, y->uv[sy] + 2 * k,
-                          y->uv[sy] + 2 * k + 2) &&
-                !near_common(x, y, x->xyz + 3 * i, tol) &&
-                !near_common(x, y, x->xyz + 3 * i + 3, tol))
-                return 1;
-    for (size_t i = 0; i < x->n; i++)
-        for (size_t k = 0; k + 1 < y->n; k++)
-            if (fm_segment_distance3(x->xyz + 3 * i, y->xyz + 3 * k, y->xyz + 3 * k + 3) < tol &&
-                !near_common(x, y, x->xyz + 3 * i, tol))
-                return 1;
-    for (size_t k = 0; k < y->n; k++)
-        for (size_t i = 0; i + 1 < x->n; i++)
-            if (fm_segment_distance3(y->xyz + 3 * k, x->xyz + 3 * i, x->xyz + 3 * i + 3) < tol &&
-                !near_common(x, y, y->xyz + 3 * k, tol))
-                return 1;
-    return 0;
-}
-
-static void curve_box(const pl_curve *c, double lo[3], double hi[3])
-{
-    for (int k = 0; k < 3; k++) {
-        lo[k] = INFINITY;
-        hi[k] = -INFINITY;
-    }
-    for (size_t i = 0; i < c->n; i++)
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fmin(lo[k], c->xyz[3 * i + k]);
-            hi[k] = fmax(hi[k], c->xyz[3 * i + k]);
-        }
-}
-
-typedef struct cand {
-    size_t junction;
-    pl_curve *c;
-    double len;
-    double lo[3], hi[3];
-} cand;
-
-static int longer_first(const void *a, const void *b)
-{
-    const cand *x = a, *y = b;
-    if (x->len != y->len)
-        return x->len > y->len ? -1 : 1;
-    return (x->junction > y->junction) - (x->junction < y->junction);
-}
-
-static int same_sheet(const fm_connect_junction *a, int sa, const fm_connect_junction *b, int sb)
-{
-    return a->fault[sa] == b->fault[sb] && a->sheet[sa] == b->sheet[sb];
-}
-
-/* Accepts candidates longest first; a candidate that conflicts on either
- * of its sheets with an accepted one is left unjoined. */
-static int resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj, double H)
-{
-    size_t nc = 0;
-    for (size_t i = 0; i < nj; i++)
-        nc += C[i].n > 0;
-    cand *cs = malloc((nc + 1) * sizeof *cs);
-    size_t *acc = malloc((nc + 1) * sizeof *acc);
-    if (!cs || !acc) {
-        free(cs);
-        free(acc);
-        return -1;
-    }
-    size_t k = 0;
-    for (size_t i = 0; i < nj; i++)
-        if (C[i].n > 0) {
-            cs[k].junction = i;
-            cs[k].c = &C[i];
-            cs[k].len = J[i].length;
-            curve_box(&C[i], cs[k].lo, cs[k].hi);
-            k++;
-        }
-    qsort(cs, nc, sizeof *cs, longer_first);
-    size_t na = 0;
-    double tol = 0.25 * H;
-    for (size_t i = 0; i < nc; i++) {
-        const fm_connect_junction *ji = &J[cs[i].junction];
-        int bad = 0;
-        for (size_t a = 0; a < na && !bad; a++) {
-            const cand *o = &cs[acc[a]];
-            const fm_connect_junction *jo = &J[o->junction];
-            int far = 0;
-            for (int q = 0; q < 3; q++)
-                far |= cs[i].lo[q] > o->hi[q] + tol || o->lo[q] > cs[i].hi[q] + tol;
-            if (far)
-                continue;
-            for (int s = 0; s < 2 && !bad; s++)
-                for (int t = 0; t < 2 && !bad; t++)
-                    if (same_sheet(ji, s, jo, t))
-                        bad = curves_conflict(cs[i].c, s, o->c, t, tol);
-        }
-        if (bad) {
-            fm_connect_junction *j = &J[cs[i].junction];
-            j->type = FM_JUNCTION_UNJOINED;
-            j->reason = "crosses or nears another junction curve on one of its sheets "
-                        "(junctions of three faults are not joined yet)";
-            pl_curve_free(cs[i].c);
-        } else {
-            acc[na++] = i;
-        }
-    }
-    free(cs);
-    free(acc);
-    return 0;
-}
-
 /* ---- Assembly ---- */
 
 static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, size_t n,
@@ -366,7 +216,7 @@ static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, siz
     size_t triples = 0;
     if (pl_triple_junctions(p->junction, C, nj, models, H, o->cut ? &o->sea_level : NULL,
                             &triples) ||
-        resolve_conflicts(p->junction, C, nj, H)) {
+        pl_resolve_conflicts(p->junction, C, nj, H)) {
         for (size_t i = 0; i < nj; i++)
             pl_curve_free(&C[i]);
         free(C);

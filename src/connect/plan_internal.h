@@ -41,6 +41,7 @@ typedef struct pl_curve {
 
 void pl_curve_free(pl_curve *c);
 
+
 /* The junctions one pair of sheets makes: one per shared curve, plus one
  * unjoined entry per raw curve that gave none. curve[k].n == 0 when
  * junction k is unjoined. */
@@ -52,11 +53,23 @@ typedef struct pl_pair_result {
 
 void pl_pair_result_free(pl_pair_result *r);
 
+/* Where curves a and b, on one sheet (a's side sa, b's side sb), may
+ * meet (plan_meet.c): each crossing of their (u, v) polylines, then the
+ * closest place of each stretch where they come within `near` of each
+ * other in space; at most max points, none within `sep` of another. */
+size_t pl_meet_seeds(const pl_curve *a, int sa, const pl_curve *b, int sb, double near,
+                     double sep, double (*P)[3], size_t max);
+
 /* Gives the curves of junctions that meet on a common sheet their common
  * point (plan_triple.c): keyed nodes; *made counts the points. */
 int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
                         const fm_model *const *models, double H, const double *level,
                         size_t *made);
+
+/* Accepts curves longest first; one that crosses or nears an accepted
+ * curve on a shared sheet is cut to its longest clear stretch, or left
+ * unjoined with a reason (plan_conflict.c). -1: out of memory. */
+int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj, double H);
 
 /* A sheet as the plan's pairs share it: sampled once, its outline built
  * once (st and err: how that went; the outline is needed, and a failure

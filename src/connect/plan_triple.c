@@ -1,14 +1,18 @@
-/* Where three faults meet: the curves of two junctions that cross on the
+/* Where three faults meet: the curves of two junctions that meet on the
  * sheet they share (A with B, A with C) meet at the point of all three
  * surfaces, and both (and the curve of B with C, when there is one
- * nearby) get that point as one common node. Curve ends that come within
- * a quarter size of each other on a shared sheet are one node too. */
+ * nearby) get that point as one common node. Every place where the two
+ * may meet is tried (plan_meet.c): each crossing, and each place where
+ * they come within a quarter size, as where one ends against the other. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "fm_predicates.h"
 #include "plan_internal.h"
+
+/* Places where two curves may meet that are tried, per pair and sheet. */
+#define MAX_SEEDS 8
 
 static double dist3(const double *a, const double *b)
 {
@@ -59,8 +63,9 @@ static double triple_point(const fm_fit_surface *const S[3], const double p[3], 
 {
     for (int k = 0; k < 3; k++) {
         double f[3];
-        if (fm_fit_project(S[k], p, uv + 2 * k, f, NULL) != FM_OK)
+        if (fm_fit_project(S[k], p, uv + 2 * k, f, NULL) != FM_OK) {
             return INFINITY;
+        }
     }
     double g = INFINITY, x[3][3];
     for (int it = 0; it < 30; it++) {
@@ -82,15 +87,17 @@ static double triple_point(const fm_fit_surface *const S[3], const double p[3], 
             }
         if (g < 1e-7)
             break;
-        if (solve6(J, r))
+        if (solve6(J, r)) {
             return INFINITY;
+        }
         for (int k = 0; k < 6; k++)
             uv[k] += r[k];
     }
     for (int c = 0; c < 3; c++)
         out[c] = (x[0][c] + x[1][c] + x[2][c]) / 3;
-    if (!(g < 1e-3) || dist3(out, p) > far)
+    if (!(g < 1e-3) || dist3(out, p) > far) {
         return INFINITY;
+    }
     return g;
 }
 
@@ -207,6 +214,23 @@ static int64_t key_find(keyset *ks, int64_t k)
     return k;
 }
 
+/* -1 (+1) when T lies before the first (after the last) node of c, seen
+ * from the end segment nearest to it (segment `seg`); 0 otherwise. */
+static int beyond_end(const pl_curve *c, size_t seg, const double T[3])
+{
+    const double *p = c->xyz + 3 * seg, *q = p + 3;
+    double t = 0, dd = 0;
+    for (int k = 0; k < 3; k++) {
+        t += (q[k] - p[k]) * (T[k] - p[k]);
+        dd += (q[k] - p[k]) * (q[k] - p[k]);
+    }
+    if (seg == 0 && t < 0)
+        return -1;
+    if (seg + 2 == c->n && t > dd)
+        return 1;
+    return 0;
+}
+
 /* Puts point T (key) on curve c: at the node within `snap` of it (ends
  * first), else into the segment nearest to it, if within `reach`. The
  * uv of T on c's sides come from projecting it, or from uvs[] when the
@@ -253,7 +277,25 @@ static int put_point(pl_curve *c, const fm_connect_junction *j, const double T[3
         return 1; /* not on this curve */
     double da = dist3(T, c->xyz + 3 * best), db = dist3(T, c->xyz + 3 * (best + 1));
     size_t at;
-    if (fmin(da, db) <= snap && c->key[da <= db ? best : best + 1] < 0) {
+    int beyond = beyond_end(c, best, T);
+    if (beyond && c->key[beyond < 0 ? 0 : c->n - 1] >= 0)
+        beyond = 0;
+    if (beyond) {
+        /* a curve that stops short of the point (or passes it by less than
+         * a snap) ends there */
+        at = beyond < 0 ? 0 : c->n - 1;
+        if (dist3(T, c->xyz + 3 * at) > snap) {
+            if (beyond > 0)
+                at = c->n;
+            if (insert_node(c, at, T, uv[0], uv[1], key))
+                return -1;
+        } else {
+            memcpy(c->xyz + 3 * at, T, 3 * sizeof(double));
+            memcpy(c->uv[0] + 2 * at, uv[0], 2 * sizeof(double));
+            memcpy(c->uv[1] + 2 * at, uv[1], 2 * sizeof(double));
+            c->key[at] = key;
+        }
+    } else if (fmin(da, db) <= snap && c->key[da <= db ? best : best + 1] < 0) {
         at = da <= db ? best : best + 1;
         memcpy(c->xyz + 3 * at, T, 3 * sizeof(double));
         memcpy(c->uv[0] + 2 * at, uv[0], 2 * sizeof(double));
@@ -284,6 +326,67 @@ static int put_point(pl_curve *c, const fm_connect_junction *j, const double T[3
     return 0;
 }
 
+static int near_curve(const pl_curve *c, const double T[3], double reach)
+{
+    for (size_t i = 0; i + 1 < c->n; i++)
+        if (fm_segment_distance3(T, c->xyz + 3 * i, c->xyz + 3 * i + 3) <= reach)
+            return 1;
+    return 0;
+}
+
+/* Do curves a and b already share a keyed node within r of p? */
+static int share_near(const pl_curve *a, const pl_curve *b, const double p[3], double r)
+{
+    for (size_t i = 0; a->key && b->key && i < a->n; i++)
+        if (a->key[i] >= 0 && find_node(b, a->key[i]) >= 0 && dist3(a->xyz + 3 * i, p) < r)
+            return 1;
+    return 0;
+}
+
+/* Curves x and y share sheet side sx of x (sy of y); P is where they may
+ * meet. Finds the point of the three surfaces there and puts it, keyed,
+ * on both and on the curve of the other two sheets when that passes by.
+ * Returns 1 when a point was made, 0 when none, -1 out of memory. */
+static int meet_at(const fm_connect_junction *J, pl_curve *C, size_t nj, size_t x, int sx,
+                   size_t y, int sy, const double P[3], const fm_model *const *models, double H,
+                   const double *level, keyset *ks)
+{
+    pl_curve *a = &C[x], *b = &C[y];
+    if (share_near(a, b, P, 0.5 * H))
+        return 0;
+    /* the three sheets: the shared one, x's other, y's other */
+    size_t fs[3][2] = {{J[x].fault[sx], J[x].sheet[sx]},
+                       {J[x].fault[1 - sx], J[x].sheet[1 - sx]},
+                       {J[y].fault[1 - sy], J[y].sheet[1 - sy]}};
+    const fm_fit_surface *S[3];
+    for (int k = 0; k < 3; k++)
+        S[k] = fm_model_surface(models[fs[k][0]], fs[k][1]);
+    double uvs[6], T[3];
+    if (!isfinite(triple_point(S, P, 0.5 * H, uvs, T)) || !near_curve(a, T, 0.5 * H) ||
+        !near_curve(b, T, 0.5 * H))
+        return 0;
+    /* with the top cut, nothing may rise above sea level */
+    if (level && T[2] > *level)
+        return 0;
+    int64_t key = key_new(ks);
+    if (key < 0 || ensure_keys(a) || ensure_keys(b))
+        return -1;
+    if (put_point(a, &J[x], T, key, fs, uvs, models, 0.3 * H, 0.5 * H, ks) < 0 ||
+        put_point(b, &J[y], T, key, fs, uvs, models, 0.3 * H, 0.5 * H, ks) < 0)
+        return -1;
+    /* the curve of the other two, when it passes there */
+    for (size_t z = 0; z < nj; z++) {
+        if (z == x || z == y || !C[z].n)
+            continue;
+        if (side_on(&J[z], fs[1][0], fs[1][1]) < 0 || side_on(&J[z], fs[2][0], fs[2][1]) < 0)
+            continue;
+        if (ensure_keys(&C[z]) ||
+            put_point(&C[z], &J[z], T, key, fs, uvs, models, 0.3 * H, 0.5 * H, ks) < 0)
+            return -1;
+    }
+    return 1;
+}
+
 int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
                         const fm_model *const *models, double H, const double *level,
                         size_t *made)
@@ -301,71 +404,14 @@ int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
                 if (sy < 0)
                     continue;
                 pl_curve *a = &C[x], *b = &C[y];
-                /* where the two curves cross (or end near each other) on
-                 * the sheet they share: the first such place */
-                double P[3];
-                int found = 0;
-                for (size_t i = 0; i + 1 < a->n && !found; i++)
-                    for (size_t k = 0; k + 1 < b->n && !found; k++) {
-                        const double *p = a->uv[sx] + 2 * i, *q = p + 2;
-                        const double *r = b->uv[sy] + 2 * k, *t = r + 2;
-                        int o1 = fm_orient2d(p, q, r), o2 = fm_orient2d(p, q, t);
-                        int o3 = fm_orient2d(r, t, p), o4 = fm_orient2d(r, t, q);
-                        if (o1 * o2 <= 0 && o3 * o4 <= 0 && (o1 || o2 || o3 || o4)) {
-                            double den = (q[0] - p[0]) * (t[1] - r[1]) - (q[1] - p[1]) * (t[0] - r[0]);
-                            double s = den != 0 ? ((r[0] - p[0]) * (t[1] - r[1]) -
-                                                   (r[1] - p[1]) * (t[0] - r[0])) / den
-                                                : 0.5;
-                            s = fmin(1, fmax(0, s));
-                            for (int c = 0; c < 3; c++)
-                                P[c] = a->xyz[3 * i + c] + s * (a->xyz[3 * (i + 1) + c] - a->xyz[3 * i + c]);
-                            found = 1;
-                        }
-                    }
-                for (int ea = 0; ea < 2 && !found; ea++)
-                    for (int eb = 0; eb < 2 && !found; eb++) {
-                        const double *pa = a->xyz + 3 * (ea ? a->n - 1 : 0);
-                        const double *pb = b->xyz + 3 * (eb ? b->n - 1 : 0);
-                        if (dist3(pa, pb) < 0.25 * H) {
-                            for (int c = 0; c < 3; c++)
-                                P[c] = 0.5 * (pa[c] + pb[c]);
-                            found = 1;
-                        }
-                    }
-                if (!found)
-                    continue;
-                /* the three sheets: the shared one, x's other, y's other */
-                size_t fs[3][2] = {{J[x].fault[sx], J[x].sheet[sx]},
-                                   {J[x].fault[1 - sx], J[x].sheet[1 - sx]},
-                                   {J[y].fault[1 - sy], J[y].sheet[1 - sy]}};
-                const fm_fit_surface *S[3];
-                for (int k = 0; k < 3; k++)
-                    S[k] = fm_model_surface(models[fs[k][0]], fs[k][1]);
-                double uvs[6], T[3];
-                if (!isfinite(triple_point(S, P, 0.5 * H, uvs, T)))
-                    continue;
-                /* with the top cut, nothing may rise above sea level */
-                if (level && T[2] > *level)
-                    continue;
-                int64_t key = key_new(&ks);
-                if (key < 0 || ensure_keys(a) || ensure_keys(b))
-                    goto nomem;
-                if (put_point(a, &J[x], T, key, fs, uvs, models, 0.3 * H, 0.5 * H, &ks) < 0 ||
-                    put_point(b, &J[y], T, key, fs, uvs, models, 0.3 * H, 0.5 * H, &ks) < 0)
-                    goto nomem;
-                /* the curve of the other two, when it passes there */
-                for (size_t z = 0; z < nj; z++) {
-                    if (z == x || z == y || !C[z].n)
-                        continue;
-                    int z1 = side_on(&J[z], fs[1][0], fs[1][1]), z2 = side_on(&J[z], fs[2][0], fs[2][1]);
-                    if (z1 < 0 || z2 < 0)
-                        continue;
-                    if (ensure_keys(&C[z]) ||
-                        put_point(&C[z], &J[z], T, key, fs, uvs, models, 0.3 * H, 0.5 * H,
-                                  &ks) < 0)
+                double P[MAX_SEEDS][3];
+                size_t ns = pl_meet_seeds(a, sx, b, sy, 0.25 * H, 0.5 * H, P, MAX_SEEDS);
+                for (size_t q = 0; q < ns; q++) {
+                    int r = meet_at(J, C, nj, x, sx, y, sy, P[q], models, H, level, &ks);
+                    if (r < 0)
                         goto nomem;
+                    *made += (size_t)r;
                 }
-                (*made)++;
             }
         }
     }

@@ -1,7 +1,8 @@
 /* Neighbours and intersection curves (src/connect): fitted planes crossing
  * at 90 and 10 degrees against the analytic line, the synthetic system's
- * T-junction gap and overshoot, near-duplicate faults, and two crossing
- * CFM faults. */
+ * T-junction gap and overshoot, three planes whose curves meet at a small
+ * angle, a curve cut short of another it nears, near-duplicate faults,
+ * and two crossing CFM faults. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -365,6 +366,165 @@ out:
     fm_synth_destroy(sy);
 }
 
+/* A plane through (X0, Y0, -6400) whose line with the plane y = Y0 is
+ * `deg` degrees off the vertical (and whose line with x = X0 is 45
+ * degrees off it): a parallelogram of +-5 km along that line and +-4 km
+ * across it, triangles of about h. */
+static fm_mesh *tilted_plane(double deg, double h)
+{
+    double t = deg * FM_PI / 180;
+    double d[3] = {sin(t), 0, cos(t)}, nr[3] = {cos(t), sin(t), -sin(t)}, e[3];
+    e[0] = nr[1] * d[2] - nr[2] * d[1];
+    e[1] = nr[2] * d[0] - nr[0] * d[2];
+    e[2] = nr[0] * d[1] - nr[1] * d[0];
+    double le = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    fm_mesh *m = fm_mesh_create();
+    int na = (int)ceil(10000 / h), nb = (int)ceil(8000 / h);
+    for (int j = 0; j <= nb; j++)
+        for (int i = 0; i <= na; i++) {
+            double a = -5000 + 10000.0 * i / na, b = (-4000 + 8000.0 * j / nb) / le;
+            fm_mesh_add_vertex(m, X0 + a * d[0] + b * e[0], Y0 + a * d[1] + b * e[1],
+                               -6400 + a * d[2] + b * e[2]);
+        }
+    for (int j = 0; j < nb; j++)
+        for (int i = 0; i < na; i++) {
+            int32_t p = j * (na + 1) + i, q = p + 1, r = p + na + 1, w = r + 1;
+            fm_mesh_add_triangle(m, p, q, w, 0);
+            fm_mesh_add_triangle(m, p, w, r, 0);
+        }
+    return m;
+}
+
+/* Three planes through one point, two of whose curves meet there at 14
+ * degrees on the sheet they share: they stay within a quarter size of
+ * each other for 1 km on either side of the point (the vertical one has
+ * nodes 400 and 600 m from it, at 1 km spacing). That is still the
+ * one place where they meet: all three junctions are joined, the three
+ * curves through one common node at the point. */
+static void test_triple_small_angle(void)
+{
+    fm_mesh *meshes[3] = {vertical_plane(0, 10000, -10000, 500),
+                          vertical_plane(90, 10000, -10000, 500), tilted_plane(14, 500)};
+    fm_model *models[3];
+    for (int k = 0; k < 3; k++) {
+        models[k] = fit_mesh(k == 2 ? "tilted" : k ? "plane x" : "plane y", meshes[k]);
+        fm_mesh_destroy(meshes[k]);
+        CHECK(models[k] != NULL);
+    }
+    if (!models[0] || !models[1] || !models[2])
+        goto out;
+    fm_connect_plan_options po;
+    fm_connect_plan_options_default(&po);
+    fm_connect_plan *plan = NULL;
+    fm_error err;
+    CHECK(fm_connect_plan_build((const fm_model *const *)models, 3, &po, &plan, &err) == FM_OK);
+    if (!plan)
+        goto out;
+    CHECK_EQ(fm_connect_plan_njunctions(plan), 3);
+    for (size_t i = 0; i < fm_connect_plan_njunctions(plan); i++) {
+        const fm_connect_junction *j = fm_connect_plan_junction(plan, i);
+        printf("junction %zu: %s %zu-%zu length %.0f angle %.1f%s%s\n", i,
+               fm_junction_type_name(j->type), j->fault[0], j->fault[1], j->length,
+               j->min_angle, j->reason ? ": " : "", j->reason ? j->reason : "");
+        CHECK(j->curve >= 0);
+    }
+    CHECK(fm_connect_plan_get_stats(plan)->triple_points >= 1);
+    /* one node at the point, on every sheet's two curves */
+    const double *X = fm_connect_plan_nodes(plan);
+    for (size_t f = 0; f < 3; f++) {
+        const fm_connect_shared *sh = NULL;
+        size_t n = fm_connect_plan_sheet(plan, f, 0, &sh);
+        CHECK_EQ(n, 2);
+        int64_t at[2] = {-1, -2};
+        for (size_t k = 0; sh && k < n && k < 2; k++)
+            for (size_t i = 0; i < sh[k].n; i++) {
+                const double *p = X + 3 * sh[k].node[i];
+                if (fabs(p[0] - X0) < 1 && fabs(p[1] - Y0) < 1 && fabs(p[2] + 6400) < 1)
+                    at[k] = sh[k].node[i];
+            }
+        CHECK(at[0] >= 0 && at[0] == at[1]);
+    }
+    fm_connect_plan_destroy(plan);
+out:
+    for (int k = 0; k < 3; k++)
+        fm_model_destroy(models[k]);
+}
+
+/* The plane x - X0 = 200 + 0.2 (z + 10000) + 0.5 (y - Y0), y - Y0 in
+ * [-2000, 5000], z in [-10000, 0]. Its line with the plane y = Y0 comes
+ * within 200 m of that plane's line with x = X0 at the bottom, and the
+ * three would meet only 1 km deeper, below every surface. */
+static fm_mesh *leaning_plane(double h)
+{
+    fm_mesh *m = fm_mesh_create();
+    int ny = (int)ceil(7000 / h), nz = (int)ceil(10000 / h);
+    for (int j = 0; j <= nz; j++)
+        for (int i = 0; i <= ny; i++) {
+            double y = -2000 + 7000.0 * i / ny, z = -10000.0 * j / nz;
+            fm_mesh_add_vertex(m, X0 + 200 + 0.2 * (z + 10000) + 0.5 * y, Y0 + y, z);
+        }
+    for (int j = 0; j < nz; j++)
+        for (int i = 0; i < ny; i++) {
+            int32_t a = j * (ny + 1) + i, b = a + 1, d = a + ny + 1, e = d + 1;
+            fm_mesh_add_triangle(m, a, b, e, 0);
+            fm_mesh_add_triangle(m, a, e, d, 0);
+        }
+    return m;
+}
+
+/* Two crossing curves on one sheet that come within a quarter size of
+ * each other where there is no point of the three faults: the later one
+ * is cut short of the other, not left unjoined, and no two curves on
+ * the sheet come that close. */
+static void test_cut_short(void)
+{
+    fm_mesh *meshes[3] = {vertical_plane(0, 10000, -10000, 500),
+                          vertical_plane(90, 10000, -10000, 500), leaning_plane(500)};
+    fm_model *models[3];
+    for (int k = 0; k < 3; k++) {
+        models[k] = fit_mesh(k == 2 ? "leaning" : k ? "plane x" : "plane y", meshes[k]);
+        fm_mesh_destroy(meshes[k]);
+        CHECK(models[k] != NULL);
+    }
+    if (!models[0] || !models[1] || !models[2])
+        goto out;
+    fm_connect_plan_options po;
+    fm_connect_plan_options_default(&po);
+    fm_connect_plan *plan = NULL;
+    fm_error err;
+    CHECK(fm_connect_plan_build((const fm_model *const *)models, 3, &po, &plan, &err) == FM_OK);
+    if (!plan)
+        goto out;
+    int on_y[2] = {0, 0};
+    for (size_t i = 0; i < fm_connect_plan_njunctions(plan); i++) {
+        const fm_connect_junction *j = fm_connect_plan_junction(plan, i);
+        printf("junction %zu: %s %zu-%zu length %.0f%s%s\n", i, fm_junction_type_name(j->type),
+               j->fault[0], j->fault[1], j->length, j->reason ? ": " : "",
+               j->reason ? j->reason : "");
+        CHECK(j->curve >= 0);
+        if (j->fault[0] == 0)
+            on_y[j->fault[1] == 2] = 1;
+    }
+    CHECK(on_y[0] && on_y[1]);
+    const double *X = fm_connect_plan_nodes(plan);
+    const fm_connect_shared *sh = NULL;
+    size_t n = fm_connect_plan_sheet(plan, 0, 0, &sh);
+    CHECK_EQ(n, 2);
+    double gap = INFINITY;
+    for (size_t a = 0; sh && n == 2 && a < 2; a++)
+        for (size_t i = 0; i < sh[a].n; i++)
+            for (size_t k = 0; k + 1 < sh[1 - a].n; k++)
+                gap = fmin(gap, fm_segment_distance3(X + 3 * sh[a].node[i],
+                                                     X + 3 * sh[1 - a].node[k],
+                                                     X + 3 * sh[1 - a].node[k + 1]));
+    printf("closest approach on the shared sheet: %.0f m\n", gap);
+    CHECK(gap >= 0.25 * po.size);
+    fm_connect_plan_destroy(plan);
+out:
+    for (int k = 0; k < 3; k++)
+        fm_model_destroy(models[k]);
+}
+
 static fm_model *fit_file(const char *path)
 {
     fm_tsurf **objs = NULL;
@@ -614,6 +774,8 @@ int main(void)
         FM_CASE(test_planes_10),
         FM_CASE(test_synth),
         FM_CASE(test_synth_plan),
+        FM_CASE(test_triple_small_angle),
+        FM_CASE(test_cut_short),
         FM_CASE(test_duplicates),
         FM_CASE(test_threads),
         FM_CASE(test_cfm_santa_monica),
