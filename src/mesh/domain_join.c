@@ -137,7 +137,11 @@ static int put_on_loop(const fm_fit_surface *s, remesh_domain *dom, const seg_hi
     /* A connector may end on any node (even one a curve ends on); a curve
      * end moves a node only when no other curve end is there. */
     double fn = da <= db ? h->t : 1 - h->t;
-    if (!move && (fmin(da, db) <= tol || fn <= 1e-9)) {
+    /* A connector's foot within tol of a node would leave an outline piece
+     * that short next to the connector (a curve end beyond the sheet's
+     * corner: a node 0.2 m from the corner, triangles of 0 degrees): the
+     * connector goes to the node. */
+    if (!move && (fmin(da, db) <= tol || fn * dist3(A, B) <= tol)) {
         at[0] = lp->uv[2 * near];
         at[1] = lp->uv[2 * near + 1];
         return is_taken(tk, at) ? 0 : take(tk, at);

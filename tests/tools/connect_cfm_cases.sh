@@ -108,4 +108,9 @@ run_case rosecanyon OCBA-NIRC-RSCN-Rose_Canyon_fault-CFM5_500m \
     OCBA-SMCS-SMTO-San_Onofre_fault_upper-CFM5_500m
 min_angle rosecanyon OCBA-NIRC-RSCN-Rose_Canyon_fault-CFM5_500m 5
 max_below20 rosecanyon OCBA-NIRC-RSCN-Rose_Canyon_fault-CFM5_500m 5
+# The San Andreas curve Lockwood Valley ends at reaches sea level 430 m
+# beyond the sheet's top corner: its connector's foot on the outline was
+# put 0.2 m from the corner, a triangle of 0.001 degrees.
+run_case lockwood CRFA-BPPM-LKWV-Lockwood_Valley_fault-CFM2_500m SAFS-SAFZ-CRRZ-San_Andreas_fault-CFM4_500m
+min_angle lockwood CRFA-BPPM-LKWV-Lockwood_Valley_fault-CFM2_500m 20
 exit $fail
