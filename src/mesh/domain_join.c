@@ -137,7 +137,11 @@ static int put_on_loop(const fm_fit_surface *s, remesh_domain *dom, const seg_hi
     /* A connector may end on any node (even one a curve ends on); a curve
      * end moves a node only when no other curve end is there. */
     double fn = da <= db ? h->t : 1 - h->t;
-    if (!move && (fmin(da, db) <= tol || fn <= 1e-9)) {
+    /* A connector's foot within tol of a node would leave an outline piece
+     * that short next to the connector (a curve end beyond the sheet's
+     * corner: a node 0.2 m from the corner, triangles of 0 degrees): the
+     * connector goes to the node. */
+    if (!move && (fmin(da, db) <= tol || fn * dist3(A, B) <= tol)) {
         at[0] = lp->uv[2 * near];
         at[1] = lp->uv[2 * near + 1];
         return is_taken(tk, at) ? 0 : take(tk, at);
@@ -314,8 +318,31 @@ static int first_crossing(const fm_fit_surface *s, remesh_domain *dom, const dou
 
 typedef struct connector {
     double a[2], b[2]; /* curve end, loop node */
+    int64_t node;      /* the curve end's shared node */
     int level;
 } connector;
+
+/* End e of curve c is where another curve the sheet ends at carries on in
+ * the same direction: the two are one boundary and that node is no open
+ * end. (Each gave it a connector to the nearest outline point, the second
+ * to a point the first had just put a metre off it: a wedge of zero width
+ * between the two, refined into triangles of 2 degrees.) */
+static int end_continues(const fm_remesh_curve *cv, size_t nc, size_t c, int e)
+{
+    int64_t id = cv[c].node[e ? cv[c].n - 1 : 0];
+    for (size_t k = 0; k < nc; k++)
+        if (k != c && cv[k].end && cv[k].node[e ? 0 : cv[k].n - 1] == id)
+            return 1;
+    return 0;
+}
+
+static int has_connector(const connector *cn, size_t ncn, int64_t node)
+{
+    for (size_t k = 0; k < ncn; k++)
+        if (cn[k].node == node)
+            return 1;
+    return 0;
+}
 
 /* The loop segment (among the first nl, segment k starting at point k)
  * joining points a and b either way, or -1. */
@@ -511,7 +538,8 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
                 if (put_on_loop(s, dom, &hh, uv, level, tol, 1, &tk, at))
                     goto nomem;
                 snapped[2 * c + (size_t)e] = 1;
-            } else if (cv[c].end) {
+            } else if (cv[c].end && !end_continues(cv, nc, c, e) &&
+                       !has_connector(cn, ncn, cv[c].node[e ? cv[c].n - 1 : 0])) {
                 if (put_on_loop(s, dom, &hh, uv, level, tol, 0, &tk, at))
                     goto nomem;
                 /* a connector that would cross the outline on its way ends
@@ -521,6 +549,7 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
                 connector *k = &cn[ncn++];
                 memcpy(k->a, uv, sizeof k->a);
                 memcpy(k->b, at, sizeof k->b);
+                k->node = cv[c].node[e ? cv[c].n - 1 : 0];
                 double B[3];
                 eval3(s, at, B);
                 k->level = fabs(P[2] - level) < 1e-6 && fabs(B[2] - level) < 1e-6;

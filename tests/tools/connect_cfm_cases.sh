@@ -81,4 +81,36 @@ run_case banning SAFS-SAFZ-MULT-Banning_fault_strand-CFM4_500m SAFS-SAFZ-COAV-So
     SAFS-SGPR-SJMT-Palm_Springs_blind_fault-CFM4_500m SAFS-SGPR-SJMT-San_Gorgonio_Pass_midcrust_detachment-CFM5_500m \
     SALT-BRSZ-BRSZ-Brawley_Seismic_Zone_boundary-CFM1_500m SALT-CRSF-SLTS-Extra_fault-CFM3_500m
 min_angle banning SAFS-SAFZ-MULT-Banning_fault_strand-CFM4_500m 10
+# max_below20 NAME FAULT N: FAULT has at most N triangles under 20 degrees
+# in NAME's report
+max_below20() {
+    local n
+    n=$(/usr/bin/env python3 - "$tmp/$1/out/report.json" "$2" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+print(next(f["quality"]["triangles_below_20_deg"] for f in r["faults"] if f["name"] == sys.argv[2]))
+PY
+)
+    if [ "$n" -le "$3" ]; then
+        echo "$1: $2 triangles under 20 degrees $n: ok"
+    else
+        echo "FAIL $1: $2 has $n triangles under 20 degrees, more than $3"
+        fail=1
+    fi
+}
+# Two Rose Canyon curves the sheet ends at continue one another at an
+# inner node: each gave it a connector to the outline, the second ending a
+# metre from the first, and the wedge between them was refined into 65
+# triangles of 2 degrees (73 under 20 degrees, smallest 1.6).
+run_case rosecanyon OCBA-NIRC-RSCN-Rose_Canyon_fault-CFM5_500m \
+    OCBA-NIRC-OCNS-Newport_Inglewood_Rose_Canyon_link-CFM5_500m \
+    OCBA-CBKD-CRBS-Coronado_Bank_detachment_trim-CFM5_500m OCBA-NIRC-DANA-Newport_Inglewood_fault-CFM5_500m \
+    OCBA-SMCS-SMTO-San_Onofre_fault_upper-CFM5_500m
+min_angle rosecanyon OCBA-NIRC-RSCN-Rose_Canyon_fault-CFM5_500m 5
+max_below20 rosecanyon OCBA-NIRC-RSCN-Rose_Canyon_fault-CFM5_500m 5
+# The San Andreas curve Lockwood Valley ends at reaches sea level 430 m
+# beyond the sheet's top corner: its connector's foot on the outline was
+# put 0.2 m from the corner, a triangle of 0.001 degrees.
+run_case lockwood CRFA-BPPM-LKWV-Lockwood_Valley_fault-CFM2_500m SAFS-SAFZ-CRRZ-San_Andreas_fault-CFM4_500m
+min_angle lockwood CRFA-BPPM-LKWV-Lockwood_Valley_fault-CFM2_500m 20
 exit $fail
