@@ -15,7 +15,7 @@ run_case() {
     shift 3
     local d="$tmp/$name"
     rm -rf "$d" && mkdir -p "$d/in"
-    for f in "$a" "$b" "$@"; do ln -s "$cfm/$f.ts" "$d/in/"; done
+    for f in "$a" "$b" "$@"; do ln -sf "$cfm/$f.ts" "$d/in/"; done
     "$exe" remesh --quiet --size 1000 -o "$d/out" "$d/in" >"$d/remesh.log" 2>&1 \
         || { echo "FAIL $name: remesh"; cat "$d/remesh.log"; fail=1; return; }
     "$check" --json "$d/cc.json" "$d/out/mesh.obj" >"$d/cc.out" 2>&1
@@ -113,4 +113,11 @@ max_below20 rosecanyon OCBA-NIRC-RSCN-Rose_Canyon_fault-CFM5_500m 5
 # put 0.2 m from the corner, a triangle of 0.001 degrees.
 run_case lockwood CRFA-BPPM-LKWV-Lockwood_Valley_fault-CFM2_500m SAFS-SAFZ-CRRZ-San_Andreas_fault-CFM4_500m
 min_angle lockwood CRFA-BPPM-LKWV-Lockwood_Valley_fault-CFM2_500m 20
+# Agua Caliente's sheets meet along seams that run a few hundred metres
+# inside another sheet's outline: the strip between the outline and the
+# seam curve was kept and filled with slivers (76 triangles under 20 deg);
+# the outline now follows a curve that runs within 0.3 H of it.
+run_case aguacaliente PNRA-HSSF-AGCT-Agua_Caliente_fault_zone-CFM4_500m \
+    PNRA-HSSF-AGCT-Agua_Caliente_fault_zone-CFM4_500m
+max_below20 aguacaliente PNRA-HSSF-AGCT-Agua_Caliente_fault_zone-CFM4_500m 20
 exit $fail
