@@ -389,11 +389,28 @@ static int chord_blocked(const flat_domain *fd, size_t ns, int32_t a, int32_t b)
     return 0;
 }
 
+/* 3D distance from P to segment A-B. */
+static double seg_dist3(const double P[3], const double A[3], const double B[3])
+{
+    double d[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
+    double L2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double f = L2 > 0 ? ((P[0] - A[0]) * d[0] + (P[1] - A[1]) * d[1] + (P[2] - A[2]) * d[2]) / L2 : 0;
+    f = f < 0 ? 0 : f > 1 ? 1 : f;
+    double X[3] = {A[0] + f * d[0], A[1] + f * d[1], A[2] + f * d[2]};
+    return dist3(P, X);
+}
+
 /* The loop node (among the first nl points) nearest to point a in 3D,
  * within reach, whose chord from a crosses none of the first ns segments,
- * or -1. */
+ * or -1. When that chord passes within `clear` of a curve node (another
+ * curve's open end, among points nl to np), the connector goes to that
+ * node instead, if it reaches it uncrossed: refinement splits a
+ * constrained edge that close to a node into pieces that short
+ * (Newport-Inglewood/Rose Canyon link: a connector passing 56 m from a
+ * curve end left five outline pieces of 130 to 270 m and triangles of 4
+ * degrees). */
 static int32_t reachable_node(const fm_fit_surface *s, const flat_domain *fd, size_t nl,
-                              size_t ns, int32_t a, double reach)
+                              size_t ns, size_t np, int32_t a, double reach, double clear)
 {
     double A[3];
     eval3(s, fd->uv + 2 * a, A);
@@ -408,7 +425,25 @@ static int32_t reachable_node(const fm_fit_surface *s, const flat_domain *fd, si
             best = (int32_t)i;
         }
     }
-    return best;
+    if (best < 0)
+        return best;
+    /* the nearest curve node the chord passes within clear of, if any */
+    double B[3];
+    eval3(s, fd->uv + 2 * best, B);
+    int32_t via = -1;
+    double vd = INFINITY;
+    for (size_t k = nl; k < np; k++) {
+        if ((int32_t)k == a)
+            continue;
+        double K[3];
+        eval3(s, fd->uv + 2 * k, K);
+        double d = dist3(A, K);
+        if (seg_dist3(K, A, B) <= clear && d < vd && !chord_blocked(fd, ns, a, (int32_t)k)) {
+            vd = d;
+            via = (int32_t)k;
+        }
+    }
+    return via >= 0 ? via : best;
 }
 
 /* 3D distance from P to the curve's polyline between nodes i0 and i1. */
@@ -683,7 +718,7 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
             double A[3], B[3];
             eval3(s, fd->uv + 2 * a, A);
             eval3(s, fd->uv + 2 * b, B);
-            int32_t c = reachable_node(s, fd, nl, ns, a, dist3(A, B) + h);
+            int32_t c = reachable_node(s, fd, nl, ns, np, a, dist3(A, B) + h, 0.25 * h);
             if (c >= 0) {
                 b = c;
                 lev = fd->level[a] && fd->level[b];

@@ -120,4 +120,14 @@ min_angle lockwood CRFA-BPPM-LKWV-Lockwood_Valley_fault-CFM2_500m 20
 run_case aguacaliente PNRA-HSSF-AGCT-Agua_Caliente_fault_zone-CFM4_500m \
     PNRA-HSSF-AGCT-Agua_Caliente_fault_zone-CFM4_500m
 max_below20 aguacaliente PNRA-HSSF-AGCT-Agua_Caliente_fault_zone-CFM4_500m 20
+# The Newport-Inglewood/Rose Canyon link ends at two Newport-Inglewood
+# curves whose open ends lie 450 m apart near the outline: the second
+# end's connector, blocked from its nearest outline node, went to another
+# that it reached passing 56 m from the first end, and refinement split
+# it into outline pieces of 130 to 270 m (10 triangles under 20 degrees,
+# smallest 3.9); it now goes to that end.
+run_case nirclink OCBA-NIRC-OCNS-Newport_Inglewood_Rose_Canyon_link-CFM5_500m \
+    OCBA-NIRC-DANA-Newport_Inglewood_fault-CFM5_500m OCBA-NIRC-RSCN-Rose_Canyon_fault-CFM5_500m \
+    OCBA-SMCS-MULT-San_Mateo_Carlsbad_fault-CFM5_500m OCBA-SMCS-SMTO-San_Onofre_fault_upper-CFM5_500m
+max_below20 nirclink OCBA-NIRC-OCNS-Newport_Inglewood_Rose_Canyon_link-CFM5_500m 6
 exit $fail
