@@ -107,7 +107,7 @@ static void mesh_sizes(const fm_model *model, const fm_mesh *orig, const char *n
         fm_quality q;
         fm_fidelity fid;
         if (tree && fm_check_quality(mesh, -1, st[k].H, &q) == FM_OK &&
-            fm_check_fidelity(mesh, -1, tree, &fid) == FM_OK) {
+            fm_check_fidelity(mesh, -1, orig, tree, &fid) == FM_OK) {
             st[k].nodes += q.nodes;
             st[k].below30 += q.below_30;
             st[k].edges += q.edges;

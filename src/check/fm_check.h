@@ -41,15 +41,30 @@ typedef struct fm_quality {
  * target edge length. */
 fm_status fm_check_quality(const fm_mesh *m, int32_t tag, double H, fm_quality *q);
 
+/* Distance (m) a node may lie from the original: the fidelity criterion. */
+#define FM_FIDELITY_TOL 100.0
+
 typedef struct fm_fidelity {
     size_t nodes;
     double rms, max;           /* metres */
+    /* The node's nearest point on the original (its foot) tells where a
+     * node farther than FM_FIDELITY_TOL lies: with its foot within
+     * FM_FIDELITY_TOL of the original's outline (its edges used by one
+     * triangle) it is past the original's edge, as over a gap a fault was
+     * extended across to a neighbour, else over the original's inside.
+     * beyond_max: largest distance of the nodes past the edge
+     * (beyond_nodes of them; 0 without orig); inside_max: largest of the
+     * others, with inside_over of them over FM_FIDELITY_TOL (without
+     * orig every node counts as inside). */
+    double beyond_max, inside_max;
+    size_t beyond_nodes, inside_over;
 } fm_fidelity;
 
 /* Distances of the nodes of m used by triangles tagged tag (tag < 0: all)
- * to the surface in tree. */
-fm_status fm_check_fidelity(const fm_mesh *m, int32_t tag, const fm_closest_tree *tree,
-                            fm_fidelity *f);
+ * to the surface in tree, built over orig (orig may be NULL: nothing is
+ * then known of its outline and beyond_max stays 0). */
+fm_status fm_check_fidelity(const fm_mesh *m, int32_t tag, const fm_mesh *orig,
+                            const fm_closest_tree *tree, fm_fidelity *f);
 
 #ifdef __cplusplus
 }

@@ -256,7 +256,7 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
         fm_closest_tree *tree = fm_closest_tree_create(orig, err);
         st = tree ? fm_check_quality(*fault, -1, cli->mesh.size, &r->q) : FM_ERR_NOMEM;
         if (st == FM_OK)
-            st = fm_check_fidelity(*fault, -1, tree, &r->fid);
+            st = fm_check_fidelity(*fault, -1, orig, tree, &r->fid);
         if (st != FM_OK && tree)
             fm_error_set(err, st, path, 0, "out of memory");
         fm_closest_tree_destroy(tree);
@@ -651,6 +651,16 @@ static void json_fault(fm_json *j, const fault_result *r, double H)
         fm_json_begin_object(j);
         fm_json_kv_number(j, "node_to_original_rms_m", r->fid.rms);
         fm_json_kv_number(j, "node_to_original_max_m", r->fid.max);
+        /* Nodes farther than 100 m whose nearest original point is on
+         * (within 100 m of) its outline lie past the original's edge (a
+         * fault extended over a closed gap): their largest distance is
+         * reported apart from that of the nodes over its inside, so the
+         * fidelity proper can be told from the extent of what was filled
+         * beyond the edge. */
+        fm_json_kv_number(j, "inside_outline_max_m", r->fid.inside_max);
+        fm_json_kv_int(j, "inside_outline_nodes_over_100_m", (int64_t)r->fid.inside_over);
+        fm_json_kv_number(j, "beyond_outline_max_m", r->fid.beyond_max);
+        fm_json_kv_int(j, "beyond_outline_nodes_over_100_m", (int64_t)r->fid.beyond_nodes);
         fm_json_kv_number(j, "fitted_area_m2", r->fitted_area);
         fm_json_kv_number(j, "coverage", r->fitted_area > 0 ? r->q.area / r->fitted_area : 0);
         fm_json_end_object(j);
