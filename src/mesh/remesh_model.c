@@ -92,6 +92,41 @@ static int weld_shared(fm_mesh *all, int64_t *ids)
     return 0;
 }
 
+static int by_id(const void *a, const void *b)
+{
+    int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* A curve the sheet took but whose faces were all left out (it lies in a
+ * dropped flap or beyond the outline the sheet kept) has no edge in the
+ * mesh: it is reported as left out like one that did not fit, so that the
+ * junction is not called made while no node of it is shared. Returns -1
+ * when out of memory. */
+static int mark_absent(const fm_remesh_sheet_curves *sc, const int64_t *sid, size_t nv)
+{
+    if (!sc->dropped || !sc->n)
+        return 0;
+    int64_t *have = malloc((nv + 1) * sizeof *have);
+    if (!have)
+        return -1;
+    size_t nh = 0;
+    for (size_t v = 0; v < nv; v++)
+        if (sid && sid[v] >= 0)
+            have[nh++] = sid[v];
+    qsort(have, nh, sizeof *have, by_id);
+    for (size_t k = 0; k < sc->n; k++) {
+        const fm_remesh_curve *c = &sc->curves[k];
+        size_t found = 0;
+        for (size_t i = 0; i < c->n && found < 2; i++)
+            found += c->node && bsearch(&c->node[i], have, nh, sizeof *have, by_id) != NULL;
+        if (found < 2)
+            sc->dropped[k] = 1;
+    }
+    free(have);
+    return 0;
+}
+
 /* The sheet meshed with the largest set of its curves that fits, built
  * up one curve at a time (more nodes first); sc->dropped marks the rest. */
 static fm_status fit_some(const fm_model *m, size_t i, const fm_trim_loop **loops, size_t nl,
@@ -210,6 +245,12 @@ fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves
         free(loops);
         if (st != FM_OK)
             break;
+        if (curves && mark_absent(&curves[i], sid, fm_mesh_nvertices(sheet))) {
+            free(sid);
+            fm_mesh_destroy(sheet);
+            st = fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
+            break;
+        }
         if (append_ids(&ids, &nids, sid, fm_mesh_nvertices(sheet))) {
             free(sid);
             fm_mesh_destroy(sheet);
