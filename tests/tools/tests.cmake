@@ -103,7 +103,7 @@ if(FM_SYSTEM_PYTHON)
   add_test(NAME cfm_connect_500m_1000
     COMMAND bash ${FM_TOOLS}/remesh_cfm_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_500m_1000 ${FM_CFM_DIR}/CFM5.3/500m
-            --size 1000 -- --size 1000 --top cut --criteria failures,min-angle-30,edge-band,boundary-edge,coverage,top)
+            --size 1000 -- --size 1000 --top cut --criteria failures,min-angle-30,edge-band,boundary-edge,distance-rms,coverage,top)
   set_tests_properties(cfm_connect_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
   # cfm_connect_report_500m_1000: every near pair of the whole set has its
   # line in report.json (made and sharing edges, or open with a reason).
