@@ -113,6 +113,25 @@ static int movable(const remesh_domain *dom, size_t l, size_t i, const double uv
     return 1;
 }
 
+/* Splits segment i of loop lp at fraction t (its parameter on a trimming
+ * piece) with the node c; the new node is on sea level when the segment is
+ * the sea-level curve or c evaluates to it. Returns -1 when out of memory. */
+static int split_segment(const fm_fit_surface *s, dom_loop *lp, size_t i, double t,
+                         const double c[2], double level)
+{
+    dom_seg s1 = lp->seg[i], s2 = lp->seg[i];
+    if (s1.kind == SEG_TRIM) {
+        double tm = s1.ta + t * (s1.tb - s1.ta);
+        s1.tb = tm;
+        s2.ta = tm;
+    }
+    double C[3];
+    eval3(s, c, C);
+    int lev = s1.kind == SEG_LEVEL || fabs(C[2] - level) < 1e-6;
+    lp->seg[i] = s1;
+    return loop_insert(lp, i + 1, c, lev, &s2);
+}
+
 /* Puts uv on segment h of the loops: moves the nearer end node there when
  * it is within tol (and free), else inserts a node. at receives the node's
  * final uv. */
@@ -164,7 +183,6 @@ static int put_on_loop(const fm_fit_surface *s, remesh_domain *dom, const seg_hi
         at[1] = lp->uv[2 * near + 1];
         return take(tk, at);
     }
-    dom_seg s1 = lp->seg[ia], s2 = lp->seg[ia];
     const double *a = lp->uv + 2 * ia, *b = lp->uv + 2 * ib;
     double q[2];
     if (move) {
@@ -174,16 +192,7 @@ static int put_on_loop(const fm_fit_surface *s, remesh_domain *dom, const seg_hi
         q[0] = a[0] + h->t * (b[0] - a[0]);
         q[1] = a[1] + h->t * (b[1] - a[1]);
     }
-    if (s1.kind == SEG_TRIM) {
-        double tm = s1.ta + h->t * (s1.tb - s1.ta);
-        s1.tb = tm;
-        s2.ta = tm;
-    }
-    double Q[3];
-    eval3(s, q, Q);
-    int lev = s1.kind == SEG_LEVEL || fabs(Q[2] - level) < 1e-6;
-    lp->seg[ia] = s1;
-    if (loop_insert(lp, ia + 1, q, lev, &s2))
+    if (split_segment(s, lp, ia, h->t, q, level))
         return -1;
     at[0] = q[0];
     at[1] = q[1];
@@ -230,18 +239,8 @@ static int reroute(const fm_fit_surface *s, remesh_domain *dom, const double *p,
                     if (pt_eq(lp->uv + 2 * k, c))
                         return 0; /* both are: a crossing we cannot mend */
             }
-            dom_seg s1 = lp->seg[i], s2 = lp->seg[i];
-            if (s1.kind == SEG_TRIM) {
-                double tm = s1.ta + t * (s1.tb - s1.ta);
-                s1.tb = tm;
-                s2.ta = tm;
-            }
-            double C[3];
-            eval3(s, c, C);
-            int lev = s1.kind == SEG_LEVEL || fabs(C[2] - level) < 1e-6;
             dom_seg s0 = lp->seg[i];
-            lp->seg[i] = s1;
-            if (loop_insert(lp, i + 1, c, lev, &s2))
+            if (split_segment(s, lp, i, t, c, level))
                 return -1;
             if (!movable(dom, l, i + 1, c)) {
                 /* the detour would cross the outline elsewhere: undo it */
@@ -296,18 +295,7 @@ static int first_crossing(const fm_fit_surface *s, remesh_domain *dom, const dou
     }
     if (!isfinite(best))
         return 1;
-    dom_loop *lp = &dom->loops[bl];
-    dom_seg s1 = lp->seg[bi], s2 = lp->seg[bi];
-    if (s1.kind == SEG_TRIM) {
-        double tm = s1.ta + bt * (s1.tb - s1.ta);
-        s1.tb = tm;
-        s2.ta = tm;
-    }
-    double X[3];
-    eval3(s, bx, X);
-    int lev = s1.kind == SEG_LEVEL || fabs(X[2] - level) < 1e-6;
-    lp->seg[bi] = s1;
-    if (loop_insert(lp, bi + 1, bx, lev, &s2))
+    if (split_segment(s, &dom->loops[bl], bi, bt, bx, level))
         return -1;
     if (!is_taken(tk, bx) && take(tk, bx))
         return -1;
