@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "fm_remesh.h"
+#include "fm_sort.h"
 
 fm_status fm_remesh_model(const fm_model *m, const fm_remesh_options *opt, fm_mesh **out,
                           fm_remesh_stats *stats, fm_error *err)
@@ -24,17 +25,35 @@ static int append_ids(int64_t **all, size_t *nall, const int64_t *ids, size_t n)
     return 0;
 }
 
-typedef struct id_at {
-    int64_t id;
-    size_t v;
-} id_at;
-
-static int by_id_then_vertex(const void *a, const void *b)
+/* The vertices that carry a shared node id, by (id, vertex): NULL when
+ * out of memory (*n = 0 and a non-NULL empty array when there are none). */
+static fm_keyed *sorted_ids(const int64_t *ids, size_t nv, size_t *n)
 {
-    const id_at *x = a, *y = b;
-    if (x->id != y->id)
-        return x->id < y->id ? -1 : 1;
-    return (x->v > y->v) - (x->v < y->v);
+    *n = 0;
+    fm_keyed *k = malloc((nv + 1) * sizeof *k);
+    if (!k)
+        return NULL;
+    for (size_t v = 0; ids && v < nv; v++)
+        if (ids[v] >= 0)
+            k[(*n)++] = (fm_keyed){(uint64_t)ids[v], v};
+    if (fm_sort_keyed(k, *n)) {
+        free(k);
+        return NULL;
+    }
+    return k;
+}
+
+static int has_id(const fm_keyed *k, size_t n, int64_t id)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (k[mid].key < (uint64_t)id)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < n && k[lo].key == (uint64_t)id;
 }
 
 /* Sheets of one fault that end at the same triple point (or share a
@@ -44,29 +63,20 @@ static int by_id_then_vertex(const void *a, const void *b)
  * is unchanged. */
 static int weld_shared(fm_mesh *all, int64_t *ids)
 {
-    size_t nv = fm_mesh_nvertices(all), n = 0;
-    for (size_t v = 0; v < nv; v++)
-        n += ids[v] >= 0;
-    if (n < 2)
-        return 0;
-    id_at *at = malloc(n * sizeof *at);
-    size_t *map = malloc(nv * sizeof *map);
+    size_t nv = fm_mesh_nvertices(all), n;
+    fm_keyed *at = sorted_ids(ids, nv, &n);
+    size_t *map = malloc((nv + 1) * sizeof *map);
     if (!at || !map) {
         free(at);
         free(map);
         return -1;
     }
-    n = 0;
-    for (size_t v = 0; v < nv; v++) {
+    for (size_t v = 0; v < nv; v++)
         map[v] = v;
-        if (ids[v] >= 0)
-            at[n++] = (id_at){ids[v], v};
-    }
-    qsort(at, n, sizeof *at, by_id_then_vertex);
     size_t dup = 0;
     for (size_t k = 1; k < n; k++)
-        if (at[k].id == at[k - 1].id) {
-            map[at[k].v] = map[at[k - 1].v];
+        if (at[k].key == at[k - 1].key) {
+            map[at[k].index] = map[at[k - 1].index];
             dup++;
         }
     free(at);
@@ -92,12 +102,6 @@ static int weld_shared(fm_mesh *all, int64_t *ids)
     return 0;
 }
 
-static int by_id(const void *a, const void *b)
-{
-    int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
-    return (x > y) - (x < y);
-}
-
 /* A curve the sheet took but whose faces were all left out (it lies in a
  * dropped flap or beyond the outline the sheet kept) has no edge in the
  * mesh: it is reported as left out like one that did not fit, so that the
@@ -107,19 +111,15 @@ static int mark_absent(const fm_remesh_sheet_curves *sc, const int64_t *sid, siz
 {
     if (!sc->dropped || !sc->n)
         return 0;
-    int64_t *have = malloc((nv + 1) * sizeof *have);
+    size_t nh;
+    fm_keyed *have = sorted_ids(sid, nv, &nh);
     if (!have)
         return -1;
-    size_t nh = 0;
-    for (size_t v = 0; v < nv; v++)
-        if (sid && sid[v] >= 0)
-            have[nh++] = sid[v];
-    qsort(have, nh, sizeof *have, by_id);
     for (size_t k = 0; k < sc->n; k++) {
         const fm_remesh_curve *c = &sc->curves[k];
         size_t found = 0;
-        for (size_t i = 0; i < c->n && found < 2; i++)
-            found += c->node && bsearch(&c->node[i], have, nh, sizeof *have, by_id) != NULL;
+        for (size_t i = 0; c->node && i < c->n && found < 2; i++)
+            found += has_id(have, nh, c->node[i]);
         if (found < 2)
             sc->dropped[k] = 1;
     }
