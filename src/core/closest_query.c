@@ -248,6 +248,21 @@ static void prefetch_below(const fm_closest_tree *t, const closest_node *c)
         PREFETCH(&t->nodes[c->first]);
 }
 
+/* p in the tree's frame (coordinates relative to its centre, where the
+ * boxes and triangles are stored): 0 when there is nothing to search (no
+ * tree, a negative bound, a non-finite point). */
+static int query_point(const fm_closest_tree *t, const double p[3], double max_dist, double q[3])
+{
+    if (!t || t->nnode == 0 || !p || !(max_dist >= 0))
+        return 0;
+    for (int a = 0; a < 3; a++) {
+        q[a] = p[a] - t->centre[a];
+        if (!isfinite(q[a]))
+            return 0;
+    }
+    return 1;
+}
+
 typedef struct pending {
     int32_t node;
     double d2;
@@ -258,14 +273,9 @@ typedef struct pending {
 int fm_closest_query(const fm_closest_tree *t, const double p[3], double max_dist,
                      fm_closest_hit *hit)
 {
-    if (!t || t->nnode == 0 || !p || !(max_dist >= 0))
-        return 0;
     double q[3];
-    for (int a = 0; a < 3; a++) {
-        q[a] = p[a] - t->centre[a];
-        if (!isfinite(q[a]))
-            return 0;
-    }
+    if (!query_point(t, p, max_dist, q))
+        return 0;
     double best = max_dist * max_dist, best_foot[3] = {0}, best_bary[3] = {0};
     int32_t best_tri = -1;
     pending stack[CLOSEST_STACK];
@@ -345,14 +355,9 @@ static double slot_dist2(const fm_closest_tree *t, size_t s, const double q[3])
 int fm_closest_within(const fm_closest_tree *t, const double p[3], double max_dist,
                       int32_t *hint)
 {
-    if (!t || t->nnode == 0 || !p || !(max_dist >= 0))
-        return 0;
     double q[3];
-    for (int a = 0; a < 3; a++) {
-        q[a] = p[a] - t->centre[a];
-        if (!isfinite(q[a]))
-            return 0;
-    }
+    if (!query_point(t, p, max_dist, q))
+        return 0;
     double best = max_dist * max_dist;
     if (hint && *hint >= 0 && (size_t)*hint < t->ntri && slot_dist2(t, (size_t)*hint, q) <= best)
         return 1;
