@@ -684,12 +684,13 @@ static void json_fault(fm_json *j, const fault_result *r, double H)
 }
 
 /* Junction i as meshed: the plan's type, unless the mesher could not fit
- * its curve into one of its sheets (*why then says which). */
+ * its curve into one of its sheets (*why then says so and *which names
+ * the fault; else *which is SIZE_MAX). */
 static fm_junction_type junction_outcome(const run_state *rs, const fm_connect_junction *jn,
                                          const char **why, size_t *which)
 {
     *why = jn->reason;
-    *which = 0;
+    *which = SIZE_MAX;
     if (jn->curve < 0)
         return jn->type;
     for (int s = 0; s < 2; s++) {
@@ -741,17 +742,39 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
             fm_json_int(j, (int64_t)jn->sheet[s]);
         fm_json_end_array(j);
         fm_json_kv_string(j, "type", fm_junction_type_name(t));
+        /* how each sheet meets the curve, whatever was made of it: tells a
+         * reader which fault was meant to end on the other (pairs that never
+         * meet have no curve and no roles) */
+        if (jn->length > 0) {
+            fm_json_key(j, "roles");
+            fm_json_begin_array(j);
+            for (int s = 0; s < 2; s++)
+                fm_json_string(j, jn->role[s] == FM_CONNECT_THROUGH     ? "through"
+                                  : jn->role[s] == FM_CONNECT_OVERSHOOT ? "overshoot"
+                                                                        : "gap");
+            fm_json_end_array(j);
+        }
+        /* a sheet stopped short of the other lost its flap past it too */
+        int cleared = jn->clearance > 0 && which == SIZE_MAX;
         fm_json_kv_number(j, "gap_closed_m", t == FM_JUNCTION_UNJOINED ? 0 : jn->gap);
-        fm_json_kv_number(j, "overshoot_trimmed_m", t == FM_JUNCTION_UNJOINED ? 0 : jn->overshoot);
+        fm_json_kv_number(j, "overshoot_trimmed_m",
+                          t != FM_JUNCTION_UNJOINED ? jn->overshoot
+                          : cleared                 ? jn->overshoot + jn->clearance
+                                                    : 0);
         fm_json_kv_number(j, "curve_length_m", jn->length);
         fm_json_kv_number(j, "min_crossing_angle_deg", jn->min_angle);
         if (jn->distance > 0)
             fm_json_kv_number(j, "surface_distance_m", jn->distance);
+        if (cleared) {
+            fm_json_kv_number(j, "gap_left_m", jn->clearance);
+            fm_json_kv_string(j, "stops_short",
+                              rs->res[rs->plan_res[jn->fault[jn->short_side]]].name);
+        }
         if (why) {
             char msg[600];
-            if (jn->curve >= 0)
+            if (which != SIZE_MAX)
                 snprintf(msg, sizeof msg, "%s (%s)", why, rs->res[rs->plan_res[which]].name);
-            fm_json_kv_string(j, "reason", jn->curve >= 0 ? msg : why);
+            fm_json_kv_string(j, "reason", which != SIZE_MAX ? msg : why);
         }
         fm_json_end_object(j);
     }

@@ -309,7 +309,13 @@ typedef struct fm_connect_junction {
     double length;             /* of the shared curve, m (unjoined: of the raw curve) */
     double min_angle;          /* smallest crossing angle of the surfaces along it, degrees */
     double distance;           /* smallest distance of the extended surfaces, m (0: they meet) */
-    long curve;                /* shared curve index, -1 when unjoined */
+    long curve;                /* shared curve index; -1 when unjoined, but for an unjoined
+                                  junction one sheet stops short at (clearance > 0): its
+                                  curve, on that sheet only */
+    double clearance;          /* unjoined: the gap (m) left where sheet short_side was
+                                  trimmed to stop short of the other instead of running
+                                  through it; 0: none */
+    int short_side;            /* 0 or 1, when clearance > 0 */
     const char *reason;        /* unjoined: why (static text); NULL otherwise */
 } fm_connect_junction;
 

@@ -216,7 +216,7 @@ static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, siz
     size_t triples = 0;
     if (pl_triple_junctions(p->junction, C, nj, models, H, o->cut ? &o->sea_level : NULL,
                             &triples) ||
-        pl_resolve_conflicts(p->junction, C, nj, H)) {
+        pl_resolve_conflicts(p->junction, C, nj, models, H, o->cut ? &o->sea_level : NULL)) {
         for (size_t i = 0; i < nj; i++)
             pl_curve_free(&C[i]);
         free(C);
@@ -322,7 +322,8 @@ static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, siz
         if (j->curve < 0)
             continue;
         for (int s = 0; s < 2; s++)
-            p->sheet_start[p->sheet_base[j->fault[s]] + j->sheet[s] + 1]++;
+            if (!p->curve[j->curve].c.off[s])
+                p->sheet_start[p->sheet_base[j->fault[s]] + j->sheet[s] + 1]++;
     }
     for (size_t g = 0; g < ns; g++)
         p->sheet_start[g + 1] += p->sheet_start[g];
@@ -335,6 +336,8 @@ static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, siz
             continue;
         const plan_curve *pc = &p->curve[j->curve];
         for (int s = 0; s < 2; s++) {
+            if (pc->c.off[s])
+                continue;
             size_t g = p->sheet_base[j->fault[s]] + j->sheet[s];
             fm_connect_shared *sh = &p->shared[p->sheet_start[g] + fill[g]++];
             sh->curve = (size_t)j->curve;

@@ -189,7 +189,7 @@ static int conflicts(const fm_connect_junction *J, const cand *cs, const size_t 
             continue;
         for (int s = 0; s < 2 && (flag || !bad); s++)
             for (int t = 0; t < 2 && (flag || !bad); t++)
-                if (same_sheet(ji, s, jo, t)) {
+                if (!c->c->off[s] && !o->c->off[t] && same_sheet(ji, s, jo, t)) {
                     int r = curves_conflict(c->c, s, o->c, t, tol, flag);
                     if (r < 0)
                         return -1;
@@ -260,7 +260,13 @@ static int cut_short(const fm_connect_junction *J, const cand *cs, const size_t 
     return r < 0 ? -1 : !r;
 }
 
-int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj, double H)
+/* The gap a sheet trimmed short of another keeps: clear of the other's
+ * mesh, whose triangles stray from its surface by their sag (metres to
+ * tens of metres at these sizes), and small beside the join distance. */
+#define CLEAR_GAP 0.1
+
+int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj,
+                         const fm_model *const *models, double H, const double *level)
 {
     size_t nc = 0;
     for (size_t i = 0; i < nj; i++)
@@ -299,14 +305,49 @@ int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj, double 
             if (cut < 0)
                 bad = -1;
         }
-        if (bad < 0) {
-            st = -1;
-        } else if (bad) {
+        if (bad > 0) {
             fm_connect_junction *j = &J[cs[i].junction];
             j->type = FM_JUNCTION_UNJOINED;
             j->reason = "crosses or nears another junction curve on one of its sheets away "
                         "from any point of the three faults found on both";
+            /* unjoined, the sheets would still run through each other:
+             * one that was to end there stops short instead, the one that
+             * overshoots first (it is the one that runs into the other) */
+            pl_curve *c = cs[i].c;
+            int first = c->end[1] && j->role[1] == FM_CONNECT_OVERSHOOT &&
+                        j->role[0] != FM_CONNECT_OVERSHOOT;
+            for (int q = 0; q < 2 && st == 0; q++) {
+                int s = q ? !first : first;
+                pl_curve one;
+                int r = pl_clear_curve(j, c, s, models, H, CLEAR_GAP * H, level, &one);
+                if (r > 0) {
+                    pl_curve raw = *c;
+                    *c = one;
+                    curve_box(c, cs[i].lo, cs[i].hi);
+                    r = conflicts(J, cs, acc, na, &cs[i], tol, NULL);
+                    if (r == 0) {
+                        pl_curve_free(&raw);
+                        j->clearance = CLEAR_GAP * H;
+                        j->short_side = s;
+                        j->reason = "crosses or nears another junction curve on one of its "
+                                    "sheets away from any point of the three faults found on "
+                                    "both; one stops short of the other instead";
+                        break;
+                    }
+                    *c = raw;
+                    pl_curve_free(&one);
+                    curve_box(c, cs[i].lo, cs[i].hi);
+                }
+                if (r < 0)
+                    st = -1;
+            }
+            if (j->clearance > 0) {
+                acc[na++] = i;
+                continue;
+            }
             pl_curve_free(cs[i].c);
+        } else if (bad < 0) {
+            st = -1;
         } else {
             acc[na++] = i;
         }

@@ -37,6 +37,8 @@ typedef struct pl_curve {
     double *uv[2];
     int64_t *key;     /* per node: a point shared with other curves (-1: none); NULL: none */
     int end[2], keep_left[2];
+    unsigned char off[2]; /* 1: not given to that side's sheet (a curve only the
+                             other sheet ends at, short of this one: plan_clear.c) */
 } pl_curve;
 
 void pl_curve_free(pl_curve *c);
@@ -69,7 +71,17 @@ int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
 /* Accepts curves longest first; one that crosses or nears an accepted
  * curve on a shared sheet is cut to its longest clear stretch, or left
  * unjoined with a reason (plan_conflict.c). -1: out of memory. */
-int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj, double H);
+int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj,
+                         const fm_model *const *models, double H, const double *level);
+
+/* Curve c of junction j, in conflict, as a curve of sheet s alone (one
+ * that was to end at it): the sheet ends `gap` short of the other surface,
+ * over the stretch where both sheets are; with level, no node rises above
+ * it and a node on it stays there (plan_clear.c). 1: made into *out (c
+ * untouched); 0: not (*out empty); -1: out of memory. */
+int pl_clear_curve(const fm_connect_junction *j, const pl_curve *c, int s,
+                   const fm_model *const *models, double H, double gap, const double *level,
+                   pl_curve *out);
 
 /* A sheet as the plan's pairs share it: sampled once, its outline built
  * once (st and err: how that went; the outline is needed, and a failure

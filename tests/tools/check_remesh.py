@@ -72,7 +72,8 @@ Measured per fault and over all faults (3D, from the VTU):
                   have (a wrinkled original can have 7 % more area than any
                   smooth surface over the same extent). A fault whose
                   overshoot past a junction was trimmed (report.json) is
-                  excepted.
+                  excepted, as is one the report says stops short of
+                  another (an unjoined junction's "stops_short").
 --criteria LIST (comma-separated names above, or "all") asserts those;
 the others are printed only. Without --original the distance and
 coverage figures are not measured.
@@ -874,6 +875,10 @@ def main():
     gap_allow, trimmed = {}, set()
     for jn in report.get("connect", {}).get("junctions", []):
         if jn.get("type") == "unjoined":
+            # left unjoined, but one fault stopped short of the other
+            # rather than run through it: that one lost its flap
+            if jn.get("stops_short") and jn.get("overshoot_trimmed_m", 0) > 0:
+                trimmed.add(jn["stops_short"])
             continue
         if jn.get("gap_closed_m", 0) > 0:
             for n in jn["faults"]:

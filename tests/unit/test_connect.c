@@ -1,7 +1,8 @@
 /* Neighbours and intersection curves (src/connect): fitted planes crossing
  * at 90 and 10 degrees against the analytic line, the synthetic system's
  * T-junction gap and overshoot, three planes whose curves meet at a small
- * angle, a curve cut short of another it nears, near-duplicate faults,
+ * angle, a curve cut short of another it nears, a fault stopped short of
+ * another where its curve cannot be joined, near-duplicate faults,
  * and two crossing CFM faults. */
 #include <math.h>
 #include <stdio.h>
@@ -525,6 +526,90 @@ out:
         fm_model_destroy(models[k]);
 }
 
+/* The vertical plane x = X0 + off, y - Y0 in [t0, t1], z in [zbot, 0]. */
+static fm_mesh *plane_x(double off, double t0, double t1, double zbot, double h)
+{
+    fm_mesh *m = fm_mesh_create();
+    int ns = (int)ceil((t1 - t0) / h), nz = (int)ceil(-zbot / h);
+    for (int j = 0; j <= nz; j++)
+        for (int i = 0; i <= ns; i++)
+            fm_mesh_add_vertex(m, X0 + off, Y0 + t0 + (t1 - t0) * i / ns, zbot * j / nz);
+    for (int j = 0; j < nz; j++)
+        for (int i = 0; i < ns; i++) {
+            int32_t a = j * (ns + 1) + i, b = a + 1, d = a + ns + 1, e = d + 1;
+            fm_mesh_add_triangle(m, a, b, e, 0);
+            fm_mesh_add_triangle(m, a, e, d, 0);
+        }
+    return m;
+}
+
+/* Two parallel faults 200 m apart that both end on a third, one from
+ * each side, each overshooting it by 300 m: their T-curves on the third
+ * run side by side closer than a quarter size, so only one can be
+ * joined. The other is not left running through the third: it stops
+ * short of it, by a tenth of the size, on its own sheet alone. */
+static void test_stop_short(void)
+{
+    fm_mesh *meshes[3] = {plane_part(-10000, 10000, 0, -10000, 500),
+                          plane_x(0, -6000, 300, -10000, 500),
+                          plane_x(200, -300, 6000, -10000, 500)};
+    fm_model *models[3];
+    for (int k = 0; k < 3; k++) {
+        models[k] = fit_mesh(k == 0 ? "through" : k == 1 ? "south" : "north", meshes[k]);
+        fm_mesh_destroy(meshes[k]);
+        CHECK(models[k] != NULL);
+    }
+    if (!models[0] || !models[1] || !models[2])
+        goto out;
+    fm_connect_plan_options po;
+    fm_connect_plan_options_default(&po);
+    fm_connect_plan *plan = NULL;
+    fm_error err;
+    CHECK(fm_connect_plan_build((const fm_model *const *)models, 3, &po, &plan, &err) == FM_OK);
+    if (!plan)
+        goto out;
+    size_t made = 0, cleared = 0, short_fault = 0;
+    long short_curve = -1;
+    for (size_t i = 0; i < fm_connect_plan_njunctions(plan); i++) {
+        const fm_connect_junction *j = fm_connect_plan_junction(plan, i);
+        printf("junction %zu: %s %zu-%zu length %.0f clearance %.0f%s%s\n", i,
+               fm_junction_type_name(j->type), j->fault[0], j->fault[1], j->length,
+               j->clearance, j->reason ? ": " : "", j->reason ? j->reason : "");
+        if (j->type == FM_JUNCTION_T && j->fault[0] == 0)
+            made++;
+        if (j->type == FM_JUNCTION_UNJOINED && j->clearance > 0) {
+            cleared++;
+            CHECK(j->fault[0] == 0);
+            CHECK(j->curve >= 0);
+            CHECK_NEAR(j->clearance, 0.1 * po.size, 1e-9);
+            short_fault = j->fault[j->short_side];
+            short_curve = j->curve;
+        }
+    }
+    CHECK_EQ(made, 1);
+    CHECK_EQ(cleared, 1);
+    CHECK(short_fault == 1 || short_fault == 2);
+    /* the through fault holds the joined curve only; the one stopped
+     * short holds its own, ending there, every node clear of the other */
+    const fm_connect_shared *sh = NULL;
+    CHECK_EQ(fm_connect_plan_sheet(plan, 0, 0, &sh), 1);
+    CHECK(sh && (long)sh[0].curve != short_curve);
+    size_t n = fm_connect_plan_sheet(plan, short_fault, 0, &sh);
+    CHECK_EQ(n, 1);
+    const double *X = fm_connect_plan_nodes(plan);
+    double closest = INFINITY;
+    for (size_t k = 0; sh && n == 1 && k < sh[0].n; k++)
+        closest = fmin(closest, fabs(X[3 * sh[0].node[k] + 1] - Y0));
+    printf("stopped short: %zu nodes, closest %.1f m from the through fault\n",
+           sh && n == 1 ? sh[0].n : 0, closest);
+    CHECK(sh && n == 1 && sh[0].end && (long)sh[0].curve == short_curve);
+    CHECK(closest > 0.098 * po.size && closest < 0.102 * po.size);
+    fm_connect_plan_destroy(plan);
+out:
+    for (int k = 0; k < 3; k++)
+        fm_model_destroy(models[k]);
+}
+
 static fm_model *fit_file(const char *path)
 {
     fm_tsurf **objs = NULL;
@@ -776,6 +861,7 @@ int main(void)
         FM_CASE(test_synth_plan),
         FM_CASE(test_triple_small_angle),
         FM_CASE(test_cut_short),
+        FM_CASE(test_stop_short),
         FM_CASE(test_duplicates),
         FM_CASE(test_threads),
         FM_CASE(test_cfm_santa_monica),
