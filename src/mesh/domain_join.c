@@ -307,6 +307,7 @@ static int first_crossing(const fm_fit_surface *s, remesh_domain *dom, const dou
 typedef struct connector {
     double a[2], b[2]; /* curve end, loop node */
     int64_t node;      /* the curve end's shared node */
+    size_t curve;      /* the curve it ends */
     int level;
 } connector;
 
@@ -432,6 +433,36 @@ static int32_t reachable_node(const fm_fit_surface *s, const flat_domain *fd, si
         }
     }
     return via >= 0 ? via : best;
+}
+
+/* With no loop node in reach, a curve end blocked by another curve (a
+ * T-curve that stops just short of one that crosses the sheet) is closed
+ * off by that curve: the connector goes to the nearest node of another
+ * curve (points nl to np, none of own's) it reaches uncrossed, within
+ * reach, or -1. */
+static int32_t reachable_curve_node(const fm_fit_surface *s, const flat_domain *fd, size_t nl,
+                                    size_t ns, size_t np, int32_t a, double reach,
+                                    const fm_remesh_curve *own)
+{
+    double A[3];
+    eval3(s, fd->uv + 2 * a, A);
+    int32_t best = -1;
+    double bd = reach;
+    for (size_t k = nl; k < np; k++) {
+        int mine = 0;
+        for (size_t i = 0; i < own->n && !mine; i++)
+            mine = fd->shared[k] == own->node[i];
+        if (mine || (int32_t)k == a)
+            continue;
+        double K[3];
+        eval3(s, fd->uv + 2 * k, K);
+        double d = dist3(A, K);
+        if (d < bd && !chord_blocked(fd, ns, a, (int32_t)k)) {
+            bd = d;
+            best = (int32_t)k;
+        }
+    }
+    return best;
 }
 
 /* 3D distance from P to the curve's polyline between nodes i0 and i1. */
@@ -573,6 +604,7 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
                 memcpy(k->a, uv, sizeof k->a);
                 memcpy(k->b, at, sizeof k->b);
                 k->node = cv[c].node[e ? cv[c].n - 1 : 0];
+                k->curve = c;
                 double B[3];
                 eval3(s, at, B);
                 k->level = fabs(P[2] - level) < 1e-6 && fabs(B[2] - level) < 1e-6;
@@ -707,11 +739,17 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
             eval3(s, fd->uv + 2 * a, A);
             eval3(s, fd->uv + 2 * b, B);
             int32_t c = reachable_node(s, fd, nl, ns, np, a, dist3(A, B) + h, 0.25 * h);
+            if (c < 0)
+                c = reachable_curve_node(s, fd, nl, ns, np, a, dist3(A, B) + h,
+                                         &cv[cn[k].curve]);
             if (c >= 0) {
                 b = c;
                 lev = fd->level[a] && fd->level[b];
             }
         }
+        /* the loop or a curve may join the two already */
+        if (has_segment(fd, ns, a, b))
+            continue;
         fd->seg[2 * ns] = a;
         fd->seg[2 * ns + 1] = b;
         memset(&fd->segs[ns], 0, sizeof fd->segs[ns]);
