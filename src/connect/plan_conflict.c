@@ -325,6 +325,11 @@ int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj,
                     *c = one;
                     curve_box(c, cs[i].lo, cs[i].hi);
                     r = conflicts(J, cs, acc, na, &cs[i], tol, NULL);
+                    /* one that nears a curve of its own sheet keeps its
+                     * longest clear stretch: the mesher closes the cut
+                     * off through that curve */
+                    if (r > 0)
+                        r = cut_short(J, cs, acc, na, &cs[i], 2 * tol, H) > 0 ? 0 : 1;
                     if (r == 0) {
                         pl_curve_free(&raw);
                         j->clearance = CLEAR_GAP * H;

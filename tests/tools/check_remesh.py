@@ -918,11 +918,14 @@ def main():
                     % (100 * share30, len(tris), minang.min() if len(minang) else 0),
                     ">= 99.5%", share30 >= 0.995))
     njunc = int(at_junction.sum())
-    njunc = int(at_junction.sum())
     unforced = int(below20.sum() - forced.sum()) - njunc
+    # where the ones neither at a corner nor at a junction are
+    loose = np.bincount(fid[below20 & ~forced & ~at_junction], minlength=nf) if len(tris) else np.zeros(nf, int)
+    where = ", ".join("%s %d" % (names[i], loose[i]) for i in np.argsort(-loose, kind="stable")[:6] if loose[i] > 0)
     results.append(("angle-20", "%d under 20 deg, %d at corners < 40 deg (%d sharp corners), %d at "
-                    "junction curves (%.3f%% of triangles)"
-                    % (below20.sum(), forced.sum(), sharp_f.sum(), njunc, 100.0 * njunc / nt),
+                    "junction curves (%.3f%% of triangles), %d elsewhere%s"
+                    % (below20.sum(), forced.sum(), sharp_f.sum(), njunc, 100.0 * njunc / nt, unforced,
+                       " (" + where + ")" if where else ""),
                     "all at sharp corners (or <= 0.1% at junctions)",
                     unforced == 0 and njunc <= 0.001 * nt))
     shareb = inband.sum() / max(len(elen), 1)
