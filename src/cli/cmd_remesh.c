@@ -51,7 +51,19 @@ typedef struct fault_result {
     char *join_error;           /* why, for the first such sheet */
     size_t *dropped_curves;     /* plan curves left out of its meshes */
     size_t ndropped;
+    size_t *through_curves;     /* plan curves it was to end at but runs on past */
+    size_t nthrough;
 } fault_result;
+
+static int push_curve(size_t **list, size_t *n, size_t curve)
+{
+    size_t *g = realloc(*list, (*n + 1) * sizeof *g);
+    if (!g)
+        return -1;
+    *list = g;
+    g[(*n)++] = curve;
+    return 0;
+}
 
 static char *dup_str(const char *s)
 {
@@ -228,14 +240,10 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
             r->join_error = dup_str(jerr[i].message);
     free(jerr);
     /* the plan curves this fault could not take, for the junction table */
-    for (size_t k = 0; k < ntotal; k++)
-        if (dropped[k]) {
-            size_t *g = realloc(r->dropped_curves, (r->ndropped + 1) * sizeof *g);
-            if (!g)
-                break;
-            r->dropped_curves = g;
-            r->dropped_curves[r->ndropped++] = curve_of[k];
-        }
+    for (size_t k = 0; k < ntotal && st == FM_OK; k++)
+        if ((dropped[k] == 1 && push_curve(&r->dropped_curves, &r->ndropped, curve_of[k])) ||
+            (dropped[k] == 2 && push_curve(&r->through_curves, &r->nthrough, curve_of[k])))
+            st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
     free(dropped);
     free(curve_of);
     free(per);
@@ -770,6 +778,21 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
             fm_json_kv_string(j, "stops_short",
                               rs->res[rs->plan_res[jn->fault[jn->short_side]]].name);
         }
+        /* faults that were to end at the curve but run on past it */
+        int kept[2] = {0, 0};
+        for (int s = 0; s < 2 && t != FM_JUNCTION_UNJOINED; s++) {
+            const fault_result *fr = &rs->res[rs->plan_res[jn->fault[s]]];
+            for (size_t k = 0; k < fr->nthrough; k++)
+                kept[s] |= fr->through_curves[k] == (size_t)jn->curve;
+        }
+        if (kept[0] || kept[1]) {
+            fm_json_key(j, "flap_kept");
+            fm_json_begin_array(j);
+            for (int s = 0; s < 2; s++)
+                if (kept[s])
+                    fm_json_string(j, rs->res[rs->plan_res[jn->fault[s]]].name);
+            fm_json_end_array(j);
+        }
         if (why) {
             char msg[600];
             if (which != SIZE_MAX)
@@ -1010,6 +1033,7 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         free(rs.res[i].join_failed);
         free(rs.res[i].join_error);
         free(rs.res[i].dropped_curves);
+        free(rs.res[i].through_curves);
     }
     free(rs.res);
     free(rs.names);

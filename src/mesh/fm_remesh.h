@@ -134,15 +134,20 @@ fm_status fm_remesh_model(const fm_model *m, const fm_remesh_options *opt, fm_me
 typedef struct fm_remesh_sheet_curves {
     const fm_remesh_curve *curves;
     size_t n;
-    unsigned char *dropped; /* per curve (may be NULL): set to 1 when the curve was left out */
+    unsigned char *dropped; /* per curve (may be NULL): set to 1 when the curve was left
+                               out, 2 when the sheet was to end at it but could take it
+                               only as an interior curve (it runs on past it: the flap
+                               beyond stays) */
 } fm_remesh_sheet_curves;
 
 /* fm_remesh_model with shared curves: curves[i] for sheet i (curves may be
  * NULL). node_out (may be NULL) receives per vertex of the mesh the shared
  * node id or -1. A sheet whose curves do not fit its domain together
  * (fm_remesh_sheet_joined fails other than for memory) is meshed with as
- * many as fit, taken one at a time, most nodes first; curves[i].dropped
- * marks the others, join_failed[i] (may be NULL) is set to 1 and
+ * many as fit, taken one at a time, most nodes first (one it was to end
+ * at that does not fit so is tried as an interior curve: the two faults
+ * still share its nodes); curves[i].dropped marks the others,
+ * join_failed[i] (may be NULL) is set to 1 and
  * join_errors[i] (may be NULL) given the first failure. */
 fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves *curves,
                                  const fm_remesh_options *opt, fm_mesh **out, int64_t **node_out,

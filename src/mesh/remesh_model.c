@@ -121,7 +121,7 @@ static int mark_absent(const fm_remesh_sheet_curves *sc, const int64_t *sid, siz
         for (size_t i = 0; c->node && i < c->n && found < 2; i++)
             found += has_id(have, nh, c->node[i]);
         if (found < 2)
-            sc->dropped[k] = 1;
+            sc->dropped[k] = 1; /* taken through or not, it is not there */
     }
     free(have);
     return 0;
@@ -165,6 +165,17 @@ static fm_status fit_some(const fm_model *m, size_t i, const fm_trim_loop **loop
         fm_error e2;
         st = fm_remesh_sheet_joined(fm_model_surface(m, i), loops, nl, use, nu + 1, opt,
                                     (int32_t)i, &mm, NULL, &id, &ss, &e2);
+        int through = 0;
+        if (st != FM_OK && st != FM_ERR_NOMEM && use[nu].end) {
+            /* A flap it cannot cut off (its end does not reach the
+             * outline, or what lies beyond it looks like most of the
+             * sheet) is better kept than the junction lost: sharing the
+             * curve's nodes, the two faults still do not cross there. */
+            use[nu].end = 0;
+            through = 1;
+            st = fm_remesh_sheet_joined(fm_model_surface(m, i), loops, nl, use, nu + 1, opt,
+                                        (int32_t)i, &mm, NULL, &id, &ss, &e2);
+        }
         if (st == FM_OK) {
             fm_mesh_destroy(best);
             free(best_id);
@@ -173,7 +184,7 @@ static fm_status fit_some(const fm_model *m, size_t i, const fm_trim_loop **loop
             best_st = ss;
             nu++;
             if (sc->dropped)
-                sc->dropped[order[k]] = 0;
+                sc->dropped[order[k]] = (unsigned char)(through ? 2 : 0);
         } else if (st == FM_ERR_NOMEM) {
             *err = e2;
         }
