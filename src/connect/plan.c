@@ -216,7 +216,7 @@ static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, siz
     size_t triples = 0;
     if (pl_triple_junctions(p->junction, C, nj, models, H, o->cut ? &o->sea_level : NULL,
                             &triples) ||
-        pl_resolve_conflicts(p->junction, C, nj, H)) {
+        pl_resolve_conflicts(p->junction, C, nj, H, o->distance)) {
         for (size_t i = 0; i < nj; i++)
             pl_curve_free(&C[i]);
         free(C);

@@ -67,9 +67,10 @@ int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
                         size_t *made);
 
 /* Accepts curves longest first; one that crosses or nears an accepted
- * curve on a shared sheet is cut to its longest clear stretch, or left
- * unjoined with a reason (plan_conflict.c). -1: out of memory. */
-int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj, double H);
+ * curve on a shared sheet, or lies within D beyond one the sheet ends at,
+ * is cut to its longest clear stretch, or left unjoined with a reason
+ * (plan_conflict.c). -1: out of memory. */
+int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj, double H, double D);
 
 /* A sheet as the plan's pairs share it: sampled once, its outline built
  * once (st and err: how that went; the outline is needed, and a failure
