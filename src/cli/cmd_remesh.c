@@ -51,8 +51,11 @@ typedef struct fault_result {
     char *join_error;           /* why, for the first such sheet */
     size_t *dropped_curves;     /* plan curves left out of its meshes */
     size_t ndropped;
-    size_t *through_curves;     /* plan curves it was to end at but runs on past */
+    size_t *through_curves;     /* plan curves it was to end at but runs on past (as of
+                                   its last meshing) */
     size_t nthrough;
+    size_t *used_curves;        /* plan curves its meshes took (as of its last meshing) */
+    size_t nused;
 } fault_result;
 
 static int push_curve(size_t **list, size_t *n, size_t curve)
@@ -164,9 +167,9 @@ static fm_status fit_object(const remesh_cli *cli, const char *path, const fm_me
 /* The shared curves the plan gives each sheet of fault f, as the mesher
  * takes them; *store (free it) holds them. NULL when there are none. */
 static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f,
-                                           const fm_model *m, fm_remesh_curve **store,
-                                           unsigned char **dropped, size_t **curve_of,
-                                           size_t *ntotal)
+                                           const fm_model *m, const unsigned char *excluded,
+                                           fm_remesh_curve **store, unsigned char **dropped,
+                                           size_t **curve_of, size_t *ntotal)
 {
     *store = NULL;
     *dropped = NULL;
@@ -177,7 +180,9 @@ static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f
     size_t ns = fm_model_nsheets(m), total = 0;
     for (size_t i = 0; i < ns; i++) {
         const fm_connect_shared *sh;
-        total += fm_connect_plan_sheet(plan, f, i, &sh);
+        size_t n = fm_connect_plan_sheet(plan, f, i, &sh);
+        for (size_t c = 0; c < n; c++)
+            total += !(excluded && excluded[sh[c].curve]);
     }
     if (total == 0)
         return NULL;
@@ -200,14 +205,17 @@ static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f
         const fm_connect_shared *sh;
         size_t n = fm_connect_plan_sheet(plan, f, i, &sh);
         per[i].curves = cv + k;
-        per[i].n = n;
         per[i].dropped = *dropped + k;
-        for (size_t c = 0; c < n; c++, k++) {
+        for (size_t c = 0; c < n; c++) {
+            if (excluded && excluded[sh[c].curve])
+                continue;
+            per[i].n++;
             (*curve_of)[k] = sh[c].curve;
             cv[k].uv = sh[c].uv;
             cv[k].n = sh[c].n;
             cv[k].node = sh[c].node;
             cv[k].end = sh[c].end;
+            k++;
         }
     }
     *store = cv;
@@ -217,8 +225,9 @@ static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f
 /* Meshes a fitted fault into fault (tags = sheet; ids: shared node per
  * vertex) and checks it against the original. */
 static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_mesh *orig,
-                             const fm_model *model, const fm_connect_plan *plan, size_t f,
-                             fault_result *r, fm_mesh **fault, int64_t **ids, fm_error *err)
+                             const fm_model *model, const fm_connect_plan *plan,
+                             const unsigned char *excluded, size_t f, fault_result *r,
+                             fm_mesh **fault, int64_t **ids, fm_error *err)
 {
     double t1 = fm_clock_seconds();
     fm_remesh_options mo = cli->mesh;
@@ -226,7 +235,8 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
     fm_remesh_curve *store = NULL;
     unsigned char *dropped = NULL;
     size_t *curve_of = NULL, ntotal = 0;
-    fm_remesh_sheet_curves *per = plan_curves(plan, f, model, &store, &dropped, &curve_of, &ntotal);
+    fm_remesh_sheet_curves *per =
+        plan_curves(plan, f, model, excluded, &store, &dropped, &curve_of, &ntotal);
     r->sheets = fm_model_nsheets(model);
     r->join_failed = per ? calloc(r->sheets, 1) : NULL;
     fm_error *jerr = per ? calloc(r->sheets, sizeof *jerr) : NULL;
@@ -239,11 +249,27 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
         if (r->join_failed[i])
             r->join_error = dup_str(jerr[i].message);
     free(jerr);
-    /* the plan curves this fault could not take, for the junction table */
-    for (size_t k = 0; k < ntotal && st == FM_OK; k++)
-        if ((dropped[k] == 1 && push_curve(&r->dropped_curves, &r->ndropped, curve_of[k])) ||
-            (dropped[k] == 2 && push_curve(&r->through_curves, &r->nthrough, curve_of[k])))
+    /* the plan curves this fault could not take, for the junction table
+     * (kept over meshings: a curve dropped once is excluded after), those
+     * it took, which its partners must take too, and those of them it was
+     * to end at but runs on past */
+    free(r->used_curves);
+    r->used_curves = ntotal ? malloc(ntotal * sizeof *r->used_curves) : NULL;
+    r->nused = 0;
+    free(r->through_curves);
+    r->through_curves = NULL;
+    r->nthrough = 0;
+    for (size_t k = 0; k < ntotal && st == FM_OK; k++) {
+        if (dropped[k] == 1) {
+            if (push_curve(&r->dropped_curves, &r->ndropped, curve_of[k]))
+                st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+            continue;
+        }
+        if (dropped[k] == 2 && push_curve(&r->through_curves, &r->nthrough, curve_of[k]))
             st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        if (r->used_curves)
+            r->used_curves[r->nused++] = curve_of[k];
+    }
     free(dropped);
     free(curve_of);
     free(per);
@@ -352,6 +378,7 @@ typedef struct file_job {
     fm_model **model;   /* per object; NULL unless fitted */
     fm_mesh **mesh;     /* per object; NULL unless meshed */
     int64_t **ids;      /* per object: shared node per mesh vertex */
+    unsigned char *redo; /* per object: mesh it again (a curve it took was dropped) */
     size_t n;
 } file_job;
 
@@ -397,7 +424,26 @@ static void fit_file(const remesh_cli *cli, file_job *job)
     }
 }
 
-static void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan, file_job *job)
+/* A fault's meshing undone before it is meshed again (its dropped
+ * curves stay: the report names the fault that could not take them). */
+static void reset_result(fault_result *r)
+{
+    free(r->error);
+    free(r->join_failed);
+    free(r->join_error);
+    r->error = r->join_error = NULL;
+    r->join_failed = NULL;
+    r->status = NULL;
+    memset(&r->q, 0, sizeof r->q);
+    memset(&r->fid, 0, sizeof r->fid);
+    memset(&r->ms, 0, sizeof r->ms);
+}
+
+/* Meshes the job's faults; again: only those marked in job->redo, with
+ * the curves in excluded left out. Models stay for another round
+ * (release_job frees them). */
+static void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan,
+                      const unsigned char *excluded, file_job *job, int again)
 {
     if (!job->res || !job->model)
         return;
@@ -405,17 +451,28 @@ static void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan, file_j
     for (size_t o = 0; o < job->n; o++) {
         fault_result *r = &job->res[o];
         fm_model *model = job->model[o];
-        if (model && r->status) {
+        if (!again && model && r->status) {
             /* given up before meshing (a near-duplicate): its model goes here */
             fm_model_destroy(model);
             job->model[o] = NULL;
         }
-        if (!model || r->status)
+        if (!model || (again ? !(job->redo && job->redo[o]) : r->status != NULL))
             continue;
+        double t_mesh = r->t_mesh, t_check = r->t_check;
+        if (again) {
+            reset_result(r);
+            fm_mesh_destroy(job->mesh[o]);
+            job->mesh[o] = NULL;
+            free(job->ids[o]);
+            job->ids[o] = NULL;
+        }
         fm_mesh *fault = NULL;
         fm_error_clear(&err);
         fm_status st = mesh_object(cli, job->path, fm_tsurf_mesh(job->objs[o]), model, plan,
-                                   job->first + o, r, &fault, &job->ids[o], &err);
+                                   excluded, job->first + o, r, &fault, &job->ids[o], &err);
+        /* the time of every meshing counts */
+        r->t_mesh += t_mesh;
+        r->t_check += t_check;
         if (st == FM_OK && fm_mesh_ntriangles(fault) == 0) {
             r->status = "empty";
             r->error = dup_str("nothing of the fault lies below sea level");
@@ -428,18 +485,27 @@ static void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan, file_j
             r->error = dup_str(err.message);
             fm_mesh_destroy(fault);
         }
-        fm_model_destroy(model);
+    }
+}
+
+static void release_job(file_job *job)
+{
+    for (size_t o = 0; job->model && o < job->n; o++) {
+        fm_model_destroy(job->model[o]);
         job->model[o] = NULL;
     }
     fm_tsurf_free_all(job->objs, job->nobj);
     job->objs = NULL;
     job->nobj = 0;
+    free(job->redo);
+    job->redo = NULL;
 }
 
 typedef struct pool {
     const remesh_cli *cli;
     const fm_connect_plan *plan;
-    int phase;          /* 0: fit, 1: mesh */
+    int phase;          /* 0: fit, 1: mesh, 2: mesh again those marked */
+    const unsigned char *excluded; /* phase 2: plan curves left out */
     file_job *jobs;
     const size_t *order; /* the order jobs are handed out in */
     size_t n, next;
@@ -459,7 +525,7 @@ static void *worker(void *arg)
         if (p->phase == 0)
             fit_file(p->cli, job);
         else
-            mesh_file(p->cli, p->plan, job);
+            mesh_file(p->cli, p->plan, p->excluded, job, p->phase == 2);
     }
 }
 
@@ -504,10 +570,10 @@ static size_t *schedule(const file_job *jobs, size_t n)
 /* Runs one phase of the jobs on cli->jobs threads (the calling one
  * included). */
 static void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
-                     file_job *jobs, size_t n)
+                     const unsigned char *excluded, file_job *jobs, size_t n)
 {
     size_t *order = schedule(jobs, n);
-    pool p = {cli, plan, phase, jobs, order, n, 0, PTHREAD_MUTEX_INITIALIZER};
+    pool p = {cli, plan, phase, excluded, jobs, order, n, 0, PTHREAD_MUTEX_INITIALIZER};
     size_t nt = cli->jobs > 1 ? (size_t)cli->jobs - 1 : 0;
     pthread_t *th = nt ? calloc(nt, sizeof *th) : NULL;
     size_t started = 0;
@@ -978,6 +1044,62 @@ static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t 
     return plan;
 }
 
+/* A junction is made only when both sheets take its curve. Faults are
+ * meshed each on its own, so a curve one sheet could not fit is still in
+ * the other's mesh: that sheet trimmed its flap or filled its gap to a
+ * curve it shares with nobody (San Pedro Escarpment YngB: filled 1 km past
+ * its edge towards a curve F could not take). Those faults are meshed
+ * again without such curves, until no curve a mesh took was dropped by
+ * another (the set of dropped curves only grows, so this ends). */
+static void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
+                          size_t njobs)
+{
+    size_t nc = fm_connect_plan_get_stats(plan)->curves;
+    unsigned char *excluded = calloc(nc + 1, 1);
+    if (!excluded)
+        return;
+    for (;;) {
+        size_t added = 0, again = 0;
+        for (size_t i = 0; i < njobs; i++)
+            for (size_t o = 0; jobs[i].res && o < jobs[i].n; o++) {
+                const fault_result *r = &jobs[i].res[o];
+                for (size_t k = 0; k < r->ndropped; k++)
+                    if (r->dropped_curves[k] < nc && !excluded[r->dropped_curves[k]]) {
+                        excluded[r->dropped_curves[k]] = 1;
+                        added++;
+                    }
+            }
+        if (!added)
+            break;
+        for (size_t i = 0; i < njobs; i++) {
+            file_job *job = &jobs[i];
+            if (!job->res || !job->model)
+                continue;
+            for (size_t o = 0; o < job->n; o++) {
+                const fault_result *r = &job->res[o];
+                int redo = 0;
+                for (size_t k = 0; k < r->nused && !redo; k++)
+                    redo = r->used_curves[k] < nc && excluded[r->used_curves[k]];
+                if (!redo || !job->model[o] || !r->status || strcmp(r->status, "ok"))
+                    continue;
+                if (!job->redo)
+                    job->redo = calloc(job->n, 1);
+                if (!job->redo)
+                    continue;
+                job->redo[o] = 1;
+                again++;
+            }
+        }
+        if (!again)
+            break;
+        run_jobs(cli, plan, 2, excluded, jobs, njobs);
+        for (size_t i = 0; i < njobs; i++)
+            if (jobs[i].redo)
+                memset(jobs[i].redo, 0, jobs[i].n);
+    }
+    free(excluded);
+}
+
 static int run(const remesh_cli *cli, char **files, long nfiles)
 {
     fm_error err;
@@ -998,13 +1120,17 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     for (long i = 0; i < nfiles; i++)
         jobs[i].path = files[i];
     double t0 = fm_clock_seconds();
-    run_jobs(cli, NULL, 0, jobs, (size_t)nfiles);
+    run_jobs(cli, NULL, 0, NULL, jobs, (size_t)nfiles);
     double t1 = fm_clock_seconds();
     fm_connect_plan *plan = NULL;
     if (cli->connect)
         plan = make_plan(cli, jobs, (size_t)nfiles, &rs);
     double t2 = fm_clock_seconds();
-    run_jobs(cli, plan, 1, jobs, (size_t)nfiles);
+    run_jobs(cli, plan, 1, NULL, jobs, (size_t)nfiles);
+    if (plan)
+        settle_curves(cli, plan, jobs, (size_t)nfiles);
+    for (long i = 0; i < nfiles; i++)
+        release_job(&jobs[i]);
     double t3 = fm_clock_seconds();
     rs.plan = plan;
     if (plan) {
@@ -1034,6 +1160,7 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         free(rs.res[i].join_error);
         free(rs.res[i].dropped_curves);
         free(rs.res[i].through_curves);
+        free(rs.res[i].used_curves);
     }
     free(rs.res);
     free(rs.names);

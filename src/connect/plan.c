@@ -216,7 +216,8 @@ static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, siz
     size_t triples = 0;
     if (pl_triple_junctions(p->junction, C, nj, models, H, o->cut ? &o->sea_level : NULL,
                             &triples) ||
-        pl_resolve_conflicts(p->junction, C, nj, models, H, o->cut ? &o->sea_level : NULL)) {
+        pl_resolve_conflicts(p->junction, C, nj, models, H, o->distance,
+                             o->cut ? &o->sea_level : NULL)) {
         for (size_t i = 0; i < nj; i++)
             pl_curve_free(&C[i]);
         free(C);

@@ -123,6 +123,61 @@ static int conflict_nodes(const pl_curve *x, int sx, const pl_curve *y, int sy, 
     return any;
 }
 
+/* Sets flag[i] for every node i of x (on side sx of a sheet) that lies
+ * beyond y, a curve the sheet ends at (side sy): on the side of y the
+ * sheet gives up, its nearest point on y (in (u, v)) inside y rather than
+ * at an end, more than tol from y and from the points they share, and
+ * within reach of y (the farthest a gap is closed: the join distance). The
+ * sheet is trimmed at y, so it cannot also reach out past y to x: Big
+ * Bear's first sheet ends at its second all along its edge, and a short
+ * curve with Santa Ana lay 1 km past that edge in its extension; the gap
+ * filled out to it went through the second sheet, nodes 978 m off the
+ * original over its inside. flag NULL: stops at the first. */
+static int beyond_nodes(const pl_curve *x, int sx, const pl_curve *y, int sy, double tol,
+                        double reach, unsigned char *flag)
+{
+    if (!y->end[sy] || y->n < 2)
+        return 0;
+    int any = 0;
+    for (size_t i = 0; i < x->n; i++) {
+        const double *p = x->uv[sx] + 2 * i;
+        double best = INFINITY, bt = 0;
+        size_t bk = 0;
+        for (size_t k = 0; k + 1 < y->n; k++) {
+            const double *a = y->uv[sy] + 2 * k, *b = a + 2;
+            double dx = b[0] - a[0], dy = b[1] - a[1], L2 = dx * dx + dy * dy;
+            double t = L2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / L2 : 0;
+            t = t < 0 ? 0 : t > 1 ? 1 : t;
+            double ex = a[0] + t * dx - p[0], ey = a[1] + t * dy - p[1];
+            double d2 = ex * ex + ey * ey;
+            if (d2 < best) {
+                best = d2;
+                bk = k;
+                bt = t;
+            }
+        }
+        /* past an end of y the sheet's edge is some other line */
+        if ((bk == 0 && bt <= 0) || (bk + 2 == y->n && bt >= 1))
+            continue;
+        const double *a = y->uv[sy] + 2 * bk, *b = a + 2;
+        int o = fm_orient2d(a, b, p);
+        if (o == 0 || (o > 0) == (y->keep_left[sy] != 0))
+            continue;
+        const double *A = y->xyz + 3 * bk, *B = A + 3;
+        double f[3] = {A[0] + bt * (B[0] - A[0]), A[1] + bt * (B[1] - A[1]),
+                       A[2] + bt * (B[2] - A[2])};
+        const double *q = x->xyz + 3 * i;
+        double d = sqrt((q[0] - f[0]) * (q[0] - f[0]) + (q[1] - f[1]) * (q[1] - f[1]) +
+                        (q[2] - f[2]) * (q[2] - f[2]));
+        if (d <= tol || d > reach || near_common(x, y, q, tol))
+            continue;
+        if (!flag)
+            return 1;
+        any = flag[i] = 1;
+    }
+    return any;
+}
+
 /* Whether x and y conflict (flag: as conflict_nodes); -1 out of memory. */
 static int curves_conflict(const pl_curve *x, int sx, const pl_curve *y, int sy, double tol,
                            unsigned char *flag)
@@ -173,9 +228,10 @@ static int same_sheet(const fm_connect_junction *a, int sa, const fm_connect_jun
 }
 
 /* Does candidate c conflict with any accepted one? flag: as
- * conflict_nodes, over all of them. -1 out of memory. */
+ * conflict_nodes, over all of them. 1: they cross or near, 2 (or'ed): one
+ * lies beyond the other; -1 out of memory. */
 static int conflicts(const fm_connect_junction *J, const cand *cs, const size_t *acc, size_t na,
-                     const cand *c, double tol, unsigned char *flag)
+                     const cand *c, double tol, double reach, unsigned char *flag)
 {
     const fm_connect_junction *ji = &J[c->junction];
     int bad = 0;
@@ -184,7 +240,7 @@ static int conflicts(const fm_connect_junction *J, const cand *cs, const size_t 
         const fm_connect_junction *jo = &J[o->junction];
         int far = 0;
         for (int q = 0; q < 3; q++)
-            far |= c->lo[q] > o->hi[q] + tol || o->lo[q] > c->hi[q] + tol;
+            far |= c->lo[q] > o->hi[q] + reach || o->lo[q] > c->hi[q] + reach;
         if (far)
             continue;
         for (int s = 0; s < 2 && (flag || !bad); s++)
@@ -194,6 +250,13 @@ static int conflicts(const fm_connect_junction *J, const cand *cs, const size_t 
                     if (r < 0)
                         return -1;
                     bad |= r;
+                    /* neither may lie beyond the other where the sheet
+                     * ends at it (a curve that ends is never cut short:
+                     * c beyond o is all there is to flag) */
+                    if (jo->fault[0] == jo->fault[1])
+                        bad |= 2 * beyond_nodes(c->c, s, o->c, t, tol, reach, flag);
+                    if (ji->fault[0] == ji->fault[1])
+                        bad |= 2 * beyond_nodes(o->c, t, c->c, s, tol, reach, NULL);
                 }
     }
     return bad;
@@ -226,12 +289,12 @@ static void keep_stretch(pl_curve *c, size_t from, size_t to)
  * accepted curve, when that is at least `least` long and then conflicts
  * with none. 1: cut and clear; 0: not; -1: out of memory. */
 static int cut_short(const fm_connect_junction *J, const cand *cs, const size_t *acc, size_t na,
-                     cand *c, double tol, double least)
+                     cand *c, double tol, double reach, double least)
 {
     unsigned char *flag = calloc(c->c->n + 1, 1);
     if (!flag)
         return -1;
-    if (conflicts(J, cs, acc, na, c, tol, flag) < 0) {
+    if (conflicts(J, cs, acc, na, c, tol, reach, flag) < 0) {
         free(flag);
         return -1;
     }
@@ -256,7 +319,7 @@ static int cut_short(const fm_connect_junction *J, const cand *cs, const size_t 
         return 0;
     keep_stretch(c->c, bf, bt);
     curve_box(c->c, c->lo, c->hi);
-    int r = conflicts(J, cs, acc, na, c, tol, NULL);
+    int r = conflicts(J, cs, acc, na, c, tol, reach, NULL);
     return r < 0 ? -1 : !r;
 }
 
@@ -266,7 +329,7 @@ static int cut_short(const fm_connect_junction *J, const cand *cs, const size_t 
 #define CLEAR_GAP 0.1
 
 int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj,
-                         const fm_model *const *models, double H, const double *level)
+                         const fm_model *const *models, double H, double D, const double *level)
 {
     size_t nc = 0;
     for (size_t i = 0; i < nj; i++)
@@ -289,15 +352,15 @@ int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj,
         }
     qsort(cs, nc, sizeof *cs, longer_first);
     size_t na = 0;
-    double tol = 0.25 * H;
+    double tol = 0.25 * H, reach = fmax(D, tol);
     int st = 0;
     for (size_t i = 0; i < nc && st == 0; i++) {
-        int bad = conflicts(J, cs, acc, na, &cs[i], tol, NULL);
+        int bad = conflicts(J, cs, acc, na, &cs[i], tol, reach, NULL);
         if (bad > 0) {
             /* a sheet that ends at a curve needs all of it to end on */
             int cut = cs[i].c->end[0] || cs[i].c->end[1]
                           ? 0
-                          : cut_short(J, cs, acc, na, &cs[i], tol, H);
+                          : cut_short(J, cs, acc, na, &cs[i], tol, reach, H);
             if (cut > 0) {
                 J[cs[i].junction].length = stretch_length(cs[i].c, 0, cs[i].c->n - 1);
                 bad = 0;
@@ -308,8 +371,10 @@ int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj,
         if (bad > 0) {
             fm_connect_junction *j = &J[cs[i].junction];
             j->type = FM_JUNCTION_UNJOINED;
-            j->reason = "crosses or nears another junction curve on one of its sheets away "
-                        "from any point of the three faults found on both";
+            j->reason = bad & 1 ? "crosses or nears another junction curve on one of its sheets "
+                                  "away from any point of the three faults found on both"
+                                : "lies beyond the curve where one of its sheets ends at another "
+                                  "sheet of its fault, or that curve beyond it";
             /* unjoined, the sheets would still run through each other:
              * one that was to end there stops short instead, the one that
              * overshoots first (it is the one that runs into the other) */
@@ -324,19 +389,24 @@ int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj,
                     pl_curve raw = *c;
                     *c = one;
                     curve_box(c, cs[i].lo, cs[i].hi);
-                    r = conflicts(J, cs, acc, na, &cs[i], tol, NULL);
+                    r = conflicts(J, cs, acc, na, &cs[i], tol, reach, NULL);
                     /* one that nears a curve of its own sheet keeps its
                      * longest clear stretch: the mesher closes the cut
                      * off through that curve */
                     if (r > 0)
-                        r = cut_short(J, cs, acc, na, &cs[i], 2 * tol, H) > 0 ? 0 : 1;
+                        r = cut_short(J, cs, acc, na, &cs[i], 2 * tol, reach, H) > 0 ? 0 : 1;
                     if (r == 0) {
                         pl_curve_free(&raw);
                         j->clearance = CLEAR_GAP * H;
                         j->short_side = s;
-                        j->reason = "crosses or nears another junction curve on one of its "
-                                    "sheets away from any point of the three faults found on "
-                                    "both; one stops short of the other instead";
+                        j->reason = bad & 1 ? "crosses or nears another junction curve on one of "
+                                              "its sheets away from any point of the three "
+                                              "faults found on both; one stops short of the "
+                                              "other instead"
+                                            : "lies beyond the curve where one of its sheets "
+                                              "ends at another sheet of its fault, or that "
+                                              "curve beyond it; one stops short of the other "
+                                              "instead";
                         break;
                     }
                     *c = raw;

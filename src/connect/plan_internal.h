@@ -69,10 +69,11 @@ int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
                         size_t *made);
 
 /* Accepts curves longest first; one that crosses or nears an accepted
- * curve on a shared sheet is cut to its longest clear stretch, or left
- * unjoined with a reason (plan_conflict.c). -1: out of memory. */
+ * curve on a shared sheet, or lies within D beyond one the sheet ends at,
+ * is cut to its longest clear stretch, or left unjoined with a reason
+ * (plan_conflict.c). -1: out of memory. */
 int pl_resolve_conflicts(fm_connect_junction *J, pl_curve *C, size_t nj,
-                         const fm_model *const *models, double H, const double *level);
+                         const fm_model *const *models, double H, double D, const double *level);
 
 /* Curve c of junction j, in conflict, as a curve of sheet s alone (one
  * that was to end at it): the sheet ends `gap` short of the other surface,

@@ -51,7 +51,10 @@ Measured per fault and over all faults (3D, from the VTU):
                   closed gap when a node the fault shares with a fault it
                   closes a gap to (a made junction with gap_closed_m in
                   report.json: the curve it was extended to) is within
-                  the node's own distance to the original + H; there it
+                  the node's own distance to the original + H, or the node
+                  lies between the original's edge and that curve (its
+                  distances to the two add up to at most that junction's
+                  gap_closed_m + H: the inner rows of a fill); there it
                   may reach 100 m + the fault's largest closed gap, or as
                   far as report.json's fidelity beyond_outline_max_m says
                   the fill past its edge reaches (which must agree with
@@ -760,7 +763,7 @@ def main():
         # per fault, the nodes it shares with the faults it closes a gap to
         # (the curves of those junctions; report.json names the junctions)
         fnodes = {n: np.unique(tris[fid == k]) for k, n in enumerate(names)}
-        curve_nodes = {}
+        curve_nodes, curve_gaps = {}, {}
         for jn in report.get("connect", {}).get("junctions", []):
             if jn.get("type") == "unjoined" or not jn.get("gap_closed_m", 0) > 0:
                 continue
@@ -769,6 +772,8 @@ def main():
                 sh = np.intersect1d(fnodes[f0], fnodes[f1])
                 for f in (f0, f1):
                     curve_nodes[f] = np.union1d(curve_nodes.get(f, np.zeros(0, np.int64)), sh)
+                    if len(sh):
+                        curve_gaps.setdefault(f, []).append((sh, float(jn["gap_closed_m"])))
         for i, n in enumerate(names):
             if n not in orig:
                 fail("fault %s: no original object of that name" % n)
@@ -791,15 +796,23 @@ def main():
             # A node past the edge lies in a closed gap when it is near a
             # curve of a junction at which this fault closes a gap: within
             # its own distance to the original (the fill spans from the
-            # original's edge to the curve) + H (curve nodes are H apart).
-            # Past the edge anywhere else (a bulge of the outline far from
-            # any such curve) it is held to 100 m like a node inside.
+            # original's edge to the curve) + H (curve nodes are H apart),
+            # or between the original's edge and that curve: its distances
+            # to the two add up to at most the junction's gap + H (a fill
+            # of several rows, at H = 500 m, has nodes near the edge and a
+            # gap's width from the curve). Past the edge anywhere else (a
+            # bulge of the outline far from any such curve) it is held to
+            # 100 m like a node inside.
             xp, dp = X[nodes[far]][past], dfar[past]
             cn = curve_nodes.get(n)
             near = np.zeros(len(xp), bool)
             if cn is not None and len(xp):
                 C2 = X[cn]
                 near = np.array([np.linalg.norm(C2 - p, axis=1).min() <= dd + H for p, dd in zip(xp, dp)])
+                for sh, g in curve_gaps.get(n, []):
+                    Cj = X[sh]
+                    near |= np.array([np.linalg.norm(Cj - p, axis=1).min() + dd <= g + H
+                                      for p, dd in zip(xp, dp)])
             F["dmax_gap"][i] = float(dp[near].max()) if near.any() else 0.0
             F["dmax_stray"][i] = float(dp[~near].max()) if (~near).any() else 0.0
             F["orig_zmax"][i] = T[:, :, 2].max()

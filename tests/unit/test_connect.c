@@ -1,9 +1,9 @@
 /* Neighbours and intersection curves (src/connect): fitted planes crossing
  * at 90 and 10 degrees against the analytic line, the synthetic system's
  * T-junction gap and overshoot, three planes whose curves meet at a small
- * angle, a curve cut short of another it nears, a fault stopped short of
- * another where its curve cannot be joined, near-duplicate faults,
- * and two crossing CFM faults. */
+ * angle, a curve cut short of another it nears, a curve beyond the one a
+ * sheet ends at, a fault stopped short of another where its curve cannot
+ * be joined, near-duplicate faults, and two crossing CFM faults. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -610,6 +610,82 @@ out:
         fm_model_destroy(models[k]);
 }
 
+/* A fault of two vertical sheets in a T: sheet "stem" (y = Y0, x from
+ * X0 - 6 km to X0 - 50 m) ends at sheet "bar" (x = X0, y within 5 km of
+ * Y0). A second fault, a plane x =
+ * X0 + 600 beside the bar down to 4 km, meets the stem's extension 600 m
+ * beyond the bar (its curve shorter than the tee's, which goes first). The stem ends at the bar, so it may not also reach past it to the
+ * second fault (the gap filled out to it would pass through the bar:
+ * Big Bear and Santa Ana, nodes 978 m off the original over its inside):
+ * that junction is left unjoined, the T of the two sheets made. */
+static void test_beyond_end(void)
+{
+    double h = 500, zb = -8000;
+    int nx = 12, ny = 20, nz = (int)(-zb / h);
+    fm_mesh *t = fm_mesh_create();
+    /* the bar, columns along y, then the stem, columns along -x */
+    for (int j = 0; j <= nz; j++)
+        for (int i = 0; i <= ny; i++)
+            fm_mesh_add_vertex(t, X0, Y0 - 5000 + 10000.0 * i / ny, zb * j / nz);
+    for (int j = 0; j <= nz; j++)
+        for (int i = 0; i <= nx; i++)
+            fm_mesh_add_vertex(t, X0 - 50 - 5950.0 * i / nx, Y0, zb * j / nz);
+    int nb = (nz + 1) * (ny + 1);
+    for (int j = 0; j < nz; j++) {
+        for (int i = 0; i < ny; i++) {
+            int32_t a = j * (ny + 1) + i, b = a + 1, d = a + ny + 1, e = d + 1;
+            fm_mesh_add_triangle(t, a, b, e, 0);
+            fm_mesh_add_triangle(t, a, e, d, 0);
+        }
+        for (int i = 0; i < nx; i++) {
+            int32_t a = nb + j * (nx + 1) + i, b = a + 1, d = a + nx + 1, e = d + 1;
+            fm_mesh_add_triangle(t, a, b, e, 0);
+            fm_mesh_add_triangle(t, a, e, d, 0);
+        }
+    }
+    fm_mesh *side = plane_part(-3000, 3000, 0, -4000, h);
+    /* plane_part runs along x: turn it to x = X0 + 600, y along its t */
+    double *X = fm_mesh_vertices_mut(side);
+    for (size_t v = 0; v < fm_mesh_nvertices(side); v++) {
+        double tt = X[3 * v] - X0;
+        X[3 * v] = X0 + 600;
+        X[3 * v + 1] = Y0 + tt;
+    }
+    fm_model *models[2] = {fit_mesh("tee", t), fit_mesh("beside", side)};
+    fm_mesh_destroy(t);
+    fm_mesh_destroy(side);
+    CHECK(models[0] != NULL && models[1] != NULL);
+    if (!models[0] || !models[1])
+        goto out;
+    CHECK_EQ(fm_model_nsheets(models[0]), 2);
+    fm_connect_plan_options po;
+    fm_connect_plan_options_default(&po);
+    po.size = h;
+    fm_connect_plan *plan = NULL;
+    fm_error err;
+    CHECK(fm_connect_plan_build((const fm_model *const *)models, 2, &po, &plan, &err) == FM_OK);
+    if (!plan)
+        goto out;
+    int tee = 0, beside = 0;
+    for (size_t i = 0; i < fm_connect_plan_njunctions(plan); i++) {
+        const fm_connect_junction *j = fm_connect_plan_junction(plan, i);
+        printf("junction %zu: %s %zu.%zu-%zu.%zu gap %.0f%s%s\n", i, fm_junction_type_name(j->type),
+               j->fault[0], j->sheet[0], j->fault[1], j->sheet[1], j->gap, j->reason ? ": " : "",
+               j->reason ? j->reason : "");
+        if (j->fault[0] == 0 && j->fault[1] == 0)
+            tee += j->type == FM_JUNCTION_T;
+        /* the second fault may join the bar's side of the tee only */
+        if (j->fault[0] != j->fault[1] && j->type != FM_JUNCTION_UNJOINED)
+            beside++;
+    }
+    CHECK_EQ(tee, 1);
+    CHECK_EQ(beside, 0);
+    fm_connect_plan_destroy(plan);
+out:
+    for (int k = 0; k < 2; k++)
+        fm_model_destroy(models[k]);
+}
+
 static fm_model *fit_file(const char *path)
 {
     fm_tsurf **objs = NULL;
@@ -862,6 +938,7 @@ int main(void)
         FM_CASE(test_triple_small_angle),
         FM_CASE(test_cut_short),
         FM_CASE(test_stop_short),
+        FM_CASE(test_beyond_end),
         FM_CASE(test_duplicates),
         FM_CASE(test_threads),
         FM_CASE(test_cfm_santa_monica),
