@@ -20,6 +20,7 @@
 #include "fm_json.h"
 #include "fm_model.h"
 #include "fm_remesh.h"
+#include "fm_sort.h"
 #include "fm_synth.h"
 #include "fm_tsurf.h"
 
@@ -56,7 +57,90 @@ typedef struct fault_result {
     size_t nthrough;
     size_t *used_curves;        /* plan curves its meshes took (as of its last meshing) */
     size_t nused;
+    uint64_t *curve_pieces;     /* pieces of plan curves its mesh holds (curve << 32 | piece
+                                   k: nodes k to k + 1), sorted */
+    size_t npieces;
 } fault_result;
+
+/* Which pieces of its plan curves fault f's mesh holds (an edge between
+ * two consecutive nodes of the curve): a sheet keeps only part of a curve
+ * that another of its curves cuts across. -1: out of memory. */
+static int curve_pieces(const fm_connect_plan *plan, size_t f, const fm_model *model,
+                        const fm_mesh *mesh, const int64_t *ids, fault_result *r)
+{
+    free(r->curve_pieces);
+    r->curve_pieces = NULL;
+    r->npieces = 0;
+    size_t nt = fm_mesh_ntriangles(mesh), ne = 0;
+    const int32_t *T = fm_mesh_triangles(mesh);
+    fm_keyed *edge = malloc((3 * nt + 1) * sizeof *edge);
+    if (!edge)
+        return -1;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++) {
+            int64_t a = ids[T[3 * t + k]], b = ids[T[3 * t + (k + 1) % 3]];
+            if (a >= 0 && b >= 0)
+                edge[ne++] = (fm_keyed){(uint64_t)(a < b ? a : b) << 32 | (uint64_t)(a < b ? b : a), 0};
+        }
+    size_t cap = 0;
+    int rc = fm_sort_keyed(edge, ne) ? -1 : 0;
+    for (size_t s = 0; rc == 0 && s < fm_model_nsheets(model); s++) {
+        const fm_connect_shared *sh;
+        size_t n = fm_connect_plan_sheet(plan, f, s, &sh);
+        for (size_t c = 0; rc == 0 && c < n; c++)
+            for (size_t i = 0; i + 1 < sh[c].n; i++) {
+                int64_t a = sh[c].node[i], b = sh[c].node[i + 1];
+                uint64_t key = (uint64_t)(a < b ? a : b) << 32 | (uint64_t)(a < b ? b : a);
+                size_t lo = 0, hi = ne;
+                while (lo < hi) {
+                    size_t mid = lo + (hi - lo) / 2;
+                    if (edge[mid].key < key)
+                        lo = mid + 1;
+                    else
+                        hi = mid;
+                }
+                if (lo == ne || edge[lo].key != key)
+                    continue;
+                if (r->npieces == cap) {
+                    cap = cap ? 2 * cap : 64;
+                    uint64_t *g = realloc(r->curve_pieces, cap * sizeof *g);
+                    if (!g) {
+                        rc = -1;
+                        break;
+                    }
+                    r->curve_pieces = g;
+                }
+                r->curve_pieces[r->npieces++] = (uint64_t)sh[c].curve << 32 | i;
+            }
+    }
+    free(edge);
+    if (rc == 0) {
+        /* sheets list their curves in plan order each, not all together */
+        fm_keyed *k = malloc((r->npieces + 1) * sizeof *k);
+        if (!k)
+            return -1;
+        for (size_t i = 0; i < r->npieces; i++)
+            k[i] = (fm_keyed){r->curve_pieces[i], i};
+        rc = fm_sort_keyed(k, r->npieces) ? -1 : 0;
+        for (size_t i = 0; rc == 0 && i < r->npieces; i++)
+            r->curve_pieces[i] = k[i].key;
+        free(k);
+    }
+    return rc;
+}
+
+/* Whether faults a and b both hold some piece of plan curve c. */
+static int share_piece(const fault_result *a, const fault_result *b, size_t c)
+{
+    for (size_t i = 0; i < a->npieces; i++) {
+        if (a->curve_pieces[i] >> 32 != c)
+            continue;
+        for (size_t k = 0; k < b->npieces; k++)
+            if (b->curve_pieces[k] == a->curve_pieces[i])
+                return 1;
+    }
+    return 0;
+}
 
 static int push_curve(size_t **list, size_t *n, size_t curve)
 {
@@ -283,6 +367,8 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
         for (size_t v = 0; v < fm_mesh_nvertices(*fault); v++)
             if ((*ids)[v] >= 0)
                 memcpy(X + 3 * v, P + 3 * (*ids)[v], 3 * sizeof *X);
+        if (curve_pieces(plan, f, model, *fault, *ids, r))
+            st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
     }
     double t2 = fm_clock_seconds();
     r->t_mesh = t2 - t1;
@@ -778,6 +864,15 @@ static fm_junction_type junction_outcome(const run_state *rs, const fm_connect_j
             return FM_JUNCTION_UNJOINED;
         }
     }
+    if (jn->type != FM_JUNCTION_UNJOINED &&
+        !share_piece(&rs->res[rs->plan_res[jn->fault[0]]], &rs->res[rs->plan_res[jn->fault[1]]],
+                     (size_t)jn->curve)) {
+        /* each holds pieces of it, but none the same: another curve of one
+         * of them cut the rest away */
+        *why = "the two sheets keep no common piece of the curve";
+        *which = jn->fault[0];
+        return FM_JUNCTION_UNJOINED;
+    }
     return jn->type;
 }
 
@@ -1161,6 +1256,7 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         free(rs.res[i].dropped_curves);
         free(rs.res[i].through_curves);
         free(rs.res[i].used_curves);
+        free(rs.res[i].curve_pieces);
     }
     free(rs.res);
     free(rs.names);

@@ -43,17 +43,25 @@ static fm_keyed *sorted_ids(const int64_t *ids, size_t nv, size_t *n)
     return k;
 }
 
-static int has_id(const fm_keyed *k, size_t n, int64_t id)
+static int has_key(const fm_keyed *k, size_t n, uint64_t key)
 {
     size_t lo = 0, hi = n;
     while (lo < hi) {
         size_t mid = lo + (hi - lo) / 2;
-        if (k[mid].key < (uint64_t)id)
+        if (k[mid].key < key)
             lo = mid + 1;
         else
             hi = mid;
     }
-    return lo < n && k[lo].key == (uint64_t)id;
+    return lo < n && k[lo].key == key;
+}
+
+/* An edge between shared nodes a and b, either way round (ids are below
+ * 2^31: plan node indices). */
+static uint64_t edge_key(int64_t a, int64_t b)
+{
+    uint64_t lo = (uint64_t)(a < b ? a : b), hi = (uint64_t)(a < b ? b : a);
+    return lo << 32 | hi;
 }
 
 /* Sheets of one fault that end at the same triple point (or share a
@@ -105,25 +113,42 @@ static int weld_shared(fm_mesh *all, int64_t *ids)
 /* A curve the sheet took but whose faces were all left out (it lies in a
  * dropped flap or beyond the outline the sheet kept) has no edge in the
  * mesh: it is reported as left out like one that did not fit, so that the
- * junction is not called made while no node of it is shared. Returns -1
- * when out of memory. */
-static int mark_absent(const fm_remesh_sheet_curves *sc, const int64_t *sid, size_t nv)
+ * junction is not called made while no node of it is shared. Its nodes
+ * alone do not tell: both its ends may be points where three faults meet,
+ * there through other curves. Returns -1 when out of memory. */
+static int mark_absent(const fm_remesh_sheet_curves *sc, const int64_t *sid, const fm_mesh *sheet)
 {
     if (!sc->dropped || !sc->n)
         return 0;
-    size_t nh;
-    fm_keyed *have = sorted_ids(sid, nv, &nh);
-    if (!have)
+    if (!sid) { /* meshed without any */
+        memset(sc->dropped, 1, sc->n);
+        return 0;
+    }
+    /* the mesh's edges between shared nodes, keyed by the two ids */
+    size_t nt = fm_mesh_ntriangles(sheet), ne = 0;
+    const int32_t *T = fm_mesh_triangles(sheet);
+    fm_keyed *edge = malloc((3 * nt + 1) * sizeof *edge);
+    if (!edge)
         return -1;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++) {
+            int64_t a = sid[T[3 * t + k]], b = sid[T[3 * t + (k + 1) % 3]];
+            if (a >= 0 && b >= 0)
+                edge[ne++] = (fm_keyed){edge_key(a, b), 0};
+        }
+    if (fm_sort_keyed(edge, ne)) {
+        free(edge);
+        return -1;
+    }
     for (size_t k = 0; k < sc->n; k++) {
         const fm_remesh_curve *c = &sc->curves[k];
-        size_t found = 0;
-        for (size_t i = 0; c->node && i < c->n && found < 2; i++)
-            found += has_id(have, nh, c->node[i]);
-        if (found < 2)
+        int present = 0;
+        for (size_t i = 0; c->node && i + 1 < c->n && !present; i++)
+            present = has_key(edge, ne, edge_key(c->node[i], c->node[i + 1]));
+        if (!present)
             sc->dropped[k] = 1; /* taken through or not, it is not there */
     }
-    free(have);
+    free(edge);
     return 0;
 }
 
@@ -256,7 +281,7 @@ fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves
         free(loops);
         if (st != FM_OK)
             break;
-        if (curves && mark_absent(&curves[i], sid, fm_mesh_nvertices(sheet))) {
+        if (curves && mark_absent(&curves[i], sid, sheet)) {
             free(sid);
             fm_mesh_destroy(sheet);
             st = fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
