@@ -116,10 +116,13 @@ min_angle lockwood CRFA-BPPM-LKWV-Lockwood_Valley_fault-CFM2_500m 20
 # Agua Caliente's sheets meet along seams that run a few hundred metres
 # inside another sheet's outline: the strip between the outline and the
 # seam curve was kept and filled with slivers (76 triangles under 20 deg);
-# the outline now follows a curve that runs within 0.3 H of it.
+# the outline now follows a curve that runs within 0.3 H of it. Then 15
+# were left, around a sea-level connector that went to the node a later
+# curve end would have moved and passed 1.9 m from that end, put 80 m
+# short of it; curve ends now go onto the outline before connectors.
 run_case aguacaliente PNRA-HSSF-AGCT-Agua_Caliente_fault_zone-CFM4_500m \
     PNRA-HSSF-AGCT-Agua_Caliente_fault_zone-CFM4_500m
-max_below20 aguacaliente PNRA-HSSF-AGCT-Agua_Caliente_fault_zone-CFM4_500m 20
+max_below20 aguacaliente PNRA-HSSF-AGCT-Agua_Caliente_fault_zone-CFM4_500m 2
 # The Newport-Inglewood/Rose Canyon link ends at two Newport-Inglewood
 # curves whose open ends lie 450 m apart near the outline: the second
 # end's connector, blocked from its nearest outline node, went to another
