@@ -531,6 +531,80 @@ static int hug_curves(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
     return 0;
 }
 
+/* 1 if a and b are consecutive nodes of one of the curves. */
+static int curve_piece(const fm_remesh_curve *cv, size_t nc, const double *a, const double *b)
+{
+    for (size_t c = 0; c < nc; c++)
+        for (size_t i = 0; i + 1 < cv[c].n; i++) {
+            const double *p = cv[c].uv + 2 * i, *q = p + 2;
+            if ((pt_eq(p, a) && pt_eq(q, b)) || (pt_eq(p, b) && pt_eq(q, a)))
+                return 1;
+        }
+    return 0;
+}
+
+/* Puts the curve ends within tol of the loops onto them (pass 0), or
+ * gives the open ends of curves the sheet ends at their connectors (pass
+ * 1, on the outline as rerouted and hugging the curves). Connectors come
+ * last: one aimed at the outline before a curve end was put on it went to
+ * the node that end would have moved, and the end was inserted beside it
+ * on the connector's way (Agua Caliente: a sea-level connector along the
+ * top trace passed 1.9 m from a curve end put 80 m short of its foot,
+ * refined into triangles of 0 to 10 degrees); one aimed before the
+ * outline hugged a curve kept an outline node metres off the curve
+ * (Rose Canyon's corner with San Onofre: a spike of 4 degrees). Returns
+ * -1 when out of memory. */
+static int place_ends(const fm_fit_surface *s, remesh_domain *dom, const fm_remesh_curve *cv,
+                      size_t nc, double tol, double level, taken *tk, unsigned char *snapped,
+                      connector *cn, size_t *ncn, int pass)
+{
+    for (size_t c = 0; c < nc; c++)
+        for (int e = 0; e < 2; e++) {
+            if (snapped[2 * c + (size_t)e])
+                continue;
+            const double *uv = cv[c].uv + 2 * (e ? cv[c].n - 1 : 0);
+            double P[3], at[2];
+            eval3(s, uv, P);
+            seg_hit hh = nearest_segment(s, dom, P);
+            if (!isfinite(hh.d))
+                continue;
+            if (hh.d <= tol) {
+                if (put_on_loop(s, dom, &hh, uv, level, tol, 1, tk, at))
+                    return -1;
+                snapped[2 * c + (size_t)e] = 1;
+            } else if (pass && cv[c].end && !end_continues(cv, nc, c, e) &&
+                       !has_connector(cn, *ncn, cv[c].node[e ? cv[c].n - 1 : 0])) {
+                /* a foot on a piece of another curve the outline runs
+                 * along would be a node of that curve the other sheet
+                 * has not: the outline and the curve would part there, a
+                 * face of no width (Banning strand: a triangle of 0.04
+                 * degrees); the connector goes to the nearer end */
+                const dom_loop *lp = &dom->loops[hh.loop];
+                const double *a = lp->uv + 2 * hh.i, *b = lp->uv + 2 * ((hh.i + 1) % lp->n);
+                if (curve_piece(cv, nc, a, b)) {
+                    double A[3], B[3];
+                    eval3(s, a, A);
+                    eval3(s, b, B);
+                    hh.t = dist3(A, P) <= dist3(B, P) ? 0 : 1;
+                }
+                if (put_on_loop(s, dom, &hh, uv, level, tol, 0, tk, at))
+                    return -1;
+                /* a connector that would cross the outline on its way ends
+                 * where it first meets it */
+                if (first_crossing(s, dom, uv, at, level, tk, at) < 0)
+                    return -1;
+                connector *k = &cn[(*ncn)++];
+                memcpy(k->a, uv, sizeof k->a);
+                memcpy(k->b, at, sizeof k->b);
+                k->node = cv[c].node[e ? cv[c].n - 1 : 0];
+                double B[3];
+                eval3(s, at, B);
+                k->level = fabs(P[2] - level) < 1e-6 && fabs(B[2] - level) < 1e-6;
+            }
+        }
+    return 0;
+}
+
 fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_remesh_curve *cv,
                       size_t nc, double h, double level, flat_domain *fd, fm_error *err,
                       const char *name)
@@ -550,45 +624,10 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
                               c);
             goto done;
         }
-    /* Curve ends on the outline first, connectors after: a connector
-     * aimed at the outline before a later curve end was put on it went
-     * to the node that end would have moved, and the end was inserted
-     * beside it instead, on the connector's way (Agua Caliente: a
-     * sea-level connector along the top trace passed 1.9 m from a curve
-     * end 80 m short of its foot, refined into triangles of 0 to 10
-     * degrees). */
-    for (size_t k = 0; k < 4 * nc; k++) {
-        size_t c = (k / 2) % nc;
-        int e = (int)(k % 2), pass = k >= 2 * nc;
-        if (snapped[2 * c + (size_t)e])
-            continue;
-        const double *uv = cv[c].uv + 2 * (e ? cv[c].n - 1 : 0);
-        double P[3], at[2];
-        eval3(s, uv, P);
-        seg_hit hh = nearest_segment(s, dom, P);
-        if (!isfinite(hh.d))
-            continue;
-        if (hh.d <= tol) {
-            if (put_on_loop(s, dom, &hh, uv, level, tol, 1, &tk, at))
-                goto nomem;
-            snapped[2 * c + (size_t)e] = 1;
-        } else if (pass && cv[c].end && !end_continues(cv, nc, c, e) &&
-                   !has_connector(cn, ncn, cv[c].node[e ? cv[c].n - 1 : 0])) {
-            if (put_on_loop(s, dom, &hh, uv, level, tol, 0, &tk, at))
-                goto nomem;
-            /* a connector that would cross the outline on its way ends
-             * where it first meets it */
-            if (first_crossing(s, dom, uv, at, level, &tk, at) < 0)
-                goto nomem;
-            connector *kc = &cn[ncn++];
-            memcpy(kc->a, uv, sizeof kc->a);
-            memcpy(kc->b, at, sizeof kc->b);
-            kc->node = cv[c].node[e ? cv[c].n - 1 : 0];
-            double B[3];
-            eval3(s, at, B);
-            kc->level = fabs(P[2] - level) < 1e-6 && fabs(B[2] - level) < 1e-6;
-        }
-    }
+    /* Curve ends on the outline first, then the outline rerouted and
+     * hugging the curves, and connectors aimed at it last (place_ends). */
+    if (place_ends(s, dom, cv, nc, tol, level, &tk, snapped, cn, &ncn, 0))
+        goto nomem;
     /* A curve may cross the sampled outline between its nodes (the
      * outline's chords are not the plan's outline): the outline, which
      * belongs to this sheet alone, is rerouted through the curve node
@@ -610,6 +649,8 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
      * no triangle of size H: only slivers (Agua Caliente's seams, 0.05
      * degrees); 0.45 H changes nothing more on the CFM */
     if (hug_curves(s, dom, cv, nc, 0.3 * h, level, &tk))
+        goto nomem;
+    if (place_ends(s, dom, cv, nc, tol, level, &tk, snapped, cn, &ncn, 1))
         goto nomem;
     /* flatten: loops first (as domain_triangulate always did), then the
      * curves' own nodes and segments, then the connectors */
@@ -722,6 +763,12 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
                 lev = fd->level[a] && fd->level[b];
             }
         }
+        /* nor one that would go to the curve's own next node (its piece
+         * to there already joins the end to the outline: Pezzoni
+         * Casmalia's sheet failed with two segments joining the same
+         * points and was meshed without its T with Los Alamos) */
+        if (has_segment(fd, ns, a, b))
+            continue;
         fd->seg[2 * ns] = a;
         fd->seg[2 * ns + 1] = b;
         memset(&fd->segs[ns], 0, sizeof fd->segs[ns]);

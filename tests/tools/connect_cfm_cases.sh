@@ -133,4 +133,12 @@ run_case nirclink OCBA-NIRC-OCNS-Newport_Inglewood_Rose_Canyon_link-CFM5_500m \
     OCBA-NIRC-DANA-Newport_Inglewood_fault-CFM5_500m OCBA-NIRC-RSCN-Rose_Canyon_fault-CFM5_500m \
     OCBA-SMCS-MULT-San_Mateo_Carlsbad_fault-CFM5_500m OCBA-SMCS-SMTO-San_Onofre_fault_upper-CFM5_500m
 max_below20 nirclink OCBA-NIRC-OCNS-Newport_Inglewood_Rose_Canyon_link-CFM5_500m 6
+# A Pezzoni Casmalia curve (its T with Los Alamos) ends a piece short of
+# the outline, and the connector from that end, blocked from the nearest
+# outline node, went to the next nearest: the curve's own next node. Two
+# segments joined the same points, the sheet failed and was meshed without
+# the T (29 triangle pairs crossing Los Alamos).
+run_case pezzoni CRFA-CSBL-LALM-Los_Alamos_fault_steep-CFM5_500m \
+    CRFA-CSBL-PEZN-Pezzoni_Casmalia_fault_truncated-CFM5_500m CRFA-CSBL-CSML-Casmalia_fault-CFM4_500m \
+    CRFA-LMPZ-EAST-Lompoc_blind_ramp-CFM5_500m CRFA-LNHZ-MULT-Lions_Head_fault-CFM4_500m
 exit $fail
