@@ -434,6 +434,39 @@ static int32_t reachable_node(const fm_fit_surface *s, const flat_domain *fd, si
     return via >= 0 ? via : best;
 }
 
+/* The outline node next to loop node b (among the first nl points) that
+ * is a curve's node, within `near` of b in 3D and reached from point a
+ * without crossing anything (the nearer to a of two), or -1. A
+ * connector whose foot is an outline node that close to where a curve
+ * meets the outline leaves an outline piece that short between them,
+ * refined into slivers (Laguna Salada east branch: a foot 391 m from a
+ * curve's end, a triangle of 12 degrees). */
+static int32_t curve_node_beside(const fm_fit_surface *s, const flat_domain *fd, size_t nl,
+                                 size_t ns, int32_t a, int32_t b, double near)
+{
+    int32_t nb[2] = {fd->seg[2 * (size_t)b + 1], -1};
+    for (size_t k = 0; k < nl; k++)
+        if (fd->seg[2 * k + 1] == b)
+            nb[1] = (int32_t)k;
+    double A[3], B[3];
+    eval3(s, fd->uv + 2 * a, A);
+    eval3(s, fd->uv + 2 * b, B);
+    int32_t best = -1;
+    double bd = INFINITY;
+    for (int k = 0; k < 2; k++) {
+        int32_t c = nb[k];
+        if (c < 0 || c == a || fd->shared[c] < 0 || has_segment(fd, ns, a, c))
+            continue;
+        double C[3];
+        eval3(s, fd->uv + 2 * c, C);
+        if (dist3(B, C) <= near && dist3(A, C) < bd && !chord_blocked(fd, ns, a, c)) {
+            bd = dist3(A, C);
+            best = c;
+        }
+    }
+    return best;
+}
+
 /* 3D distance from P to the curve's polyline between nodes i0 and i1. */
 static double curve_dist(const fm_fit_surface *s, const fm_remesh_curve *c, size_t i0, size_t i1,
                          const double P[3])
@@ -758,6 +791,12 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
             eval3(s, fd->uv + 2 * a, A);
             eval3(s, fd->uv + 2 * b, B);
             int32_t c = reachable_node(s, fd, nl, ns, np, a, dist3(A, B) + h, 0.25 * h);
+            if (c >= 0) {
+                b = c;
+                lev = fd->level[a] && fd->level[b];
+            }
+        } else if (fd->shared[b] < 0) {
+            int32_t c = curve_node_beside(s, fd, nl, ns, a, b, 0.5 * h);
             if (c >= 0) {
                 b = c;
                 lev = fd->level[a] && fd->level[b];

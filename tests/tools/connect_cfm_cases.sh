@@ -141,4 +141,24 @@ max_below20 nirclink OCBA-NIRC-OCNS-Newport_Inglewood_Rose_Canyon_link-CFM5_500m
 run_case pezzoni CRFA-CSBL-LALM-Los_Alamos_fault_steep-CFM5_500m \
     CRFA-CSBL-PEZN-Pezzoni_Casmalia_fault_truncated-CFM5_500m CRFA-CSBL-CSML-Casmalia_fault-CFM4_500m \
     CRFA-LMPZ-EAST-Lompoc_blind_ramp-CFM5_500m CRFA-LNHZ-MULT-Lions_Head_fault-CFM4_500m
+# A Laguna Salada east branch curve's open end was joined to the outline
+# node nearest to it, 391 m from where another curve meets the outline:
+# the piece between was refined into a triangle of 12 degrees. The
+# connector now goes to that curve's node.
+run_case lagunasalada PNRA-ELSZ-LGSD-Laguna_Salada_fault_east_branch_dipping-CFM5_500m \
+    PNRA-CRSF-YUHA-Yuha_Well_fault_west_steep-CFM5_500m \
+    PNRA-CRSF-YUHA-Shell_Beds_fault-CFM5_500m PNRA-CRSF-YUHA-Yuha_Wash_fault-CFM5_500m \
+    PNRA-CRSF-YUHA-Yuha_Well_Vista_del_Anza_fault_truncated-CFM5_500m \
+    PNRA-CRSF-YUHA-Yuha_Well_fault-CFM5_500m PNRA-CRSF-YUHA-Yuha_Well_fault_north_set1-CFM5_500m \
+    PNRA-CRSF-YUHA-Yuha_Well_fault_northwest_steep-CFM5_500m \
+    PNRA-ELSZ-LGSD-Laguna_Salada_fault_east_branch_dipping_splay-CFM5_500m \
+    PNRA-ELSZ-LGSD-Laguna_Salada_fault_north-CFM5_500m \
+    PNRA-ELSZ-LGSD-Laguna_Salada_fault_west_branch_center-CFM5_500m \
+    PNRA-ELSZ-LGSD-Laguna_Salada_fault_west_branch_deep_splay-CFM5_500m \
+    PNRA-ELSZ-LGSD-Laguna_Salada_fault_west_branch_east-CFM5_500m \
+    PNRA-ELSZ-LGSD-Laguna_Salada_fault_west_branch_west-CFM5_500m \
+    PNRA-ELSZ-YUHA-Sierra_Cucapah_fault_NW_splay-CFM5_500m \
+    PNRA-ELSZ-YUHA-Sierra_Cucapah_fault_blind_north-CFM5_500m \
+    PNRA-NBJD-SRCP-Cerro_Centinela_fault-CFM2_500m
+min_angle lagunasalada PNRA-ELSZ-LGSD-Laguna_Salada_fault_east_branch_dipping-CFM5_500m 15
 exit $fail
