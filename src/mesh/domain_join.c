@@ -408,7 +408,8 @@ static int32_t reachable_node(const fm_fit_surface *s, const flat_domain *fd, si
         double Q[3];
         eval3(s, fd->uv + 2 * i, Q);
         double d = dist3(A, Q);
-        if (d < bd && (int32_t)i != a && !chord_blocked(fd, ns, a, (int32_t)i)) {
+        if (d < bd && (int32_t)i != a && !has_segment(fd, ns, a, (int32_t)i) &&
+            !chord_blocked(fd, ns, a, (int32_t)i)) {
             bd = d;
             best = (int32_t)i;
         }
@@ -426,7 +427,8 @@ static int32_t reachable_node(const fm_fit_surface *s, const flat_domain *fd, si
         double K[3];
         eval3(s, fd->uv + 2 * k, K);
         double d = dist3(A, K);
-        if (seg_dist3(K, A, B) <= clear && d < vd && !chord_blocked(fd, ns, a, (int32_t)k)) {
+        if (seg_dist3(K, A, B) <= clear && d < vd && !has_segment(fd, ns, a, (int32_t)k) &&
+            !chord_blocked(fd, ns, a, (int32_t)k)) {
             vd = d;
             via = (int32_t)k;
         }
@@ -780,13 +782,15 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
         if (a < 0 || b < 0 || a == b || (size_t)a < nl)
             continue;
         int lev = cn[k].level;
-        if (chord_blocked(fd, ns, a, b)) {
+        if (chord_blocked(fd, ns, a, b) || has_segment(fd, ns, a, b)) {
             /* The node nearest the curve end can lie beyond another curve
-             * (a short one near a corner of the outline): the connector
-             * goes to the nearest loop node it reaches without crossing
-             * anything, at most a size farther (a longer one would cut
-             * off a strip of the sheet: slivers), or the sheet is left to
-             * fail as before. */
+             * (a short one near a corner of the outline), or be the
+             * curve's own next node, where the outline hugs the curve
+             * (Mission Creek strand steep: a curve turning back off the
+             * outline at its end): the connector goes to the nearest
+             * loop node it reaches without crossing anything, at most a
+             * size farther (a longer one would cut off a strip of the
+             * sheet: slivers), or the sheet is left to fail as before. */
             double A[3], B[3];
             eval3(s, fd->uv + 2 * a, A);
             eval3(s, fd->uv + 2 * b, B);
@@ -802,10 +806,9 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
                 lev = fd->level[a] && fd->level[b];
             }
         }
-        /* nor one that would go to the curve's own next node (its piece
-         * to there already joins the end to the outline: Pezzoni
-         * Casmalia's sheet failed with two segments joining the same
-         * points and was meshed without its T with Los Alamos) */
+        /* nor one that would still go to the curve's own next node (two
+         * segments joining the same points: Pezzoni Casmalia's sheet
+         * failed and was meshed without its T with Los Alamos) */
         if (has_segment(fd, ns, a, b))
             continue;
         fd->seg[2 * ns] = a;
