@@ -409,7 +409,8 @@ static int32_t reachable_node(const fm_fit_surface *s, const flat_domain *fd, si
         double Q[3];
         eval3(s, fd->uv + 2 * i, Q);
         double d = dist3(A, Q);
-        if (d < bd && (int32_t)i != a && !chord_blocked(fd, ns, a, (int32_t)i)) {
+        if (d < bd && (int32_t)i != a && !has_segment(fd, ns, a, (int32_t)i) &&
+            !chord_blocked(fd, ns, a, (int32_t)i)) {
             bd = d;
             best = (int32_t)i;
         }
@@ -427,7 +428,8 @@ static int32_t reachable_node(const fm_fit_surface *s, const flat_domain *fd, si
         double K[3];
         eval3(s, fd->uv + 2 * k, K);
         double d = dist3(A, K);
-        if (seg_dist3(K, A, B) <= clear && d < vd && !chord_blocked(fd, ns, a, (int32_t)k)) {
+        if (seg_dist3(K, A, B) <= clear && d < vd && !has_segment(fd, ns, a, (int32_t)k) &&
+            !chord_blocked(fd, ns, a, (int32_t)k)) {
             vd = d;
             via = (int32_t)k;
         }
@@ -460,6 +462,39 @@ static int32_t reachable_curve_node(const fm_fit_surface *s, const flat_domain *
         if (d < bd && !chord_blocked(fd, ns, a, (int32_t)k)) {
             bd = d;
             best = (int32_t)k;
+        }
+    }
+    return best;
+}
+
+/* The outline node next to loop node b (among the first nl points) that
+ * is a curve's node, within `near` of b in 3D and reached from point a
+ * without crossing anything (the nearer to a of two), or -1. A
+ * connector whose foot is an outline node that close to where a curve
+ * meets the outline leaves an outline piece that short between them,
+ * refined into slivers (Laguna Salada east branch: a foot 391 m from a
+ * curve's end, a triangle of 12 degrees). */
+static int32_t curve_node_beside(const fm_fit_surface *s, const flat_domain *fd, size_t nl,
+                                 size_t ns, int32_t a, int32_t b, double near)
+{
+    int32_t nb[2] = {fd->seg[2 * (size_t)b + 1], -1};
+    for (size_t k = 0; k < nl; k++)
+        if (fd->seg[2 * k + 1] == b)
+            nb[1] = (int32_t)k;
+    double A[3], B[3];
+    eval3(s, fd->uv + 2 * a, A);
+    eval3(s, fd->uv + 2 * b, B);
+    int32_t best = -1;
+    double bd = INFINITY;
+    for (int k = 0; k < 2; k++) {
+        int32_t c = nb[k];
+        if (c < 0 || c == a || fd->shared[c] < 0 || has_segment(fd, ns, a, c))
+            continue;
+        double C[3];
+        eval3(s, fd->uv + 2 * c, C);
+        if (dist3(B, C) <= near && dist3(A, C) < bd && !chord_blocked(fd, ns, a, c)) {
+            bd = dist3(A, C);
+            best = c;
         }
     }
     return best;
@@ -562,6 +597,81 @@ static int hug_curves(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
     return 0;
 }
 
+/* 1 if a and b are consecutive nodes of one of the curves. */
+static int curve_piece(const fm_remesh_curve *cv, size_t nc, const double *a, const double *b)
+{
+    for (size_t c = 0; c < nc; c++)
+        for (size_t i = 0; i + 1 < cv[c].n; i++) {
+            const double *p = cv[c].uv + 2 * i, *q = p + 2;
+            if ((pt_eq(p, a) && pt_eq(q, b)) || (pt_eq(p, b) && pt_eq(q, a)))
+                return 1;
+        }
+    return 0;
+}
+
+/* Puts the curve ends within tol of the loops onto them (pass 0), or
+ * gives the open ends of curves the sheet ends at their connectors (pass
+ * 1, on the outline as rerouted and hugging the curves). Connectors come
+ * last: one aimed at the outline before a curve end was put on it went to
+ * the node that end would have moved, and the end was inserted beside it
+ * on the connector's way (Agua Caliente: a sea-level connector along the
+ * top trace passed 1.9 m from a curve end put 80 m short of its foot,
+ * refined into triangles of 0 to 10 degrees); one aimed before the
+ * outline hugged a curve kept an outline node metres off the curve
+ * (Rose Canyon's corner with San Onofre: a spike of 4 degrees). Returns
+ * -1 when out of memory. */
+static int place_ends(const fm_fit_surface *s, remesh_domain *dom, const fm_remesh_curve *cv,
+                      size_t nc, double tol, double level, taken *tk, unsigned char *snapped,
+                      connector *cn, size_t *ncn, int pass)
+{
+    for (size_t c = 0; c < nc; c++)
+        for (int e = 0; e < 2; e++) {
+            if (snapped[2 * c + (size_t)e])
+                continue;
+            const double *uv = cv[c].uv + 2 * (e ? cv[c].n - 1 : 0);
+            double P[3], at[2];
+            eval3(s, uv, P);
+            seg_hit hh = nearest_segment(s, dom, P);
+            if (!isfinite(hh.d))
+                continue;
+            if (hh.d <= tol) {
+                if (put_on_loop(s, dom, &hh, uv, level, tol, 1, tk, at))
+                    return -1;
+                snapped[2 * c + (size_t)e] = 1;
+            } else if (pass && cv[c].end && !end_continues(cv, nc, c, e) &&
+                       !has_connector(cn, *ncn, cv[c].node[e ? cv[c].n - 1 : 0])) {
+                /* a foot on a piece of another curve the outline runs
+                 * along would be a node of that curve the other sheet
+                 * has not: the outline and the curve would part there, a
+                 * face of no width (Banning strand: a triangle of 0.04
+                 * degrees); the connector goes to the nearer end */
+                const dom_loop *lp = &dom->loops[hh.loop];
+                const double *a = lp->uv + 2 * hh.i, *b = lp->uv + 2 * ((hh.i + 1) % lp->n);
+                if (curve_piece(cv, nc, a, b)) {
+                    double A[3], B[3];
+                    eval3(s, a, A);
+                    eval3(s, b, B);
+                    hh.t = dist3(A, P) <= dist3(B, P) ? 0 : 1;
+                }
+                if (put_on_loop(s, dom, &hh, uv, level, tol, 0, tk, at))
+                    return -1;
+                /* a connector that would cross the outline on its way ends
+                 * where it first meets it */
+                if (first_crossing(s, dom, uv, at, level, tk, at) < 0)
+                    return -1;
+                connector *k = &cn[(*ncn)++];
+                memcpy(k->a, uv, sizeof k->a);
+                memcpy(k->b, at, sizeof k->b);
+                k->node = cv[c].node[e ? cv[c].n - 1 : 0];
+                k->curve = c;
+                double B[3];
+                eval3(s, at, B);
+                k->level = fabs(P[2] - level) < 1e-6 && fabs(B[2] - level) < 1e-6;
+            }
+        }
+    return 0;
+}
+
 fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_remesh_curve *cv,
                       size_t nc, double h, double level, flat_domain *fd, fm_error *err,
                       const char *name)
@@ -575,42 +685,16 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
     fm_status st = FM_OK;
     if (!cn || !snapped)
         goto nomem;
-    for (size_t c = 0; c < nc; c++) {
+    for (size_t c = 0; c < nc; c++)
         if (cv[c].n < 2) {
             st = fm_error_set(err, FM_ERR_INVALID, name, 0, "shared curve %zu has fewer than 2 nodes",
                               c);
             goto done;
         }
-        for (int e = 0; e < 2; e++) {
-            const double *uv = cv[c].uv + 2 * (e ? cv[c].n - 1 : 0);
-            double P[3], at[2];
-            eval3(s, uv, P);
-            seg_hit hh = nearest_segment(s, dom, P);
-            if (!isfinite(hh.d))
-                continue;
-            if (hh.d <= tol) {
-                if (put_on_loop(s, dom, &hh, uv, level, tol, 1, &tk, at))
-                    goto nomem;
-                snapped[2 * c + (size_t)e] = 1;
-            } else if (cv[c].end && !end_continues(cv, nc, c, e) &&
-                       !has_connector(cn, ncn, cv[c].node[e ? cv[c].n - 1 : 0])) {
-                if (put_on_loop(s, dom, &hh, uv, level, tol, 0, &tk, at))
-                    goto nomem;
-                /* a connector that would cross the outline on its way ends
-                 * where it first meets it */
-                if (first_crossing(s, dom, uv, at, level, &tk, at) < 0)
-                    goto nomem;
-                connector *k = &cn[ncn++];
-                memcpy(k->a, uv, sizeof k->a);
-                memcpy(k->b, at, sizeof k->b);
-                k->node = cv[c].node[e ? cv[c].n - 1 : 0];
-                k->curve = c;
-                double B[3];
-                eval3(s, at, B);
-                k->level = fabs(P[2] - level) < 1e-6 && fabs(B[2] - level) < 1e-6;
-            }
-        }
-    }
+    /* Curve ends on the outline first, then the outline rerouted and
+     * hugging the curves, and connectors aimed at it last (place_ends). */
+    if (place_ends(s, dom, cv, nc, tol, level, &tk, snapped, cn, &ncn, 0))
+        goto nomem;
     /* A curve may cross the sampled outline between its nodes (the
      * outline's chords are not the plan's outline): the outline, which
      * belongs to this sheet alone, is rerouted through the curve node
@@ -632,6 +716,8 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
      * no triangle of size H: only slivers (Agua Caliente's seams, 0.05
      * degrees); 0.45 H changes nothing more on the CFM */
     if (hug_curves(s, dom, cv, nc, 0.3 * h, level, &tk))
+        goto nomem;
+    if (place_ends(s, dom, cv, nc, tol, level, &tk, snapped, cn, &ncn, 1))
         goto nomem;
     /* flatten: loops first (as domain_triangulate always did), then the
      * curves' own nodes and segments, then the connectors */
@@ -728,13 +814,15 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
         if (a < 0 || b < 0 || a == b || (size_t)a < nl)
             continue;
         int lev = cn[k].level;
-        if (chord_blocked(fd, ns, a, b)) {
+        if (chord_blocked(fd, ns, a, b) || has_segment(fd, ns, a, b)) {
             /* The node nearest the curve end can lie beyond another curve
-             * (a short one near a corner of the outline): the connector
-             * goes to the nearest loop node it reaches without crossing
-             * anything, at most a size farther (a longer one would cut
-             * off a strip of the sheet: slivers), or the sheet is left to
-             * fail as before. */
+             * (a short one near a corner of the outline), or be the
+             * curve's own next node, where the outline hugs the curve
+             * (Mission Creek strand steep: a curve turning back off the
+             * outline at its end): the connector goes to the nearest
+             * loop node it reaches without crossing anything, at most a
+             * size farther (a longer one would cut off a strip of the
+             * sheet: slivers), or the sheet is left to fail as before. */
             double A[3], B[3];
             eval3(s, fd->uv + 2 * a, A);
             eval3(s, fd->uv + 2 * b, B);
@@ -746,8 +834,16 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
                 b = c;
                 lev = fd->level[a] && fd->level[b];
             }
+        } else if (fd->shared[b] < 0) {
+            int32_t c = curve_node_beside(s, fd, nl, ns, a, b, 0.5 * h);
+            if (c >= 0) {
+                b = c;
+                lev = fd->level[a] && fd->level[b];
+            }
         }
-        /* the loop or a curve may join the two already */
+        /* the loop or a curve may join the two already (a connector to
+         * the curve's own next node: Pezzoni Casmalia's sheet failed and
+         * was meshed without its T with Los Alamos) */
         if (has_segment(fd, ns, a, b))
             continue;
         fd->seg[2 * ns] = a;
