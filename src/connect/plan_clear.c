@@ -28,16 +28,29 @@ static void unit_normal(const double du[3], const double dv[3], double n[3])
         n[k] = l > 0 ? n[k] / l : 0;
 }
 
-/* Where the segment from node ia (inside the outline) to node ib (not)
- * leaves it: bisection on the even-odd test, to a metre or so. */
+/* Where the sheet's edge is to be trimmed: inside its outline, or outside
+ * but within `near` of it (an edge that runs along the other surface,
+ * now just short of it, now just through it, is trimmed all along, or
+ * the next stretch through it would be left). */
+static int usable(const pl_outline *o, const double uv[2], double near)
+{
+    if (pl_outline_inside(o, uv))
+        return 1;
+    double x[3], foot[3], fuv[2];
+    fm_fit_surface_eval(o->surf, uv[0], uv[1], x, NULL, NULL);
+    return pl_outline_foot(o, x, foot, fuv) <= near;
+}
+
+/* Where the segment from node ia (usable) to node ib (not) stops being
+ * usable: bisection, to a metre or so. */
 static void leave_point(const pl_outline *o, const double *uv, size_t ia, size_t ib,
-                        double out[2])
+                        double near, double out[2])
 {
     const double *a = uv + 2 * ia, *b = uv + 2 * ib;
     double lo = 0, hi = 1;
     for (int it = 0; it < 40; it++) {
         double t = 0.5 * (lo + hi), p[2] = {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])};
-        if (pl_outline_inside(o, p))
+        if (usable(o, p, near))
             lo = t;
         else
             hi = t;
@@ -46,21 +59,21 @@ static void leave_point(const pl_outline *o, const double *uv, size_t ia, size_t
     out[1] = a[1] + lo * (b[1] - a[1]);
 }
 
-/* The stretch of curve c that sheet s trims at: its longest run of nodes
- * inside its outline, with an end put where the run leaves it, so that
- * the stretch cuts the sheet from edge to edge. It must hold a node inside
- * the other sheet's outline too (ot), or the two do not cross there and
+/* The stretch of curve c that sheet s trims at: its longest run of usable
+ * nodes, with an end put where the run leaves them, so that the stretch
+ * cuts the sheet from edge to edge. It must hold a node inside both
+ * outlines (ot: the other sheet's), or the two do not cross there and
  * there is nothing to clear. uv: side s's, 2 per node, *n nodes. */
 static int inside_run(const pl_curve *c, int s, const pl_outline *os, const pl_outline *ot,
-                      double H, double *uv, size_t *n)
+                      double H, double near, double *uv, size_t *n)
 {
     const double *cu = c->uv[s];
     size_t bf = 0, bt = 0, best = 0;
     for (size_t i = 0; i < c->n; i++) {
-        if (!pl_outline_inside(os, cu + 2 * i))
+        if (!usable(os, cu + 2 * i, near))
             continue;
         size_t t = i;
-        while (t + 1 < c->n && pl_outline_inside(os, cu + 2 * t + 2))
+        while (t + 1 < c->n && usable(os, cu + 2 * t + 2, near))
             t++;
         if (t - i + 1 > best) {
             best = t - i + 1;
@@ -69,18 +82,26 @@ static int inside_run(const pl_curve *c, int s, const pl_outline *os, const pl_o
         }
         i = t;
     }
+    /* it starts and ends inside: only a stretch between two inside ones
+     * may run just outside (ends out there would fill past the edge) */
+    while (best && bf < bt && !pl_outline_inside(os, cu + 2 * bf))
+        bf++;
+    while (best && bt > bf && !pl_outline_inside(os, cu + 2 * bt))
+        bt--;
+    if (best && !pl_outline_inside(os, cu + 2 * bf))
+        best = 0;
     *n = 0;
     int crosses = 0;
     for (size_t i = bf; best && i <= bt; i++)
-        crosses |= pl_outline_inside(ot, c->uv[1 - s] + 2 * i);
+        crosses |= pl_outline_inside(os, cu + 2 * i) && pl_outline_inside(ot, c->uv[1 - s] + 2 * i);
     if (!crosses)
         return 0;
     double ends[2][2];
     int has[2] = {bf > 0, bt + 1 < c->n};
     if (has[0])
-        leave_point(os, cu, bf, bf - 1, ends[0]);
+        leave_point(os, cu, bf, bf - 1, 0, ends[0]);
     if (has[1])
-        leave_point(os, cu, bt, bt + 1, ends[1]);
+        leave_point(os, cu, bt, bt + 1, 0, ends[1]);
     /* an end within a quarter size of the last inside node replaces it, so
      * that the curve keeps its spacing */
     double q = 0.25 * H;
@@ -273,7 +294,8 @@ int pl_clear_curve(const fm_connect_junction *j, const pl_curve *c, int s,
         return -1;
     }
     size_t n = 0;
-    int r = inside_run(c, s, &o[0], &o[1], H, uv, &n)
+    /* twice the gap: the fill out to the curve stays within it */
+    int r = inside_run(c, s, &o[0], &o[1], H, gap, uv, &n)
                 ? offset_stretch(S, T, c->keep_left[s], gap, H, level, uv, xyz, n)
                 : 1;
     pl_outline_free(&o[0]);
