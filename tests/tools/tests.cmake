@@ -111,7 +111,7 @@ if(FM_SYSTEM_PYTHON)
   add_test(NAME cfm_connect_report_500m_1000
     COMMAND bash ${FM_TOOLS}/connect_whole_report.sh $<TARGET_FILE:faultmesh_cli> $<TARGET_FILE:check_connect>
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_report ${FM_CFM_DIR}/CFM5.3/500m ${FM_SYSTEM_PYTHON}
-            1000)
+            850)
   set_tests_properties(cfm_connect_report_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
   # cfm_connect_santa_maria_hosgri: Santa Maria Basin thrust A ends at
   # Hosgri on a curve that dips to its down-dip outline and runs outside
