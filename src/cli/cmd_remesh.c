@@ -57,8 +57,8 @@ typedef struct fault_result {
     size_t nthrough;
     size_t *used_curves;        /* plan curves its meshes took (as of its last meshing) */
     size_t nused;
-    uint64_t *curve_pieces;     /* pieces of plan curves its mesh holds (curve << 32 | piece
-                                   k: nodes k to k + 1), sorted */
+    fm_keyed *curve_pieces;     /* pieces of plan curves its mesh holds (key: curve << 32 |
+                                   piece k, nodes k to k + 1), sorted by key */
     size_t npieces;
 } fault_result;
 
@@ -71,73 +71,48 @@ static int curve_pieces(const fm_connect_plan *plan, size_t f, const fm_model *m
     free(r->curve_pieces);
     r->curve_pieces = NULL;
     r->npieces = 0;
-    size_t nt = fm_mesh_ntriangles(mesh), ne = 0;
-    const int32_t *T = fm_mesh_triangles(mesh);
-    fm_keyed *edge = malloc((3 * nt + 1) * sizeof *edge);
+    size_t ne, cap = 0;
+    fm_keyed *edge = fm_remesh_shared_edges(mesh, ids, &ne);
     if (!edge)
         return -1;
-    for (size_t t = 0; t < nt; t++)
-        for (int k = 0; k < 3; k++) {
-            int64_t a = ids[T[3 * t + k]], b = ids[T[3 * t + (k + 1) % 3]];
-            if (a >= 0 && b >= 0)
-                edge[ne++] = (fm_keyed){(uint64_t)(a < b ? a : b) << 32 | (uint64_t)(a < b ? b : a), 0};
-        }
-    size_t cap = 0;
-    int rc = fm_sort_keyed(edge, ne) ? -1 : 0;
+    int rc = 0;
     for (size_t s = 0; rc == 0 && s < fm_model_nsheets(model); s++) {
         const fm_connect_shared *sh;
         size_t n = fm_connect_plan_sheet(plan, f, s, &sh);
         for (size_t c = 0; rc == 0 && c < n; c++)
             for (size_t i = 0; i + 1 < sh[c].n; i++) {
-                int64_t a = sh[c].node[i], b = sh[c].node[i + 1];
-                uint64_t key = (uint64_t)(a < b ? a : b) << 32 | (uint64_t)(a < b ? b : a);
-                size_t lo = 0, hi = ne;
-                while (lo < hi) {
-                    size_t mid = lo + (hi - lo) / 2;
-                    if (edge[mid].key < key)
-                        lo = mid + 1;
-                    else
-                        hi = mid;
-                }
-                if (lo == ne || edge[lo].key != key)
+                uint64_t key = fm_edge_key((uint64_t)sh[c].node[i], (uint64_t)sh[c].node[i + 1]);
+                size_t at = fm_keyed_lower_bound(edge, ne, key);
+                if (at == ne || edge[at].key != key)
                     continue;
                 if (r->npieces == cap) {
                     cap = cap ? 2 * cap : 64;
-                    uint64_t *g = realloc(r->curve_pieces, cap * sizeof *g);
+                    fm_keyed *g = realloc(r->curve_pieces, cap * sizeof *g);
                     if (!g) {
                         rc = -1;
                         break;
                     }
                     r->curve_pieces = g;
                 }
-                r->curve_pieces[r->npieces++] = (uint64_t)sh[c].curve << 32 | i;
+                r->curve_pieces[r->npieces] = (fm_keyed){(uint64_t)sh[c].curve << 32 | i, r->npieces};
+                r->npieces++;
             }
     }
     free(edge);
-    if (rc == 0) {
-        /* sheets list their curves in plan order each, not all together */
-        fm_keyed *k = malloc((r->npieces + 1) * sizeof *k);
-        if (!k)
-            return -1;
-        for (size_t i = 0; i < r->npieces; i++)
-            k[i] = (fm_keyed){r->curve_pieces[i], i};
-        rc = fm_sort_keyed(k, r->npieces) ? -1 : 0;
-        for (size_t i = 0; rc == 0 && i < r->npieces; i++)
-            r->curve_pieces[i] = k[i].key;
-        free(k);
-    }
+    /* sheets list their curves in plan order each, not all together */
+    if (rc == 0 && fm_sort_keyed(r->curve_pieces, r->npieces))
+        rc = -1;
     return rc;
 }
 
 /* Whether faults a and b both hold some piece of plan curve c. */
 static int share_piece(const fault_result *a, const fault_result *b, size_t c)
 {
-    for (size_t i = 0; i < a->npieces; i++) {
-        if (a->curve_pieces[i] >> 32 != c)
-            continue;
-        for (size_t k = 0; k < b->npieces; k++)
-            if (b->curve_pieces[k] == a->curve_pieces[i])
-                return 1;
+    for (size_t i = fm_keyed_lower_bound(a->curve_pieces, a->npieces, (uint64_t)c << 32);
+         i < a->npieces && a->curve_pieces[i].key >> 32 == c; i++) {
+        size_t at = fm_keyed_lower_bound(b->curve_pieces, b->npieces, a->curve_pieces[i].key);
+        if (at < b->npieces && b->curve_pieces[at].key == a->curve_pieces[i].key)
+            return 1;
     }
     return 0;
 }

@@ -30,6 +30,14 @@ typedef struct fm_keyed {
  * out of memory (v unchanged). */
 int fm_sort_keyed(fm_keyed *v, size_t n);
 
+/* The first entry of v (sorted by key) whose key is not below key: n when
+ * there is none. */
+size_t fm_keyed_lower_bound(const fm_keyed *v, size_t n, uint64_t key);
+
+/* The key of the edge between vertices (or nodes) a and b, either way
+ * round: the smaller << 32 | the larger (both below 2^32). */
+uint64_t fm_edge_key(uint64_t a, uint64_t b);
+
 #ifdef __cplusplus
 }
 #endif

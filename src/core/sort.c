@@ -80,3 +80,21 @@ int fm_sort_keyed(fm_keyed *v, size_t n)
     free(tmp);
     return 0;
 }
+
+size_t fm_keyed_lower_bound(const fm_keyed *v, size_t n, uint64_t key)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (v[mid].key < key)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+uint64_t fm_edge_key(uint64_t a, uint64_t b)
+{
+    return a < b ? a << 32 | b : b << 32 | a;
+}

@@ -37,6 +37,7 @@
 #include "fm_fit.h"
 #include "fm_mesh.h"
 #include "fm_model.h"
+#include "fm_sort.h"
 #include "fm_trim.h"
 
 #ifdef __cplusplus
@@ -149,6 +150,12 @@ typedef struct fm_remesh_sheet_curves {
  * still share its nodes); curves[i].dropped marks the others,
  * join_failed[i] (may be NULL) is set to 1 and
  * join_errors[i] (may be NULL) given the first failure. */
+/* The edges of mesh m both of whose ends carry a shared node (ids: per
+ * vertex the shared node id or -1, as fm_remesh_model_joined gives them),
+ * keyed fm_edge_key(id a, id b) and sorted by key; *n of them (malloc'ed;
+ * free it). NULL when out of memory. */
+fm_keyed *fm_remesh_shared_edges(const fm_mesh *m, const int64_t *ids, size_t *n);
+
 fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves *curves,
                                  const fm_remesh_options *opt, fm_mesh **out, int64_t **node_out,
                                  unsigned char *join_failed, fm_error *join_errors,

@@ -45,23 +45,29 @@ static fm_keyed *sorted_ids(const int64_t *ids, size_t nv, size_t *n)
 
 static int has_key(const fm_keyed *k, size_t n, uint64_t key)
 {
-    size_t lo = 0, hi = n;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (k[mid].key < key)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo < n && k[lo].key == key;
+    size_t at = fm_keyed_lower_bound(k, n, key);
+    return at < n && k[at].key == key;
 }
 
-/* An edge between shared nodes a and b, either way round (ids are below
- * 2^31: plan node indices). */
-static uint64_t edge_key(int64_t a, int64_t b)
+fm_keyed *fm_remesh_shared_edges(const fm_mesh *m, const int64_t *ids, size_t *n)
 {
-    uint64_t lo = (uint64_t)(a < b ? a : b), hi = (uint64_t)(a < b ? b : a);
-    return lo << 32 | hi;
+    *n = 0;
+    size_t nt = fm_mesh_ntriangles(m);
+    const int32_t *T = fm_mesh_triangles(m);
+    fm_keyed *edge = malloc((3 * nt + 1) * sizeof *edge);
+    if (!edge)
+        return NULL;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++) {
+            int64_t a = ids[T[3 * t + k]], b = ids[T[3 * t + (k + 1) % 3]];
+            if (a >= 0 && b >= 0)
+                edge[(*n)++] = (fm_keyed){fm_edge_key((uint64_t)a, (uint64_t)b), 0};
+        }
+    if (fm_sort_keyed(edge, *n)) {
+        free(edge);
+        return NULL;
+    }
+    return edge;
 }
 
 /* Sheets of one fault that end at the same triple point (or share a
@@ -124,27 +130,16 @@ static int mark_absent(const fm_remesh_sheet_curves *sc, const int64_t *sid, con
         memset(sc->dropped, 1, sc->n);
         return 0;
     }
-    /* the mesh's edges between shared nodes, keyed by the two ids */
-    size_t nt = fm_mesh_ntriangles(sheet), ne = 0;
-    const int32_t *T = fm_mesh_triangles(sheet);
-    fm_keyed *edge = malloc((3 * nt + 1) * sizeof *edge);
+    size_t ne;
+    fm_keyed *edge = fm_remesh_shared_edges(sheet, sid, &ne);
     if (!edge)
         return -1;
-    for (size_t t = 0; t < nt; t++)
-        for (int k = 0; k < 3; k++) {
-            int64_t a = sid[T[3 * t + k]], b = sid[T[3 * t + (k + 1) % 3]];
-            if (a >= 0 && b >= 0)
-                edge[ne++] = (fm_keyed){edge_key(a, b), 0};
-        }
-    if (fm_sort_keyed(edge, ne)) {
-        free(edge);
-        return -1;
-    }
     for (size_t k = 0; k < sc->n; k++) {
         const fm_remesh_curve *c = &sc->curves[k];
         int present = 0;
         for (size_t i = 0; c->node && i + 1 < c->n && !present; i++)
-            present = has_key(edge, ne, edge_key(c->node[i], c->node[i + 1]));
+            present = has_key(edge, ne,
+                              fm_edge_key((uint64_t)c->node[i], (uint64_t)c->node[i + 1]));
         if (!present)
             sc->dropped[k] = 1; /* taken through or not, it is not there */
     }
