@@ -81,21 +81,9 @@ static double outline_distance(const fm_mesh *o, const uint64_t *E, size_t ne, c
 {
     const double *V = fm_mesh_vertices(o);
     double best = INFINITY;
-    for (size_t e = 0; e < ne; e++) {
-        const double *a = V + 3 * (E[e] >> 32), *b = V + 3 * (E[e] & 0xffffffffu);
-        double d[3], q[3], dd = 0, qd = 0;
-        for (int i = 0; i < 3; i++) {
-            d[i] = b[i] - a[i];
-            q[i] = p[i] - a[i];
-            dd += d[i] * d[i];
-            qd += q[i] * d[i];
-        }
-        double f = dd > 0 ? fmin(fmax(qd / dd, 0), 1) : 0, r2 = 0;
-        for (int i = 0; i < 3; i++)
-            r2 += (q[i] - f * d[i]) * (q[i] - f * d[i]);
-        best = fmin(best, r2);
-    }
-    return sqrt(best);
+    for (size_t e = 0; e < ne; e++)
+        best = fmin(best, fm_segment_distance3(p, V + 3 * (E[e] >> 32), V + 3 * (E[e] & 0xffffffffu)));
+    return best;
 }
 
 fm_status fm_check_fidelity(const fm_mesh *m, int32_t tag, const fm_mesh *orig,

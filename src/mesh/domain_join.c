@@ -378,17 +378,6 @@ static int chord_blocked(const flat_domain *fd, size_t ns, int32_t a, int32_t b)
     return 0;
 }
 
-/* 3D distance from P to segment A-B. */
-static double seg_dist3(const double P[3], const double A[3], const double B[3])
-{
-    double d[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
-    double L2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    double f = L2 > 0 ? ((P[0] - A[0]) * d[0] + (P[1] - A[1]) * d[1] + (P[2] - A[2]) * d[2]) / L2 : 0;
-    f = f < 0 ? 0 : f > 1 ? 1 : f;
-    double X[3] = {A[0] + f * d[0], A[1] + f * d[1], A[2] + f * d[2]};
-    return dist3(P, X);
-}
-
 /* The loop node (among the first nl points) nearest to point a in 3D,
  * within reach, whose chord from a crosses none of the first ns segments,
  * or -1. When that chord passes within `clear` of a curve node (another
@@ -428,7 +417,7 @@ static int32_t reachable_node(const fm_fit_surface *s, const flat_domain *fd, si
         double K[3];
         eval3(s, fd->uv + 2 * k, K);
         double d = dist3(A, K);
-        if (seg_dist3(K, A, B) <= clear && d < vd && !has_segment(fd, ns, a, (int32_t)k) &&
+        if (fm_segment_distance3(K, A, B) <= clear && d < vd && !has_segment(fd, ns, a, (int32_t)k) &&
             !chord_blocked(fd, ns, a, (int32_t)k)) {
             vd = d;
             via = (int32_t)k;
