@@ -19,6 +19,18 @@
 #define X0 400000.0
 #define Y0 3700000.0
 
+/* The two triangles of every cell of a grid of (nu + 1) x (nv + 1)
+ * vertices numbered row by row from base. */
+static void grid_triangles(fm_mesh *m, int32_t base, int nu, int nv)
+{
+    for (int j = 0; j < nv; j++)
+        for (int i = 0; i < nu; i++) {
+            int32_t a = base + j * (nu + 1) + i, b = a + 1, d = a + nu + 1, e = d + 1;
+            fm_mesh_add_triangle(m, a, b, e, 0);
+            fm_mesh_add_triangle(m, a, e, d, 0);
+        }
+}
+
 /* A vertical plane through (X0, Y0) with horizontal direction (cos az,
  * sin az), s in [-half, half], z in [zbot, 0], triangles of about h. */
 static fm_mesh *vertical_plane(double az_deg, double half, double zbot, double h)
@@ -31,12 +43,7 @@ static fm_mesh *vertical_plane(double az_deg, double half, double zbot, double h
             double t = -half + 2 * half * i / ns, z = zbot * j / nz;
             fm_mesh_add_vertex(m, X0 + t * c, Y0 + t * s, z);
         }
-    for (int j = 0; j < nz; j++)
-        for (int i = 0; i < ns; i++) {
-            int32_t a = j * (ns + 1) + i, b = a + 1, d = a + ns + 1, e = d + 1;
-            fm_mesh_add_triangle(m, a, b, e, 0);
-            fm_mesh_add_triangle(m, a, e, d, 0);
-        }
+    grid_triangles(m, 0, ns, nz);
     return m;
 }
 
@@ -49,12 +56,7 @@ static fm_mesh *plane_part(double t0, double t1, double off, double zbot, double
     for (int j = 0; j <= nz; j++)
         for (int i = 0; i <= ns; i++)
             fm_mesh_add_vertex(m, X0 + t0 + (t1 - t0) * i / ns, Y0 + off, zbot * j / nz);
-    for (int j = 0; j < nz; j++)
-        for (int i = 0; i < ns; i++) {
-            int32_t a = j * (ns + 1) + i, b = a + 1, d = a + ns + 1, e = d + 1;
-            fm_mesh_add_triangle(m, a, b, e, 0);
-            fm_mesh_add_triangle(m, a, e, d, 0);
-        }
+    grid_triangles(m, 0, ns, nz);
     return m;
 }
 
@@ -387,12 +389,7 @@ static fm_mesh *tilted_plane(double deg, double h)
             fm_mesh_add_vertex(m, X0 + a * d[0] + b * e[0], Y0 + a * d[1] + b * e[1],
                                -6400 + a * d[2] + b * e[2]);
         }
-    for (int j = 0; j < nb; j++)
-        for (int i = 0; i < na; i++) {
-            int32_t p = j * (na + 1) + i, q = p + 1, r = p + na + 1, w = r + 1;
-            fm_mesh_add_triangle(m, p, q, w, 0);
-            fm_mesh_add_triangle(m, p, w, r, 0);
-        }
+    grid_triangles(m, 0, na, nb);
     return m;
 }
 
@@ -464,12 +461,7 @@ static fm_mesh *leaning_plane(double h)
             double y = -2000 + 7000.0 * i / ny, z = -10000.0 * j / nz;
             fm_mesh_add_vertex(m, X0 + 200 + 0.2 * (z + 10000) + 0.5 * y, Y0 + y, z);
         }
-    for (int j = 0; j < nz; j++)
-        for (int i = 0; i < ny; i++) {
-            int32_t a = j * (ny + 1) + i, b = a + 1, d = a + ny + 1, e = d + 1;
-            fm_mesh_add_triangle(m, a, b, e, 0);
-            fm_mesh_add_triangle(m, a, e, d, 0);
-        }
+    grid_triangles(m, 0, ny, nz);
     return m;
 }
 
@@ -534,12 +526,7 @@ static fm_mesh *plane_x(double off, double t0, double t1, double zbot, double h)
     for (int j = 0; j <= nz; j++)
         for (int i = 0; i <= ns; i++)
             fm_mesh_add_vertex(m, X0 + off, Y0 + t0 + (t1 - t0) * i / ns, zbot * j / nz);
-    for (int j = 0; j < nz; j++)
-        for (int i = 0; i < ns; i++) {
-            int32_t a = j * (ns + 1) + i, b = a + 1, d = a + ns + 1, e = d + 1;
-            fm_mesh_add_triangle(m, a, b, e, 0);
-            fm_mesh_add_triangle(m, a, e, d, 0);
-        }
+    grid_triangles(m, 0, ns, nz);
     return m;
 }
 
@@ -631,26 +618,9 @@ static void test_beyond_end(void)
         for (int i = 0; i <= nx; i++)
             fm_mesh_add_vertex(t, X0 - 50 - 5950.0 * i / nx, Y0, zb * j / nz);
     int nb = (nz + 1) * (ny + 1);
-    for (int j = 0; j < nz; j++) {
-        for (int i = 0; i < ny; i++) {
-            int32_t a = j * (ny + 1) + i, b = a + 1, d = a + ny + 1, e = d + 1;
-            fm_mesh_add_triangle(t, a, b, e, 0);
-            fm_mesh_add_triangle(t, a, e, d, 0);
-        }
-        for (int i = 0; i < nx; i++) {
-            int32_t a = nb + j * (nx + 1) + i, b = a + 1, d = a + nx + 1, e = d + 1;
-            fm_mesh_add_triangle(t, a, b, e, 0);
-            fm_mesh_add_triangle(t, a, e, d, 0);
-        }
-    }
-    fm_mesh *side = plane_part(-3000, 3000, 0, -4000, h);
-    /* plane_part runs along x: turn it to x = X0 + 600, y along its t */
-    double *X = fm_mesh_vertices_mut(side);
-    for (size_t v = 0; v < fm_mesh_nvertices(side); v++) {
-        double tt = X[3 * v] - X0;
-        X[3 * v] = X0 + 600;
-        X[3 * v + 1] = Y0 + tt;
-    }
+    grid_triangles(t, 0, ny, nz);
+    grid_triangles(t, nb, nx, nz);
+    fm_mesh *side = plane_x(600, -3000, 3000, -4000, h);
     fm_model *models[2] = {fit_mesh("tee", t), fit_mesh("beside", side)};
     fm_mesh_destroy(t);
     fm_mesh_destroy(side);
