@@ -12,6 +12,7 @@
 
 #include "cli.h"
 #include "fm_atomic.h"
+#include "fm_carve.h"
 #include "fm_check.h"
 #include "fm_clock.h"
 #include "fm_closest.h"
@@ -36,6 +37,7 @@ typedef struct remesh_cli {
     int connect;  /* join faults that meet (default 1) */
     double join;  /* D: join tolerance, m */
     fm_connect_keep keep; /* which of two near-duplicate faults is kept */
+    int carve;    /* remove what still crosses between faults (default 1 when connecting) */
 } remesh_cli;
 
 /* What one fault came to, for report.json. */
@@ -60,6 +62,7 @@ typedef struct fault_result {
     fm_keyed *curve_pieces;     /* pieces of plan curves its mesh holds (key: curve << 32 |
                                    piece k, nodes k to k + 1), sorted by key */
     size_t npieces;
+    size_t carved;              /* triangles removed where it met another fault */
 } fault_result;
 
 /* Which pieces of its plan curves fault f's mesh holds (an edge between
@@ -157,6 +160,10 @@ static void remesh_usage(FILE *fp)
             "                        for any N\n"
             "  --no-connect          mesh every fault on its own (default: faults that meet\n"
             "                        share their nodes along the intersection)\n"
+            "  --keep-crossings      when connecting, keep the triangles of two faults that\n"
+            "                        still run through each other away from a shared curve\n"
+            "                        (default: the one losing the smaller share of its\n"
+            "                        area gives way there, reported)\n"
             "  --join D              join faults whose surfaces come within D metres\n"
             "                        (default 1000)\n"
             "  --keep-duplicate smaller|larger\n"
@@ -369,6 +376,9 @@ typedef struct run_state {
     size_t *plan_res;     /* per plan fault index (objects in input order): its entry in res */
     size_t nplan_faults;
     double time[3];       /* fit, connect, mesh + check (wall clock, s) */
+    size_t *set_res;      /* per fault of the set (triangle tag): its entry in res */
+    const fm_mesh **set_orig; /* and its original (valid until the jobs are released) */
+    fm_carve_result *carve; /* faults that still met after meshing; NULL when not carved */
     fault_result *res;
     size_t nres, cap;
     long failed;
@@ -468,7 +478,13 @@ static void fit_file(const remesh_cli *cli, file_job *job)
     job->ids = calloc(nobj ? nobj : 1, sizeof *job->ids);
     if (!job->res || !job->mesh || !job->model || !job->ids) {
         free(job->res);
+        free(job->mesh);
+        free(job->model);
+        free(job->ids);
         job->res = NULL;
+        job->mesh = NULL;
+        job->model = NULL;
+        job->ids = NULL;
         return;
     }
     job->n = nobj;
@@ -551,10 +567,10 @@ static void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan,
 
 static void release_job(file_job *job)
 {
-    for (size_t o = 0; job->model && o < job->n; o++) {
+    for (size_t o = 0; job->model && o < job->n; o++)
         fm_model_destroy(job->model[o]);
-        job->model[o] = NULL;
-    }
+    free(job->model);
+    job->model = NULL;
     fm_tsurf_free_all(job->objs, job->nobj);
     job->objs = NULL;
     job->nobj = 0;
@@ -711,10 +727,18 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
             char **nn = realloc(rs->names, (rs->nfaults + 1) * sizeof *nn);
             if (nn)
                 rs->names = nn;
-            if (!nn || append_fault(rs, fault, job->ids[o]) != FM_OK) {
+            size_t *sr = realloc(rs->set_res, (rs->nfaults + 1) * sizeof *sr);
+            if (sr)
+                rs->set_res = sr;
+            const fm_mesh **so = realloc(rs->set_orig, (rs->nfaults + 1) * sizeof *so);
+            if (so)
+                rs->set_orig = so;
+            if (!nn || !sr || !so || append_fault(rs, fault, job->ids[o]) != FM_OK) {
                 r->status = "error";
                 r->error = dup_str("out of memory");
             } else {
+                rs->set_res[rs->nfaults] = rs->nres - 1;
+                rs->set_orig[rs->nfaults] = fm_tsurf_mesh(job->objs[o]);
                 rs->names[rs->nfaults++] = r->name;
             }
         }
@@ -729,8 +753,66 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
     }
     free(job->res);
     free(job->mesh);
-    free(job->model);
     free(job->ids);
+    job->res = NULL;
+    job->mesh = NULL;
+    job->ids = NULL;
+}
+
+/* Where two faults still meet away from their shared curves (fm_carve.h),
+ * one of them gives way. A fault that lost triangles is measured again on
+ * what is left (the originals must still be there). */
+static void carve_set(const remesh_cli *cli, run_state *rs)
+{
+    fm_error err;
+    fm_error_clear(&err);
+    if (fm_carve_crossings(rs->set, 2 * cli->mesh.size, &rs->carve, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: faults that cross each other are left so: %s\n",
+                err.message);
+        return;
+    }
+    for (size_t k = 0; k < fm_carve_npairs(rs->carve); k++) {
+        const fm_carve_pair *p = fm_carve_pair_at(rs->carve, k);
+        fault_result *r = &rs->res[rs->set_res[p->fault[p->yielded]]];
+        if (r->carved)
+            continue; /* measured already */
+        int32_t tag = p->fault[p->yielded];
+        size_t before = r->q.triangles;
+        fm_closest_tree *tree = fm_closest_tree_create(rs->set_orig[tag], &err);
+        if (!tree || fm_check_quality(rs->set, tag, cli->mesh.size, &r->q) != FM_OK ||
+            fm_check_fidelity(rs->set, tag, rs->set_orig[tag], tree, &r->fid) != FM_OK)
+            fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
+        fm_closest_tree_destroy(tree);
+        r->carved = before - r->q.triangles;
+    }
+}
+
+static void json_carve(fm_json *j, const run_state *rs)
+{
+    if (!rs->carve)
+        return;
+    fm_json_kv_int(j, "carved_triangles", (int64_t)fm_carve_removed(rs->carve));
+    fm_json_kv_int(j, "carved_slivers_at_notches", (int64_t)fm_carve_slivers(rs->carve));
+    fm_json_key(j, "carved");
+    fm_json_begin_array(j);
+    for (size_t k = 0; k < fm_carve_npairs(rs->carve); k++) {
+        const fm_carve_pair *p = fm_carve_pair_at(rs->carve, k);
+        fm_json_begin_object(j);
+        fm_json_key(j, "faults");
+        fm_json_begin_array(j);
+        for (int s = 0; s < 2; s++)
+            fm_json_string(j, rs->res[rs->set_res[p->fault[s]]].name);
+        fm_json_end_array(j);
+        fm_json_kv_int(j, "triangle_pairs_met", (int64_t)p->contacts);
+        fm_json_kv_string(j, "removed_from", rs->res[rs->set_res[p->fault[p->yielded]]].name);
+        fm_json_kv_int(j, "triangles_removed", (int64_t)p->removed);
+        fm_json_kv_number(j, "area_removed_m2", p->area);
+        fm_json_kv_string(j, "reason",
+                          "the two meshes ran through each other away from any curve they "
+                          "share; the one losing the smaller share of its area gives way there");
+        fm_json_end_object(j);
+    }
+    fm_json_end_array(j);
 }
 
 static void json_quality(fm_json *j, const fault_result *r, double H)
@@ -771,6 +853,8 @@ static void json_fault(fm_json *j, const fault_result *r, double H)
         fm_json_kv_int(j, "sheets", (int64_t)r->sheets);
         fm_json_kv_int(j, "triangles", (int64_t)r->q.triangles);
         fm_json_kv_int(j, "nodes", (int64_t)r->q.nodes);
+        if (r->carved)
+            fm_json_kv_int(j, "carved_triangles", (int64_t)r->carved);
         char w[2][160];
         int nw = fault_warnings(r, w);
         fm_json_key(j, "warnings");
@@ -942,6 +1026,7 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
     fm_json_kv_int(j, "T", (int64_t)count[FM_JUNCTION_T]);
     fm_json_kv_int(j, "corner", (int64_t)count[FM_JUNCTION_CORNER]);
     fm_json_kv_int(j, "unjoined", (int64_t)count[FM_JUNCTION_UNJOINED]);
+    json_carve(j, rs);
     fm_json_end_object(j);
 }
 
@@ -1199,8 +1284,6 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     run_jobs(cli, plan, 1, NULL, jobs, (size_t)nfiles);
     if (plan)
         settle_curves(cli, plan, jobs, (size_t)nfiles);
-    for (long i = 0; i < nfiles; i++)
-        release_job(&jobs[i]);
     double t3 = fm_clock_seconds();
     rs.plan = plan;
     if (plan) {
@@ -1211,6 +1294,10 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     }
     for (long i = 0; i < nfiles; i++)
         merge_job(cli, &jobs[i], &rs);
+    if (plan && cli->carve)
+        carve_set(cli, &rs);
+    for (long i = 0; i < nfiles; i++)
+        release_job(&jobs[i]);
     free(jobs);
     rs.time[0] = t1 - t0;
     rs.time[1] = t2 - t1;
@@ -1234,6 +1321,9 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         free(rs.res[i].curve_pieces);
     }
     free(rs.res);
+    free(rs.set_res);
+    free(rs.set_orig);
+    fm_carve_result_destroy(rs.carve);
     free(rs.names);
     free(rs.node_vertex);
     free(rs.plan_res);
@@ -1293,6 +1383,9 @@ static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     } else if (!strcmp(a, "--no-connect")) {
         cli->connect = 0;
         return 1;
+    } else if (!strcmp(a, "--keep-crossings")) {
+        cli->carve = 0;
+        return 1;
     } else if (!strcmp(a, "--join")) {
         if (fm_parse_double(a, val, &cli->join) || !(cli->join > 0))
             return -1;
@@ -1338,6 +1431,7 @@ static void cli_defaults(remesh_cli *cli)
     cli->msh = FM_MSH_41;
     cli->crs = "EPSG:26711";
     cli->connect = 1;
+    cli->carve = 1;
     cli->join = 1000;
     cli->keep = FM_CONNECT_KEEP_SMALLER;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);

@@ -13,6 +13,8 @@
 #ifndef FM_PREDICATES_H
 #define FM_PREDICATES_H
 
+#include <stdint.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -33,6 +35,15 @@ int fm_incircle(const double *a, const double *b, const double *c, const double 
 /* 1 if the 3D points a, b, c are exactly collinear (the triangle has zero
  * area), else 0. */
 int fm_collinear3d(const double *a, const double *b, const double *c);
+
+/* 1 if the closed triangles a and b (3D, not degenerate) have a common
+ * point, else 0; exact (contact.c). */
+int fm_triangles_meet(const double *const a[3], const double *const b[3]);
+
+/* Triangles of one mesh, as vertex indices into x (3 doubles a vertex): 1
+ * if they meet anywhere but in the corners and side they have in common
+ * (the same triangle twice meets), 0 if not or if either is degenerate. */
+int fm_triangles_meet_apart(const int32_t ia[3], const int32_t ib[3], const double *x);
 
 #ifdef __cplusplus
 }

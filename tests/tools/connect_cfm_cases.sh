@@ -2,8 +2,9 @@
 # Junction cases of the CFM 500 m set that once left two faults' meshes
 # crossing next to the curve they share: each case is a group of faults
 # (a pair and the faults it meets, so that the plan is the one the whole
-# set has there) remeshed at 1 km, and the pair named must not intersect
-# anywhere in check_connect's exact test. Exit 77 without the CFM.
+# set has there) remeshed at 1 km with --keep-crossings (the junction
+# itself must conform, not the last guard that carves what crosses), and
+# the pair named must not intersect anywhere in check_connect's exact test. Exit 77 without the CFM.
 # usage: connect_cfm_cases.sh FAULTMESH CHECK_CONNECT TMPDIR CFMDIR
 set -u
 exe=$1 check=$2 tmp=$3 cfm=$4
@@ -16,7 +17,7 @@ run_case() {
     local d="$tmp/$name"
     rm -rf "$d" && mkdir -p "$d/in"
     for f in "$a" "$b" "$@"; do ln -sf "$cfm/$f.ts" "$d/in/"; done
-    "$exe" remesh --quiet --size 1000 -o "$d/out" "$d/in" >"$d/remesh.log" 2>&1 \
+    "$exe" remesh --quiet --keep-crossings --size 1000 -o "$d/out" "$d/in" >"$d/remesh.log" 2>&1 \
         || { echo "FAIL $name: remesh"; cat "$d/remesh.log"; fail=1; return; }
     "$check" --json "$d/cc.json" "$d/out/mesh.obj" >"$d/cc.out" 2>&1
     local n

@@ -107,11 +107,12 @@ if(FM_SYSTEM_PYTHON)
   set_tests_properties(cfm_connect_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
   # cfm_connect_report_500m_1000: every near pair of the whole set has its
   # line in report.json (made and sharing edges, or open with a reason), and
-  # the faults cross in no more triangle pairs than when last measured.
+  # no two faults cross or touch away from shared nodes and edges (what the
+  # plan could not join is carved, and reported).
   add_test(NAME cfm_connect_report_500m_1000
     COMMAND bash ${FM_TOOLS}/connect_whole_report.sh $<TARGET_FILE:faultmesh_cli> $<TARGET_FILE:check_connect>
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_report ${FM_CFM_DIR}/CFM5.3/500m ${FM_SYSTEM_PYTHON}
-            850)
+            0)
   set_tests_properties(cfm_connect_report_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
   # cfm_connect_santa_maria_hosgri: Santa Maria Basin thrust A ends at
   # Hosgri on a curve that dips to its down-dip outline and runs outside
