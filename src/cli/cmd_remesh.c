@@ -63,23 +63,22 @@ typedef struct fault_result {
                                    piece k, nodes k to k + 1), sorted by key */
     size_t npieces;
     size_t carved;              /* triangles removed where it met another fault */
+    double carved_area;         /* their area, m^2 */
 } fault_result;
 
-/* Which pieces of its plan curves fault f's mesh holds (an edge between
- * two consecutive nodes of the curve): a sheet keeps only part of a curve
- * that another of its curves cuts across. -1: out of memory. */
-static int curve_pieces(const fm_connect_plan *plan, size_t f, const fm_model *model,
-                        const fm_mesh *mesh, const int64_t *ids, fault_result *r)
+/* Which pieces of its plan curves fault f holds (an edge between two
+ * consecutive nodes of the curve), given the edges of its mesh between
+ * shared nodes (fm_remesh_shared_edges): a sheet keeps only part of a
+ * curve that another of its curves cuts across. -1: out of memory. */
+static int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets,
+                        const fm_keyed *edge, size_t ne, fault_result *r)
 {
     free(r->curve_pieces);
     r->curve_pieces = NULL;
     r->npieces = 0;
-    size_t ne, cap = 0;
-    fm_keyed *edge = fm_remesh_shared_edges(mesh, ids, &ne);
-    if (!edge)
-        return -1;
+    size_t cap = 0;
     int rc = 0;
-    for (size_t s = 0; rc == 0 && s < fm_model_nsheets(model); s++) {
+    for (size_t s = 0; rc == 0 && s < nsheets; s++) {
         const fm_connect_shared *sh;
         size_t n = fm_connect_plan_sheet(plan, f, s, &sh);
         for (size_t c = 0; rc == 0 && c < n; c++)
@@ -101,7 +100,6 @@ static int curve_pieces(const fm_connect_plan *plan, size_t f, const fm_model *m
                 r->npieces++;
             }
     }
-    free(edge);
     /* sheets list their curves in plan order each, not all together */
     if (rc == 0 && fm_sort_keyed(r->curve_pieces, r->npieces))
         rc = -1;
@@ -349,8 +347,11 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
         for (size_t v = 0; v < fm_mesh_nvertices(*fault); v++)
             if ((*ids)[v] >= 0)
                 memcpy(X + 3 * v, P + 3 * (*ids)[v], 3 * sizeof *X);
-        if (curve_pieces(plan, f, model, *fault, *ids, r))
+        size_t ne;
+        fm_keyed *edge = fm_remesh_shared_edges(*fault, *ids, &ne);
+        if (!edge || curve_pieces(plan, f, fm_model_nsheets(model), edge, ne, r))
             st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        free(edge);
     }
     double t2 = fm_clock_seconds();
     r->t_mesh = t2 - t1;
@@ -759,6 +760,42 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
     job->ids = NULL;
 }
 
+/* The pieces of plan curves that fault tag of the set still holds. */
+static int set_curve_pieces(const run_state *rs, int32_t tag, fault_result *r)
+{
+    size_t f = 0, nv = fm_mesh_nvertices(rs->set), nt = fm_mesh_ntriangles(rs->set);
+    while (f < rs->nplan_faults && &rs->res[rs->plan_res[f]] != r)
+        f++;
+    if (f == rs->nplan_faults || !rs->node_vertex)
+        return 0;
+    int64_t *node = malloc((nv + 1) * sizeof *node);
+    fm_keyed *edge = malloc((3 * nt + 1) * sizeof *edge);
+    if (!node || !edge) {
+        free(node);
+        free(edge);
+        return -1;
+    }
+    for (size_t v = 0; v < nv; v++)
+        node[v] = -1;
+    for (size_t k = 0; k < fm_connect_plan_nnodes(rs->plan); k++)
+        if (rs->node_vertex[k] >= 0)
+            node[rs->node_vertex[k]] = (int64_t)k;
+    const int32_t *T = fm_mesh_triangles(rs->set), *tags = fm_mesh_tags(rs->set);
+    size_t ne = 0;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; tags[t] == tag && k < 3; k++) {
+            int64_t a = node[T[3 * t + k]], b = node[T[3 * t + (k + 1) % 3]];
+            if (a >= 0 && b >= 0) {
+                edge[ne] = (fm_keyed){fm_edge_key((uint64_t)a, (uint64_t)b), ne};
+                ne++;
+            }
+        }
+    int rc = fm_sort_keyed(edge, ne) ? -1 : curve_pieces(rs->plan, f, r->sheets, edge, ne, r);
+    free(node);
+    free(edge);
+    return rc;
+}
+
 /* Where two faults still meet away from their shared curves (fm_carve.h),
  * one of them gives way. A fault that lost triangles is measured again on
  * what is left (the originals must still be there). */
@@ -778,12 +815,16 @@ static void carve_set(const remesh_cli *cli, run_state *rs)
             continue; /* measured already */
         int32_t tag = p->fault[p->yielded];
         size_t before = r->q.triangles;
+        double area = r->q.area;
         fm_closest_tree *tree = fm_closest_tree_create(rs->set_orig[tag], &err);
         if (!tree || fm_check_quality(rs->set, tag, cli->mesh.size, &r->q) != FM_OK ||
             fm_check_fidelity(rs->set, tag, rs->set_orig[tag], tree, &r->fid) != FM_OK)
             fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
         fm_closest_tree_destroy(tree);
         r->carved = before - r->q.triangles;
+        r->carved_area = area - r->q.area;
+        if (set_curve_pieces(rs, tag, r))
+            fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
     }
 }
 
@@ -853,8 +894,10 @@ static void json_fault(fm_json *j, const fault_result *r, double H)
         fm_json_kv_int(j, "sheets", (int64_t)r->sheets);
         fm_json_kv_int(j, "triangles", (int64_t)r->q.triangles);
         fm_json_kv_int(j, "nodes", (int64_t)r->q.nodes);
-        if (r->carved)
+        if (r->carved) {
             fm_json_kv_int(j, "carved_triangles", (int64_t)r->carved);
+            fm_json_kv_number(j, "carved_area_m2", r->carved_area);
+        }
         char w[2][160];
         int nw = fault_warnings(r, w);
         fm_json_key(j, "warnings");
@@ -927,8 +970,12 @@ static fm_junction_type junction_outcome(const run_state *rs, const fm_connect_j
         !share_piece(&rs->res[rs->plan_res[jn->fault[0]]], &rs->res[rs->plan_res[jn->fault[1]]],
                      (size_t)jn->curve)) {
         /* each holds pieces of it, but none the same: another curve of one
-         * of them cut the rest away */
-        *why = "the two sheets keep no common piece of the curve";
+         * of them cut the rest away, or the last guard did */
+        int carved = rs->res[rs->plan_res[jn->fault[0]]].carved ||
+                     rs->res[rs->plan_res[jn->fault[1]]].carved;
+        *why = carved ? "the two sheets keep no common piece of the curve: it was carved away "
+                        "where one of them ran through another fault"
+                      : "the two sheets keep no common piece of the curve";
         *which = jn->fault[0];
         return FM_JUNCTION_UNJOINED;
     }

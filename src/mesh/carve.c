@@ -219,22 +219,66 @@ static double *fault_areas(const fm_mesh *m, size_t *nf)
     return a;
 }
 
+/* Per triangle: 1 if a side of it is a side of another fault's triangle
+ * (it holds a piece of a curve the two share). NULL when out of memory. */
+static unsigned char *on_junction(const fm_mesh *m)
+{
+    size_t nt = fm_mesh_ntriangles(m);
+    const int32_t *T = fm_mesh_triangles(m), *tag = fm_mesh_tags(m);
+    unsigned char *on = calloc(nt + 1, 1);
+    fm_keyed *side = malloc((3 * nt + 1) * sizeof *side);
+    if (!on || !side || !nt) {
+        free(side);
+        return on;
+    }
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++)
+            side[3 * t + k] =
+                (fm_keyed){fm_edge_key((uint32_t)T[3 * t + k], (uint32_t)T[3 * t + (k + 1) % 3]), t};
+    if (fm_sort_keyed(side, 3 * nt)) {
+        free(side);
+        free(on);
+        return NULL;
+    }
+    for (size_t s = 0, e; s < 3 * nt; s = e) {
+        int mixed = 0;
+        for (e = s + 1; e < 3 * nt && side[e].key == side[s].key; e++)
+            mixed |= tag[side[e].index] != tag[side[s].index];
+        for (size_t i = s; mixed && i < e; i++)
+            on[side[i].index] = 1;
+    }
+    free(side);
+    return on;
+}
+
+static int any_on(const unsigned char *on, const int32_t *t, size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        if (on[t[k]])
+            return 1;
+    return 0;
+}
+
 /* Decides each pair of faults in the sorted contacts and marks the
  * triangles to remove; fills r->pairs. The fault that gives way is the one
- * losing the smaller share of its area, so that a small fault is not
- * eaten by a large one it touches. -1 when out of memory. */
+ * whose triangles there hold no piece of a curve it shares with a fault,
+ * when only one of them is so, else the one losing the smaller share of
+ * its area, so that a small fault is not eaten by a large one it touches.
+ * -1 when out of memory. */
 static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *gone,
                   fm_carve_result *r)
 {
     size_t nf;
     double *total = fault_areas(m, &nf);
+    unsigned char *junction = n ? on_junction(m) : calloc(1, 1);
     int32_t *ta = malloc((n + 1) * sizeof *ta), *tb = malloc((n + 1) * sizeof *tb);
     size_t npairs = 0;
     for (size_t i = 0; i < n; i++)
         npairs += !i || c[i].fa != c[i - 1].fa || c[i].fb != c[i - 1].fb;
     r->pairs = calloc(npairs + 1, sizeof *r->pairs);
-    if (!total || !ta || !tb || !r->pairs) {
+    if (!total || !junction || !ta || !tb || !r->pairs) {
         free(total);
+        free(junction);
         free(ta);
         free(tb);
         return -1;
@@ -250,8 +294,9 @@ static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *g
         p->fault[1] = c[s].fb;
         p->contacts = e - s;
         double lost_a = area_of(m, ta, na), lost_b = area_of(m, tb, nb);
+        int ja = any_on(junction, ta, na), jb = any_on(junction, tb, nb);
         /* the later fault on a tie */
-        p->yielded = lost_b * total[c[s].fa] <= lost_a * total[c[s].fb];
+        p->yielded = ja != jb ? ja : lost_b * total[c[s].fa] <= lost_a * total[c[s].fb];
         const int32_t *lose = p->yielded ? tb : ta;
         p->removed = p->yielded ? nb : na;
         p->area = p->yielded ? lost_b : lost_a;
@@ -259,6 +304,7 @@ static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *g
             gone[lose[k]] = 1;
     }
     free(total);
+    free(junction);
     free(ta);
     free(tb);
     return 0;

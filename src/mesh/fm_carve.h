@@ -7,11 +7,13 @@
  * searched for every pair of triangles of different faults that have a
  * common point other than the corners and sides they share (exact test,
  * fm_triangles_meet_apart), and of each pair of faults that meet so, one
- * gives way: the triangles of it that meet the other are removed. The
- * fault that gives way is the one that loses the smaller share of its area
- * (on a tie, the later fault), which leaves a notch about one triangle deep
- * where it met the other instead of two surfaces running through each
- * other, and spares a small fault touching a large one.
+ * gives way: the triangles of it that meet the other are removed, which
+ * leaves a notch about one triangle deep where it met the other instead of
+ * two surfaces running through each other. The fault that gives way is the
+ * one whose triangles there hold no piece of a curve it shares with some
+ * fault, when only one is so (a junction is not undone to clear another);
+ * else the one that loses the smaller share of its area (on a tie, the
+ * later fault), which spares a small fault touching a large one.
  * Removing triangles never makes a new contact, so afterwards no two
  * triangles of different faults meet except at shared nodes and edges.
  * Triangles of the same fault (its sheets) are not compared. A triangle

@@ -76,7 +76,10 @@ Measured per fault and over all faults (3D, from the VTU):
                   smooth surface over the same extent). A fault whose
                   overshoot past a junction was trimmed (report.json) is
                   excepted, as is one the report says stops short of
-                  another (an unjoined junction's "stops_short").
+                  another (an unjoined junction's "stops_short"). A fault
+                  that gave way where it ran through another (report.json's
+                  "carved_area_m2") is allowed that area on top of the
+                  mesh's, as a share of the original's, and no more.
 --criteria LIST (comma-separated names above, or "all") asserts those;
 the others are printed only. Without --original the distance and
 coverage figures are not measured.
@@ -898,6 +901,8 @@ def main():
                 gap_allow[n] = max(gap_allow.get(n, 0.0), float(jn["gap_closed_m"]))
         if jn.get("overshoot_trimmed_m", 0) > 0:
             trimmed.update(jn["faults"])
+    # Area a fault lost where it gave way to another it ran through.
+    carved = {f.get("name"): float(f.get("carved_area_m2", 0.0)) for f in rok}
     # Reported reach of the nodes past the original's edge, per fault.
     beyond = {f.get("name"): float(f.get("fidelity", {}).get("beyond_outline_max_m", 0.0))
               for f in rok}
@@ -969,7 +974,8 @@ def main():
         cov = F["extent"] / F["orig_extent"]
         cov3 = F["area"] / F["orig_area"]
         excused = np.array([n in trimmed for n in names], dtype=bool) if nf else np.zeros(0, bool)
-        low = int(np.sum((cov < a.min_coverage) & ~excused))
+        cut = np.array([carved.get(n, 0.0) for n in names]) / F["orig_area"] if nf else np.zeros(0)
+        low = int(np.sum((cov + cut < a.min_coverage) & ~excused))
         results.append(("coverage", "extent / original%s: min %.3f, median %.3f, max %.3f (%d under); "
                         "3D area / original: min %.3f, median %.3f (%d under)"
                         % ("" if a.top == "keep" else " below sea level", np.nanmin(cov),
@@ -1021,7 +1027,8 @@ def main():
             o.append("rms")
         if a.top != "keep" and (F["zmax"][i] > 0 or F["near_miss"][i]):
             o.append("top")
-        if (a.original and F["extent"][i] / F["orig_extent"][i] < a.min_coverage
+        if (a.original and F["extent"][i] / F["orig_extent"][i]
+                + carved.get(names[i], 0.0) / F["orig_area"][i] < a.min_coverage
                 and names[i] not in trimmed):
             o.append("cov")
         return o
