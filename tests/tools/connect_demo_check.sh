@@ -1,5 +1,6 @@
 #!/bin/bash
-# The synthetic system's designed junctions, connected by default: the
+# The synthetic system's designed junctions, connected by default (with
+# --keep-crossings: the junctions alone must conform, nothing carved): the
 # independent check_connect finds no two faults intersecting anywhere but
 # along shared nodes and edges (--criteria), both designed pairs share
 # nodes, and report.json lists the two T-junctions with the 300 m gap
@@ -13,7 +14,7 @@ set -u
 exe=$1 check=$2 tmp=$3 py=$4
 rm -rf "$tmp" && mkdir -p "$tmp"
 fail=0
-"$exe" demo --quiet -o "$tmp/on" >"$tmp/on.log" 2>&1 || { echo "FAIL: faultmesh demo"; cat "$tmp/on.log"; exit 1; }
+"$exe" demo --quiet --keep-crossings -o "$tmp/on" >"$tmp/on.log" 2>&1 || { echo "FAIL: faultmesh demo"; cat "$tmp/on.log"; exit 1; }
 "$check" --criteria --json "$tmp/on.json" "$tmp/on/mesh.obj" >"$tmp/on.out" 2>&1
 rc=$?
 cat "$tmp/on.out"
