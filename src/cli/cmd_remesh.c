@@ -370,6 +370,7 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
 
 typedef struct run_state {
     fm_mesh *set;       /* all faults; tag = fault index */
+    int32_t *sheet;     /* per triangle of set: the sheet of its fault it is on */
     char **names;
     size_t nfaults;
     const fm_connect_plan *plan;
@@ -692,10 +693,19 @@ static fm_status append_fault(run_state *rs, const fm_mesh *fault, const int64_t
             map[v] = fm_mesh_add_vertex(rs->set, X[3 * v], X[3 * v + 1], X[3 * v + 2]);
         }
     }
-    const int32_t *T = fm_mesh_triangles(fault);
-    for (size_t t = 0; t < nt; t++)
+    const int32_t *T = fm_mesh_triangles(fault), *sheet = fm_mesh_tags(fault);
+    size_t base = fm_mesh_ntriangles(rs->set);
+    int32_t *grown = realloc(rs->sheet, (base + nt + 1) * sizeof *grown);
+    if (!grown) {
+        free(map);
+        return FM_ERR_NOMEM;
+    }
+    rs->sheet = grown;
+    for (size_t t = 0; t < nt; t++) {
         fm_mesh_add_triangle(rs->set, map[T[3 * t]], map[T[3 * t + 1]], map[T[3 * t + 2]],
                              (int32_t)rs->nfaults);
+        rs->sheet[base + t] = sheet ? sheet[t] : 0;
+    }
     free(map);
     return FM_OK;
 }
@@ -803,7 +813,7 @@ static void carve_set(const remesh_cli *cli, run_state *rs)
 {
     fm_error err;
     fm_error_clear(&err);
-    if (fm_carve_crossings(rs->set, 2 * cli->mesh.size, &rs->carve, &err) != FM_OK) {
+    if (fm_carve_crossings(rs->set, 2 * cli->mesh.size, rs->sheet, &rs->carve, &err) != FM_OK) {
         fprintf(stderr, "faultmesh: faults that cross each other are left so: %s\n",
                 err.message);
         return;
@@ -1167,7 +1177,10 @@ static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error 
 {
     if (!rs->nfaults)
         return FM_OK;
-    fm_faultset fs = {rs->set, (const char *const *)rs->names, rs->nfaults, NULL, NULL, 0,
+    /* which sheet of its fault a triangle is on (the repair stage's sheets:
+     * the parts of a branching fault) */
+    fm_vtu_array sheet = {"sheet", FM_VTU_INT32, 1, rs->sheet};
+    fm_faultset fs = {rs->set, (const char *const *)rs->names, rs->nfaults, NULL, &sheet, 1,
                       cli->crs};
     size_t n = strlen(cli->dir) + 32;
     char *path = malloc(4 * n);
@@ -1370,6 +1383,7 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     free(rs.res);
     free(rs.set_res);
     free(rs.set_orig);
+    free(rs.sheet);
     fm_carve_result_destroy(rs.carve);
     free(rs.names);
     free(rs.node_vertex);

@@ -352,7 +352,8 @@ static long tidy_notches(const fm_mesh *m, unsigned char *gone)
     return more;
 }
 
-fm_status fm_carve_crossings(fm_mesh *set, double cell, fm_carve_result **out, fm_error *err)
+fm_status fm_carve_crossings(fm_mesh *set, double cell, int32_t *beside, fm_carve_result **out,
+                             fm_error *err)
 {
     *out = NULL;
     fm_carve_result *r = calloc(1, sizeof *r);
@@ -378,6 +379,8 @@ fm_status fm_carve_crossings(fm_mesh *set, double cell, fm_carve_result **out, f
             continue;
         }
         memmove(T + 3 * kept, T + 3 * t, 3 * sizeof *T);
+        if (beside)
+            beside[kept] = beside[t];
         tag[kept++] = tag[t];
     }
     fm_mesh_truncate(set, fm_mesh_nvertices(set), kept);

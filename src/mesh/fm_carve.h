@@ -46,9 +46,12 @@ typedef struct fm_carve_result fm_carve_result;
 /* Removes from set the triangles described above, keeping the order of the
  * others (vertices are kept, some then unused). cell: the side of the
  * search grid's cells (about twice the edge length; <= 0 takes twice the
- * mean edge length). *out lists the pairs of faults that met, ordered by
- * tags; it is NULL on failure. Deterministic. */
-fm_status fm_carve_crossings(fm_mesh *set, double cell, fm_carve_result **out, fm_error *err);
+ * mean edge length). beside (may be NULL): a value per triangle that the
+ * caller keeps beside the mesh (a sheet index, say), compacted the same
+ * way. *out lists the pairs of faults that met, ordered by tags; it is
+ * NULL on failure. Deterministic. */
+fm_status fm_carve_crossings(fm_mesh *set, double cell, int32_t *beside, fm_carve_result **out,
+                             fm_error *err);
 
 size_t fm_carve_npairs(const fm_carve_result *r);
 const fm_carve_pair *fm_carve_pair_at(const fm_carve_result *r, size_t k);

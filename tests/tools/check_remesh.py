@@ -27,7 +27,9 @@ Measured per fault and over all faults (3D, from the VTU):
                   interior angle (sum of the triangle angles there) is
                   under 40 deg, or at a node shared with another fault (a
                   junction curve, fixed as planned: at most 0.1 % of all
-                  triangles);
+                  triangles), or with another sheet of its fault (the
+                  VTU's cell data "sheet", when there is one: the curve
+                  where a branching fault's parts are joined);
   - edge-band     share of edges (each once per fault) within
                   [0.7 H, 1.4 H] (>= 95 %);
   - boundary-edge every boundary edge of a fault (an edge of one of its
@@ -707,6 +709,13 @@ def main():
     nm = ecount > 2
     shared_v[eu[nm]] = True
     shared_v[ev[nm]] = True
+    # ... and nodes of two sheets of one fault, where the sheets end at
+    # their curve (a corner): its edges are then used twice, as any
+    if "sheet" in cdata and len(tris):
+        sheet = np.asarray(cdata["sheet"], dtype=np.int64)
+        part = fid * (sheet.max() + 1) + sheet
+        vp = np.unique(np.stack([tris.ravel(), np.repeat(part, 3)], axis=1), axis=0)
+        shared_v |= np.bincount(vp[:, 0], minlength=nv) > 1
     at_junction = below20 & ~forced & (shared_v[tris].any(axis=1) if len(tris) else np.zeros(0, bool))
     # sea level: boundary nodes
     bnode = np.unique(np.concatenate([eu[bnd], ev[bnd]]))

@@ -7,6 +7,7 @@
 #include "fm_predicates.h"
 
 #include <stdint.h>
+#include <stdlib.h>
 
 static int meet(const double a[3][3], const double b[3][3])
 {
@@ -128,10 +129,22 @@ static void test_carve_crossing(void)
     grid(m, (double[]){5.3, 8.2, -14}, (double[]){1, 0.3, 0}, (double[]){0, 0, 1}, 6, 1);
     size_t before = fm_mesh_ntriangles(m), met = contacts(m);
     CHECK(met > 0);
+    int32_t *was = malloc(before * sizeof *was), *tag0 = malloc(before * sizeof *tag0);
+    for (size_t t = 0; t < before; t++) {
+        was[t] = (int32_t)t;
+        tag0[t] = fm_mesh_tags(m)[t];
+    }
     fm_carve_result *r = NULL;
     fm_error err;
     fm_error_clear(&err);
-    CHECK_EQ(fm_carve_crossings(m, 0, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_crossings(m, 0, was, &r, &err), FM_OK);
+    /* the values beside the triangles follow them, in order */
+    for (size_t t = 0; t < fm_mesh_ntriangles(m); t++) {
+        CHECK(t == 0 || was[t] > was[t - 1]);
+        CHECK_EQ(tag0[was[t]], fm_mesh_tags(m)[t]);
+    }
+    free(was);
+    free(tag0);
     CHECK_EQ(fm_carve_npairs(r), 1);
     const fm_carve_pair *p = fm_carve_pair_at(r, 0);
     CHECK(p && p->fault[0] == 0 && p->fault[1] == 1);
@@ -143,7 +156,7 @@ static void test_carve_crossing(void)
     CHECK_EQ(contacts(m), 0);
     fm_carve_result_destroy(r);
     /* nothing left to do */
-    CHECK_EQ(fm_carve_crossings(m, 0, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_crossings(m, 0, NULL, &r, &err), FM_OK);
     CHECK_EQ(fm_carve_npairs(r), 0);
     CHECK_EQ(fm_carve_removed(r), 0);
     fm_carve_result_destroy(r);
@@ -170,7 +183,7 @@ static void test_carve_conforming(void)
     fm_carve_result *r = NULL;
     fm_error err;
     fm_error_clear(&err);
-    CHECK_EQ(fm_carve_crossings(m, 0.5, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_crossings(m, 0.5, NULL, &r, &err), FM_OK);
     CHECK_EQ(fm_carve_npairs(r), 0);
     CHECK_EQ(fm_mesh_ntriangles(m), before);
     fm_carve_result_destroy(r);
