@@ -30,7 +30,9 @@ typedef struct remesh_cli {
     fm_model_options model;
     fm_remesh_options mesh;
     fm_msh_version msh;
-    const char *crs;
+    int msh_version_given;
+    fm_msh_tags msh_tags;
+    const char *crs; /* --crs, or NULL: from the inputs, else EPSG:26711 */
     int quiet;
     int jobs;   /* threads */
     int connect;  /* join faults that meet (default 1) */
@@ -142,7 +144,8 @@ static void remesh_usage(FILE *fp)
             "usage: faultmesh remesh [options] -o DIR FILE|DIR...\n"
             "Meshes every fault at edge length H with well-shaped triangles on its\n"
             "fitted surface, cut at sea level by default, and writes DIR/mesh.vtu,\n"
-            "DIR/mesh.msh, DIR/mesh.stl, DIR/mesh.obj, DIR/NAME.ts per fault and\n"
+            "DIR/mesh.msh, DIR/mesh.stl, DIR/mesh.obj, DIR/mesh.exo, DIR/NAME.ts per\n"
+            "fault and\n"
             "DIR/report.json.\n\n"
             "options:\n"
             "  -o, --output DIR      output folder (created if missing)\n"
@@ -150,9 +153,15 @@ static void remesh_usage(FILE *fp)
             "  --top cut|keep        cut at sea level (z = 0, default) or keep the fitted top\n"
             "  --top extend D        extend tops less than D metres below sea level up to it,\n"
             "                        then cut\n"
-            "  --msh-version 4.1|2.2 Gmsh MSH format version (default 4.1)\n"
+            "  --msh-version 4.1|2.2 Gmsh MSH format version (default 4.1; 2.2 with\n"
+            "                        --msh-tags tandem)\n"
+            "  --msh-tags default|tandem|seissol|pylith\n"
+            "                        MSH physical tags and names as that code expects\n"
+            "                        (default: one group per fault, named after it)\n"
             "  --crs STRING          coordinate reference system recorded in the outputs\n"
-            "                        (default EPSG:26711, the CFM's UTM 11N NAD27)\n"
+            "                        (default: the one the input TSurf files name, e.g.\n"
+            "                        NAME EPSG:26711 in their coordinate-system block,\n"
+            "                        else EPSG:26711, the CFM's UTM 11N NAD27)\n"
             "  -j, --jobs N          threads (default: all cores); the output is the same\n"
             "                        for any N\n"
             "  --no-connect          mesh every fault on its own (default: faults that meet\n"
@@ -372,6 +381,8 @@ typedef struct run_state {
     fault_result *res;
     size_t nres, cap;
     long failed;
+    char *crs;              /* the CRS recorded in every output */
+    const char *crs_source; /* "option", "input" or "default" */
 } run_state;
 
 static fault_result *new_result(run_state *rs)
@@ -560,6 +571,30 @@ static void release_job(file_job *job)
     job->nobj = 0;
     free(job->redo);
     job->redo = NULL;
+}
+
+/* Frees a job given up after fitting (the run stops before meshing). */
+static void abandon_job(file_job *job)
+{
+    release_job(job);
+    for (size_t o = 0; job->res && o < job->n; o++) {
+        fault_result *r = &job->res[o];
+        free(r->file);
+        free(r->name);
+        free(r->error);
+        free(r->join_failed);
+        free(r->join_error);
+        free(r->dropped_curves);
+        free(r->through_curves);
+        free(r->used_curves);
+        free(r->curve_pieces);
+        fm_mesh_destroy(job->mesh ? job->mesh[o] : NULL);
+        free(job->ids ? job->ids[o] : NULL);
+    }
+    free(job->res);
+    free(job->mesh);
+    free(job->model);
+    free(job->ids);
 }
 
 typedef struct pool {
@@ -968,7 +1003,11 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
                                                                 : "extend");
     if (cli->mesh.top == FM_TOP_EXTEND)
         fm_json_kv_number(&j, "top_extend_m", cli->mesh.top_extend);
-    fm_json_kv_string(&j, "crs", cli->crs ? cli->crs : "");
+    fm_json_kv_string(&j, "crs", rs->crs);
+    /* where it came from: --crs, the inputs' coordinate-system block, or
+     * the CFM's default */
+    fm_json_kv_string(&j, "crs_source", rs->crs_source);
+    fm_json_kv_string(&j, "msh_tags", fm_msh_tags_name(cli->msh_tags));
     fm_json_end_object(&j);
     fm_json_key(&j, "faults");
     fm_json_begin_array(&j);
@@ -1029,24 +1068,141 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     return fm_atomic_commit(af, err);
 }
 
+/* Whether fault r's mesh holds piece key (curve << 32 | k). */
+static int holds_piece(const fault_result *r, uint64_t key)
+{
+    size_t at = fm_keyed_lower_bound(r->curve_pieces, r->npieces, key);
+    return at < r->npieces && r->curve_pieces[at].key == key;
+}
+
+/* One node set per junction made: the set's vertices on the pieces of
+ * its curve that both faults' meshes hold (an edge of both, so every node
+ * is in both faults' triangles), named after the junction's index in
+ * report.json and its faults. Arrays malloc'ed (free_junction_sets). */
+typedef struct junction_sets {
+    fm_faultset_nodeset *set;
+    char **names;
+    int32_t **vertices;
+    size_t n;
+} junction_sets;
+
+static void free_junction_sets(junction_sets *js)
+{
+    for (size_t i = 0; i < js->n; i++) {
+        free(js->names[i]);
+        free(js->vertices[i]);
+    }
+    free(js->set);
+    free(js->names);
+    free(js->vertices);
+    memset(js, 0, sizeof *js);
+}
+
+static int junction_sets_make(const run_state *rs, junction_sets *js)
+{
+    memset(js, 0, sizeof *js);
+    if (!rs->plan || !rs->node_vertex)
+        return 0;
+    size_t nj = fm_connect_plan_njunctions(rs->plan);
+    js->set = calloc(nj ? nj : 1, sizeof *js->set);
+    js->names = calloc(nj ? nj : 1, sizeof *js->names);
+    js->vertices = calloc(nj ? nj : 1, sizeof *js->vertices);
+    if (!js->set || !js->names || !js->vertices)
+        return -1;
+    for (size_t i = 0; i < nj; i++) {
+        const fm_connect_junction *jn = fm_connect_plan_junction(rs->plan, i);
+        const char *why;
+        size_t which;
+        if (junction_outcome(rs, jn, &why, &which) == FM_JUNCTION_UNJOINED || jn->curve < 0)
+            continue;
+        const fault_result *ra = &rs->res[rs->plan_res[jn->fault[0]]];
+        const fault_result *rb = &rs->res[rs->plan_res[jn->fault[1]]];
+        const fm_connect_shared *sh = NULL, *c = NULL;
+        size_t ns = fm_connect_plan_sheet(rs->plan, jn->fault[0], jn->sheet[0], &sh);
+        for (size_t k = 0; k < ns && !c; k++)
+            if (sh[k].curve == (size_t)jn->curve)
+                c = &sh[k];
+        if (!c)
+            continue;
+        int32_t *v = malloc(2 * c->n * sizeof *v);
+        if (!v)
+            return -1;
+        size_t nv = 0;
+        for (size_t k = 0; k + 1 < c->n; k++) {
+            uint64_t key = (uint64_t)jn->curve << 32 | k;
+            if (!holds_piece(ra, key) || !holds_piece(rb, key))
+                continue;
+            int32_t p = rs->node_vertex[c->node[k]], q = rs->node_vertex[c->node[k + 1]];
+            if (p < 0 || q < 0)
+                continue;
+            if (nv == 0 || v[nv - 1] != p)
+                v[nv++] = p;
+            v[nv++] = q;
+        }
+        if (nv == 0) {
+            free(v);
+            continue;
+        }
+        size_t len = strlen(ra->name) + strlen(rb->name) + 48;
+        char *name = malloc(len);
+        if (!name) {
+            free(v);
+            return -1;
+        }
+        snprintf(name, len, "junction %zu: %s / %s", i, ra->name, rb->name);
+        js->names[js->n] = name;
+        js->vertices[js->n] = v;
+        js->set[js->n] = (fm_faultset_nodeset){name, v, nv};
+        js->n++;
+    }
+    return 0;
+}
+
 /* The fault set in every format, the files shared among cli->jobs threads
  * (the bytes do not depend on how many). */
 static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error *err)
 {
     if (!rs->nfaults)
         return FM_OK;
-    fm_faultset fs = {rs->set, (const char *const *)rs->names, rs->nfaults, NULL, NULL, 0,
-                      cli->crs};
+    junction_sets js;
+    int32_t *tags = malloc(rs->nfaults * sizeof *tags);
+    char **pnames = NULL;
+    fm_status st = FM_OK;
+    if (!tags || junction_sets_make(rs, &js))
+        st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    if (st == FM_OK)
+        st = fm_msh_tags_make(cli->msh_tags, (const char *const *)rs->names, rs->nfaults, tags,
+                              &pnames, err);
+    fm_faultset fs = {.mesh = rs->set,
+                      .names = (const char *const *)rs->names,
+                      .nfaults = rs->nfaults,
+                      .physical_tags = tags,
+                      .physical_names = (const char *const *)pnames,
+                      .msh_dense_nodes = cli->msh_tags == FM_MSH_TAGS_TANDEM,
+                      .crs = rs->crs,
+                      .nodesets = js.set,
+                      .nnodesets = js.n};
     size_t n = strlen(cli->dir) + 32;
-    char *path = malloc(4 * n);
-    if (!path)
-        return fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
-    const char *ext[4] = {"vtu", "msh", "stl", "obj"};
-    for (int k = 0; k < 4; k++)
-        snprintf(path + (size_t)k * n, n, "%s/mesh.%s", cli->dir, ext[k]);
-    fm_faultset_outputs out = {path, path + n, path + 2 * n, path + 3 * n, cli->msh, cli->dir};
-    fm_status st = fm_faultset_write_all(&fs, &out, cli->jobs, err);
+    char *path = st == FM_OK ? malloc(5 * n) : NULL;
+    if (st == FM_OK && !path)
+        st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    if (st == FM_OK) {
+        const char *ext[5] = {"vtu", "msh", "stl", "obj", "exo"};
+        for (int k = 0; k < 5; k++)
+            snprintf(path + (size_t)k * n, n, "%s/mesh.%s", cli->dir, ext[k]);
+        fm_faultset_outputs out = {.vtu = path,
+                                   .msh = path + n,
+                                   .stl = path + 2 * n,
+                                   .obj = path + 3 * n,
+                                   .exo = path + 4 * n,
+                                   .msh_version = cli->msh,
+                                   .tsurf_dir = cli->dir};
+        st = fm_faultset_write_all(&fs, &out, cli->jobs, err);
+    }
     free(path);
+    free(tags);
+    fm_faultset_free_file_names(pnames, rs->nfaults);
+    free_junction_sets(&js);
     return st;
 }
 
@@ -1170,6 +1326,37 @@ static void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, fi
     free(excluded);
 }
 
+/* The CRS of the run: --crs, else the one the inputs name (all that name
+ * one must name the same), else the CFM's. -1 after saying why when the
+ * inputs disagree or memory runs out. */
+static int settle_crs(const remesh_cli *cli, const file_job *jobs, size_t njobs, run_state *rs)
+{
+    const char *crs = cli->crs, *from = NULL;
+    rs->crs_source = "option";
+    if (!crs) {
+        for (size_t i = 0; i < njobs; i++)
+            for (size_t o = 0; o < jobs[i].nobj; o++) {
+                const char *c = fm_tsurf_crs_code(jobs[i].objs[o]);
+                if (!c)
+                    continue;
+                if (crs && strcmp(c, crs) != 0) {
+                    fprintf(stderr,
+                            "faultmesh: the inputs name different coordinate systems (%s in "
+                            "%s, %s in %s): say which with --crs\n",
+                            crs, from, c, jobs[i].path);
+                    return -1;
+                }
+                crs = c;
+                from = jobs[i].path;
+            }
+        rs->crs_source = crs ? "input" : "default";
+        if (!crs)
+            crs = "EPSG:26711";
+    }
+    rs->crs = dup_str(crs);
+    return rs->crs ? 0 : -1;
+}
+
 static int run(const remesh_cli *cli, char **files, long nfiles)
 {
     fm_error err;
@@ -1191,6 +1378,13 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         jobs[i].path = files[i];
     double t0 = fm_clock_seconds();
     run_jobs(cli, NULL, 0, NULL, jobs, (size_t)nfiles);
+    if (settle_crs(cli, jobs, (size_t)nfiles, &rs)) {
+        for (long i = 0; i < nfiles; i++)
+            abandon_job(&jobs[i]);
+        free(jobs);
+        fm_mesh_destroy(rs.set);
+        return FM_EXIT_FAILURES;
+    }
     double t1 = fm_clock_seconds();
     fm_connect_plan *plan = NULL;
     if (cli->connect)
@@ -1237,6 +1431,7 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     free(rs.names);
     free(rs.node_vertex);
     free(rs.plan_res);
+    free(rs.crs);
     fm_connect_plan_destroy(plan);
     fm_mesh_destroy(rs.set);
     return rs.failed ? FM_EXIT_FAILURES : FM_EXIT_OK;
@@ -1276,6 +1471,18 @@ static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
             cli->msh = FM_MSH_22;
         else {
             fprintf(stderr, "faultmesh: --msh-version takes 4.1 or 2.2\n");
+            return -1;
+        }
+        cli->msh_version_given = 1;
+    } else if (!strcmp(a, "--msh-tags")) {
+        int found = 0;
+        for (int c = FM_MSH_TAGS_DEFAULT; c <= FM_MSH_TAGS_PYLITH && !found; c++)
+            if (val && !strcmp(val, fm_msh_tags_name((fm_msh_tags)c))) {
+                cli->msh_tags = (fm_msh_tags)c;
+                found = 1;
+            }
+        if (!found) {
+            fprintf(stderr, "faultmesh: --msh-tags takes default, tandem, seissol or pylith\n");
             return -1;
         }
     } else if (!strcmp(a, "--crs")) {
@@ -1318,6 +1525,19 @@ static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
 /* `--top extend D` grows tops over the fitted surface's extension, which
  * must reach that far up dip: D of depth is D / sin(dip) along a fault,
  * so the margin grows with D (the default 2 km is for closing gaps). */
+/* Tandem reads MSH 2.2 only; -1 (after saying why) when asked for 4.1. */
+static int settle_msh(remesh_cli *cli)
+{
+    if (cli->msh_tags != FM_MSH_TAGS_TANDEM)
+        return 0;
+    if (cli->msh_version_given && cli->msh != FM_MSH_22) {
+        fprintf(stderr, "faultmesh: --msh-tags tandem needs MSH 2.2 (Tandem reads no other)\n");
+        return -1;
+    }
+    cli->msh = FM_MSH_22;
+    return 0;
+}
+
 static void extend_fit(remesh_cli *cli)
 {
     if (cli->mesh.top == FM_TOP_EXTEND)
@@ -1336,7 +1556,7 @@ static void cli_defaults(remesh_cli *cli)
     fm_remesh_model_options_default(&cli->model);
     fm_remesh_options_default(&cli->mesh);
     cli->msh = FM_MSH_41;
-    cli->crs = "EPSG:26711";
+    cli->crs = NULL;
     cli->connect = 1;
     cli->join = 1000;
     cli->keep = FM_CONNECT_KEEP_SMALLER;
@@ -1372,6 +1592,10 @@ int fm_cmd_remesh(int argc, char **argv)
             paths[npaths++] = argv[i];
     }
     extend_fit(&cli);
+    if (settle_msh(&cli)) {
+        free(paths);
+        return FM_EXIT_USAGE;
+    }
     if (!cli.dir || npaths == 0) {
         remesh_usage(stderr);
         free(paths);
@@ -1409,6 +1633,8 @@ int fm_cmd_demo(int argc, char **argv)
         }
     }
     extend_fit(&cli);
+    if (settle_msh(&cli))
+        return FM_EXIT_USAGE;
     if (!cli.dir) {
         fprintf(stderr, "usage: faultmesh demo [options] -o DIR\n");
         return FM_EXIT_USAGE;
