@@ -62,6 +62,7 @@ typedef struct fault_result {
     fm_keyed *curve_pieces;     /* pieces of plan curves its mesh holds (key: curve << 32 |
                                    piece k, nodes k to k + 1), sorted by key */
     size_t npieces;
+    size_t set_index;           /* its fault index in the set written, SIZE_MAX if none */
 } fault_result;
 
 /* Which pieces of its plan curves fault f's mesh holds (an edge between
@@ -739,6 +740,7 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
             continue;
         }
         *r = job->res[o];
+        r->set_index = SIZE_MAX;
         if (rs->plan_res && job->model && job->first + o < rs->nplan_faults)
             rs->plan_res[job->first + o] = rs->nres - 1;
         fm_mesh *fault = job->mesh[o];
@@ -750,6 +752,7 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
                 r->status = "error";
                 r->error = dup_str("out of memory");
             } else {
+                r->set_index = rs->nfaults;
                 rs->names[rs->nfaults++] = r->name;
             }
         }
@@ -1068,17 +1071,43 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     return fm_atomic_commit(af, err);
 }
 
-/* Whether fault r's mesh holds piece key (curve << 32 | k). */
-static int holds_piece(const fault_result *r, uint64_t key)
+/* Every edge of the set's triangles with the fault of its triangle
+ * (key: edge, index: fault), sorted; NULL when out of memory. */
+static fm_keyed *set_edges(const fm_mesh *set, size_t *n)
 {
-    size_t at = fm_keyed_lower_bound(r->curve_pieces, r->npieces, key);
-    return at < r->npieces && r->curve_pieces[at].key == key;
+    size_t nt = fm_mesh_ntriangles(set);
+    const int32_t *tri = fm_mesh_triangles(set), *tag = fm_mesh_tags(set);
+    fm_keyed *e = malloc((nt ? 3 * nt : 1) * sizeof *e);
+    if (!e)
+        return NULL;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++)
+            e[3 * t + (size_t)k] = (fm_keyed){
+                fm_edge_key((uint64_t)tri[3 * t + (size_t)k], (uint64_t)tri[3 * t + (size_t)(k + 1) % 3]),
+                (size_t)tag[t]};
+    if (fm_sort_keyed(e, 3 * nt)) {
+        free(e);
+        return NULL;
+    }
+    *n = 3 * nt;
+    return e;
 }
 
-/* One node set per junction made: the set's vertices on the pieces of
- * its curve that both faults' meshes hold (an edge of both, so every node
- * is in both faults' triangles), named after the junction's index in
- * report.json and its faults. Arrays malloc'ed (free_junction_sets). */
+/* Whether edge p-q is an edge of a triangle of fault f. */
+static int fault_has_edge(const fm_keyed *e, size_t n, int32_t p, int32_t q, size_t f)
+{
+    uint64_t key = fm_edge_key((uint64_t)p, (uint64_t)q);
+    for (size_t i = fm_keyed_lower_bound(e, n, key); i < n && e[i].key == key; i++)
+        if (e[i].index == f)
+            return 1;
+    return 0;
+}
+
+/* One node set per junction made: the nodes of its curve (as either
+ * sheet sees it) on an edge of both faults' triangles in the set, so that
+ * every node is one of both faults, named after the junction's index in
+ * report.json and its faults. A junction made whose faults keep no such
+ * edge has no set. Arrays malloc'ed (free_junction_sets). */
 typedef struct junction_sets {
     fm_faultset_nodeset *set;
     char **names;
@@ -1098,64 +1127,75 @@ static void free_junction_sets(junction_sets *js)
     memset(js, 0, sizeof *js);
 }
 
+/* Junction i's node set into js, if it is made and has one; -1 when out
+ * of memory. */
+static int junction_set(const run_state *rs, size_t i, const fm_keyed *edges, size_t nedges,
+                        junction_sets *js)
+{
+    const fm_connect_junction *jn = fm_connect_plan_junction(rs->plan, i);
+    const char *why;
+    size_t which;
+    if (junction_outcome(rs, jn, &why, &which) == FM_JUNCTION_UNJOINED || jn->curve < 0)
+        return 0;
+    const fault_result *ra = &rs->res[rs->plan_res[jn->fault[0]]];
+    const fault_result *rb = &rs->res[rs->plan_res[jn->fault[1]]];
+    size_t fa = ra->set_index, fb = rb->set_index;
+    if (fa == SIZE_MAX || fb == SIZE_MAX)
+        return 0;
+    const fm_connect_shared *c[2] = {NULL, NULL};
+    for (int side = 0; side < 2; side++) {
+        const fm_connect_shared *sh = NULL;
+        size_t ns = fm_connect_plan_sheet(rs->plan, jn->fault[side], jn->sheet[side], &sh);
+        for (size_t k = 0; k < ns && !c[side]; k++)
+            if (sh[k].curve == (size_t)jn->curve)
+                c[side] = &sh[k];
+    }
+    size_t cap = 2 * ((c[0] ? c[0]->n : 0) + (c[1] ? c[1]->n : 0));
+    if (!cap)
+        return 0;
+    int32_t *v = malloc(cap * sizeof *v);
+    if (!v)
+        return -1;
+    size_t nv = 0;
+    for (int side = 0; side < 2; side++)
+        for (size_t k = 0; c[side] && k + 1 < c[side]->n; k++) {
+            int32_t p = rs->node_vertex[c[side]->node[k]];
+            int32_t q = rs->node_vertex[c[side]->node[k + 1]];
+            if (p < 0 || q < 0 || !fault_has_edge(edges, nedges, p, q, fa) ||
+                !fault_has_edge(edges, nedges, p, q, fb))
+                continue;
+            v[nv++] = p;
+            v[nv++] = q;
+        }
+    size_t len = strlen(ra->name) + strlen(rb->name) + 48;
+    char *name = nv ? malloc(len) : NULL;
+    if (!name) {
+        free(v);
+        return nv ? -1 : 0;
+    }
+    snprintf(name, len, "junction %zu: %s / %s", i, ra->name, rb->name);
+    js->names[js->n] = name;
+    js->vertices[js->n] = v;
+    js->set[js->n] = (fm_faultset_nodeset){name, v, nv};
+    js->n++;
+    return 0;
+}
+
 static int junction_sets_make(const run_state *rs, junction_sets *js)
 {
     memset(js, 0, sizeof *js);
     if (!rs->plan || !rs->node_vertex)
         return 0;
-    size_t nj = fm_connect_plan_njunctions(rs->plan);
+    size_t nj = fm_connect_plan_njunctions(rs->plan), nedges = 0;
     js->set = calloc(nj ? nj : 1, sizeof *js->set);
     js->names = calloc(nj ? nj : 1, sizeof *js->names);
     js->vertices = calloc(nj ? nj : 1, sizeof *js->vertices);
-    if (!js->set || !js->names || !js->vertices)
-        return -1;
-    for (size_t i = 0; i < nj; i++) {
-        const fm_connect_junction *jn = fm_connect_plan_junction(rs->plan, i);
-        const char *why;
-        size_t which;
-        if (junction_outcome(rs, jn, &why, &which) == FM_JUNCTION_UNJOINED || jn->curve < 0)
-            continue;
-        const fault_result *ra = &rs->res[rs->plan_res[jn->fault[0]]];
-        const fault_result *rb = &rs->res[rs->plan_res[jn->fault[1]]];
-        const fm_connect_shared *sh = NULL, *c = NULL;
-        size_t ns = fm_connect_plan_sheet(rs->plan, jn->fault[0], jn->sheet[0], &sh);
-        for (size_t k = 0; k < ns && !c; k++)
-            if (sh[k].curve == (size_t)jn->curve)
-                c = &sh[k];
-        if (!c)
-            continue;
-        int32_t *v = malloc(2 * c->n * sizeof *v);
-        if (!v)
-            return -1;
-        size_t nv = 0;
-        for (size_t k = 0; k + 1 < c->n; k++) {
-            uint64_t key = (uint64_t)jn->curve << 32 | k;
-            if (!holds_piece(ra, key) || !holds_piece(rb, key))
-                continue;
-            int32_t p = rs->node_vertex[c->node[k]], q = rs->node_vertex[c->node[k + 1]];
-            if (p < 0 || q < 0)
-                continue;
-            if (nv == 0 || v[nv - 1] != p)
-                v[nv++] = p;
-            v[nv++] = q;
-        }
-        if (nv == 0) {
-            free(v);
-            continue;
-        }
-        size_t len = strlen(ra->name) + strlen(rb->name) + 48;
-        char *name = malloc(len);
-        if (!name) {
-            free(v);
-            return -1;
-        }
-        snprintf(name, len, "junction %zu: %s / %s", i, ra->name, rb->name);
-        js->names[js->n] = name;
-        js->vertices[js->n] = v;
-        js->set[js->n] = (fm_faultset_nodeset){name, v, nv};
-        js->n++;
-    }
-    return 0;
+    fm_keyed *edges = set_edges(rs->set, &nedges);
+    int rc = js->set && js->names && js->vertices && edges ? 0 : -1;
+    for (size_t i = 0; rc == 0 && i < nj; i++)
+        rc = junction_set(rs, i, edges, nedges, js);
+    free(edges);
+    return rc;
 }
 
 /* The fault set in every format, the files shared among cli->jobs threads
@@ -1164,7 +1204,7 @@ static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error 
 {
     if (!rs->nfaults)
         return FM_OK;
-    junction_sets js;
+    junction_sets js = {0};
     int32_t *tags = malloc(rs->nfaults * sizeof *tags);
     char **pnames = NULL;
     fm_status st = FM_OK;
