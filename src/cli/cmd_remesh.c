@@ -1,6 +1,6 @@
 /* `faultmesh remesh`: every fault of the inputs read, repaired, fitted and
  * meshed at size H, checked, and written as one fault set (VTU, MSH, STL,
- * OBJ, one TSurf per fault) with report.json. `faultmesh demo` runs it on
+ * OBJ, Exodus II, one TSurf per fault) with report.json. `faultmesh demo` runs it on
  * the synthetic fault system. */
 #include <math.h>
 #include <stdio.h>
@@ -145,9 +145,8 @@ static void remesh_usage(FILE *fp)
             "usage: faultmesh remesh [options] -o DIR FILE|DIR...\n"
             "Meshes every fault at edge length H with well-shaped triangles on its\n"
             "fitted surface, cut at sea level by default, and writes DIR/mesh.vtu,\n"
-            "DIR/mesh.msh, DIR/mesh.stl, DIR/mesh.obj, DIR/mesh.exo, DIR/NAME.ts per\n"
-            "fault and\n"
-            "DIR/report.json.\n\n"
+            "DIR/mesh.msh, DIR/mesh.stl, DIR/mesh.obj, DIR/mesh.exo (Exodus II),\n"
+            "DIR/NAME.ts per fault and DIR/report.json.\n\n"
             "options:\n"
             "  -o, --output DIR      output folder (created if missing)\n"
             "  --size H              target edge length in metres (default 1000)\n"

@@ -1,6 +1,6 @@
 /* faultmesh write: a fault set (every remeshed fault of a run in one mesh)
- * as VTU, Gmsh MSH 4.1 / 2.2, binary STL, OBJ and one GoCAD TSurf per
- * fault.
+ * as VTU, Gmsh MSH 4.1 / 2.2, binary STL, OBJ, Exodus II and one GoCAD
+ * TSurf per fault.
  *
  * A fault set is one fm_mesh whose vertices are shared by all faults
  * (a node on the junction of two faults exists once) and whose triangle
