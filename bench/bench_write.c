@@ -174,8 +174,10 @@ int main(int argc, char **argv)
     printf("folder      %s (loaded in %.2f s)\n", dir, fm_clock_seconds() - t0);
     printf("set         %zu faults, %zu vertices, %zu triangles\n", s.nfaults,
            fm_mesh_nvertices(s.mesh), fm_mesh_ntriangles(s.mesh));
-    fm_faultset fs = {s.mesh, (const char *const *)s.names, s.nfaults, NULL, NULL, 0,
-                      "EPSG:26711"};
+    fm_faultset fs = {.mesh = s.mesh,
+                      .names = (const char *const *)s.names,
+                      .nfaults = s.nfaults,
+                      .crs = "EPSG:26711"};
     fm_error err;
     if (fm_mkdir_p(out, &err) != FM_OK) {
         fprintf(stderr, "bench_write: %s\n", err.message);
@@ -212,7 +214,7 @@ int main(int argc, char **argv)
     for (int k = 0; k < 4; k++)
         snprintf(p[k], sizeof p[k], "%s/all/mesh.%s", out, ext[k]);
     snprintf(p[4], sizeof p[4], "%s/all", out);
-    fm_faultset_outputs o = {p[0], p[1], p[2], p[3], FM_MSH_41, p[4]};
+    fm_faultset_outputs o = {p[0], p[1], p[2], p[3], FM_MSH_41, p[4], NULL};
     int threads[3] = {1, 2, 4}, nthreads = 3;
     if (jobs > 0) {
         threads[0] = jobs;

@@ -10,6 +10,8 @@ packages=(
   liblapacke-dev             # LAPACKE: banded least squares of the trimming curves
   python3                    # Debian's interpreter for the independent test checks
   python3-meshio python3-gmsh  # real readers of our outputs (VTU, MSH, IGES) in the tests
+  libexodusii-dev libnetcdf-dev  # Exodus II writer (mesh.exo), on netCDF
+  python3-netcdf4            # meshio's Exodus II reader in the tests
 )
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi

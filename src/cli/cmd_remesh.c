@@ -1,6 +1,6 @@
 /* `faultmesh remesh`: every fault of the inputs read, repaired, fitted and
  * meshed at size H, checked, and written as one fault set (VTU, MSH, STL,
- * OBJ, one TSurf per fault) with report.json. `faultmesh demo` runs it on
+ * OBJ, Exodus II, one TSurf per fault) with report.json. `faultmesh demo` runs it on
  * the synthetic fault system. */
 #include <math.h>
 #include <stdio.h>
@@ -31,7 +31,9 @@ typedef struct remesh_cli {
     fm_model_options model;
     fm_remesh_options mesh;
     fm_msh_version msh;
-    const char *crs;
+    int msh_version_given;
+    fm_msh_tags msh_tags;
+    const char *crs; /* --crs, or NULL: from the inputs, else EPSG:26711 */
     int quiet;
     int jobs;   /* threads */
     int connect;  /* join faults that meet (default 1) */
@@ -64,6 +66,7 @@ typedef struct fault_result {
     size_t npieces;
     size_t carved;              /* triangles removed where it met another fault */
     double carved_area;         /* their area, m^2 */
+    size_t set_index;           /* its fault index in the set written, SIZE_MAX if none */
 } fault_result;
 
 /* Which pieces of its plan curves fault f holds (an edge between two
@@ -143,17 +146,23 @@ static void remesh_usage(FILE *fp)
             "usage: faultmesh remesh [options] -o DIR FILE|DIR...\n"
             "Meshes every fault at edge length H with well-shaped triangles on its\n"
             "fitted surface, cut at sea level by default, and writes DIR/mesh.vtu,\n"
-            "DIR/mesh.msh, DIR/mesh.stl, DIR/mesh.obj, DIR/NAME.ts per fault and\n"
-            "DIR/report.json.\n\n"
+            "DIR/mesh.msh, DIR/mesh.stl, DIR/mesh.obj, DIR/mesh.exo (Exodus II),\n"
+            "DIR/NAME.ts per fault and DIR/report.json.\n\n"
             "options:\n"
             "  -o, --output DIR      output folder (created if missing)\n"
             "  --size H              target edge length in metres (default 1000)\n"
             "  --top cut|keep        cut at sea level (z = 0, default) or keep the fitted top\n"
             "  --top extend D        extend tops less than D metres below sea level up to it,\n"
             "                        then cut\n"
-            "  --msh-version 4.1|2.2 Gmsh MSH format version (default 4.1)\n"
+            "  --msh-version 4.1|2.2 Gmsh MSH format version (default 4.1; 2.2 with\n"
+            "                        --msh-tags tandem)\n"
+            "  --msh-tags default|tandem|seissol|pylith\n"
+            "                        MSH physical tags and names as that code expects\n"
+            "                        (default: one group per fault, named after it)\n"
             "  --crs STRING          coordinate reference system recorded in the outputs\n"
-            "                        (default EPSG:26711, the CFM's UTM 11N NAD27)\n"
+            "                        (default: the one the input TSurf files name, e.g.\n"
+            "                        NAME EPSG:26711 in their coordinate-system block,\n"
+            "                        else EPSG:26711, the CFM's UTM 11N NAD27)\n"
             "  -j, --jobs N          threads (default: all cores); the output is the same\n"
             "                        for any N\n"
             "  --no-connect          mesh every fault on its own (default: faults that meet\n"
@@ -384,6 +393,8 @@ typedef struct run_state {
     fault_result *res;
     size_t nres, cap;
     long failed;
+    char *crs;              /* the CRS recorded in every output */
+    const char *crs_source; /* "option", "input" or "default" */
 } run_state;
 
 static fault_result *new_result(run_state *rs)
@@ -580,6 +591,30 @@ static void release_job(file_job *job)
     job->redo = NULL;
 }
 
+/* Frees a job given up after fitting (the run stops before meshing). */
+static void abandon_job(file_job *job)
+{
+    release_job(job);
+    for (size_t o = 0; job->res && o < job->n; o++) {
+        fault_result *r = &job->res[o];
+        free(r->file);
+        free(r->name);
+        free(r->error);
+        free(r->join_failed);
+        free(r->join_error);
+        free(r->dropped_curves);
+        free(r->through_curves);
+        free(r->used_curves);
+        free(r->curve_pieces);
+        fm_mesh_destroy(job->mesh ? job->mesh[o] : NULL);
+        free(job->ids ? job->ids[o] : NULL);
+    }
+    free(job->res);
+    free(job->mesh);
+    free(job->model);
+    free(job->ids);
+}
+
 typedef struct pool {
     const remesh_cli *cli;
     const fm_connect_plan *plan;
@@ -731,6 +766,7 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
             continue;
         }
         *r = job->res[o];
+        r->set_index = SIZE_MAX;
         if (rs->plan_res && job->model && job->first + o < rs->nplan_faults)
             rs->plan_res[job->first + o] = rs->nres - 1;
         fm_mesh *fault = job->mesh[o];
@@ -750,6 +786,7 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
             } else {
                 rs->set_res[rs->nfaults] = rs->nres - 1;
                 rs->set_orig[rs->nfaults] = fm_tsurf_mesh(job->objs[o]);
+                r->set_index = rs->nfaults;
                 rs->names[rs->nfaults++] = r->name;
             }
         }
@@ -1110,7 +1147,11 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
                                                                 : "extend");
     if (cli->mesh.top == FM_TOP_EXTEND)
         fm_json_kv_number(&j, "top_extend_m", cli->mesh.top_extend);
-    fm_json_kv_string(&j, "crs", cli->crs ? cli->crs : "");
+    fm_json_kv_string(&j, "crs", rs->crs);
+    /* where it came from: --crs, the inputs' coordinate-system block, or
+     * the CFM's default */
+    fm_json_kv_string(&j, "crs_source", rs->crs_source);
+    fm_json_kv_string(&j, "msh_tags", fm_msh_tags_name(cli->msh_tags));
     fm_json_end_object(&j);
     fm_json_key(&j, "faults");
     fm_json_begin_array(&j);
@@ -1171,6 +1212,133 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     return fm_atomic_commit(af, err);
 }
 
+/* Every edge of the set's triangles with the fault of its triangle
+ * (key: edge, index: fault), sorted; NULL when out of memory. */
+static fm_keyed *set_edges(const fm_mesh *set, size_t *n)
+{
+    size_t nt = fm_mesh_ntriangles(set);
+    const int32_t *tri = fm_mesh_triangles(set), *tag = fm_mesh_tags(set);
+    fm_keyed *e = malloc((nt ? 3 * nt : 1) * sizeof *e);
+    if (!e)
+        return NULL;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++)
+            e[3 * t + (size_t)k] = (fm_keyed){
+                fm_edge_key((uint64_t)tri[3 * t + (size_t)k], (uint64_t)tri[3 * t + (size_t)(k + 1) % 3]),
+                (size_t)tag[t]};
+    if (fm_sort_keyed(e, 3 * nt)) {
+        free(e);
+        return NULL;
+    }
+    *n = 3 * nt;
+    return e;
+}
+
+/* Whether edge p-q is an edge of a triangle of fault f. */
+static int fault_has_edge(const fm_keyed *e, size_t n, int32_t p, int32_t q, size_t f)
+{
+    uint64_t key = fm_edge_key((uint64_t)p, (uint64_t)q);
+    for (size_t i = fm_keyed_lower_bound(e, n, key); i < n && e[i].key == key; i++)
+        if (e[i].index == f)
+            return 1;
+    return 0;
+}
+
+/* One node set per junction made: the nodes of its curve (as either
+ * sheet sees it) on an edge of both faults' triangles in the set, so that
+ * every node is one of both faults, named after the junction's index in
+ * report.json and its faults. A junction made whose faults keep no such
+ * edge has no set. Arrays malloc'ed (free_junction_sets). */
+typedef struct junction_sets {
+    fm_faultset_nodeset *set;
+    char **names;
+    int32_t **vertices;
+    size_t n;
+} junction_sets;
+
+static void free_junction_sets(junction_sets *js)
+{
+    for (size_t i = 0; i < js->n; i++) {
+        free(js->names[i]);
+        free(js->vertices[i]);
+    }
+    free(js->set);
+    free(js->names);
+    free(js->vertices);
+    memset(js, 0, sizeof *js);
+}
+
+/* Junction i's node set into js, if it is made and has one; -1 when out
+ * of memory. */
+static int junction_set(const run_state *rs, size_t i, const fm_keyed *edges, size_t nedges,
+                        junction_sets *js)
+{
+    const fm_connect_junction *jn = fm_connect_plan_junction(rs->plan, i);
+    const char *why;
+    size_t which;
+    if (junction_outcome(rs, jn, &why, &which) == FM_JUNCTION_UNJOINED || jn->curve < 0)
+        return 0;
+    const fault_result *ra = &rs->res[rs->plan_res[jn->fault[0]]];
+    const fault_result *rb = &rs->res[rs->plan_res[jn->fault[1]]];
+    size_t fa = ra->set_index, fb = rb->set_index;
+    if (fa == SIZE_MAX || fb == SIZE_MAX)
+        return 0;
+    const fm_connect_shared *c[2] = {NULL, NULL};
+    for (int side = 0; side < 2; side++) {
+        const fm_connect_shared *sh = NULL;
+        size_t ns = fm_connect_plan_sheet(rs->plan, jn->fault[side], jn->sheet[side], &sh);
+        for (size_t k = 0; k < ns && !c[side]; k++)
+            if (sh[k].curve == (size_t)jn->curve)
+                c[side] = &sh[k];
+    }
+    size_t cap = 2 * ((c[0] ? c[0]->n : 0) + (c[1] ? c[1]->n : 0));
+    if (!cap)
+        return 0;
+    int32_t *v = malloc(cap * sizeof *v);
+    if (!v)
+        return -1;
+    size_t nv = 0;
+    for (int side = 0; side < 2; side++)
+        for (size_t k = 0; c[side] && k + 1 < c[side]->n; k++) {
+            int32_t p = rs->node_vertex[c[side]->node[k]];
+            int32_t q = rs->node_vertex[c[side]->node[k + 1]];
+            if (p < 0 || q < 0 || !fault_has_edge(edges, nedges, p, q, fa) ||
+                !fault_has_edge(edges, nedges, p, q, fb))
+                continue;
+            v[nv++] = p;
+            v[nv++] = q;
+        }
+    size_t len = strlen(ra->name) + strlen(rb->name) + 48;
+    char *name = nv ? malloc(len) : NULL;
+    if (!name) {
+        free(v);
+        return nv ? -1 : 0;
+    }
+    snprintf(name, len, "junction %zu: %s / %s", i, ra->name, rb->name);
+    js->names[js->n] = name;
+    js->vertices[js->n] = v;
+    js->set[js->n] = (fm_faultset_nodeset){name, v, nv};
+    js->n++;
+    return 0;
+}
+
+static int junction_sets_make(const run_state *rs, junction_sets *js)
+{
+    memset(js, 0, sizeof *js);
+    if (!rs->plan || !rs->node_vertex)
+        return 0;
+    size_t nj = fm_connect_plan_njunctions(rs->plan), nedges = 0;
+    js->set = calloc(nj ? nj : 1, sizeof *js->set);
+    js->names = calloc(nj ? nj : 1, sizeof *js->names);
+    js->vertices = calloc(nj ? nj : 1, sizeof *js->vertices);
+    fm_keyed *edges = set_edges(rs->set, &nedges);
+    int rc = js->set && js->names && js->vertices && edges ? 0 : -1;
+    for (size_t i = 0; rc == 0 && i < nj; i++)
+        rc = junction_set(rs, i, edges, nedges, js);
+    free(edges);
+    return rc;
+}
+
 /* The fault set in every format, the files shared among cli->jobs threads
  * (the bytes do not depend on how many). */
 static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error *err)
@@ -1180,18 +1348,47 @@ static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error 
     /* which sheet of its fault a triangle is on (the repair stage's sheets:
      * the parts of a branching fault) */
     fm_vtu_array sheet = {"sheet", FM_VTU_INT32, 1, rs->sheet};
-    fm_faultset fs = {rs->set, (const char *const *)rs->names, rs->nfaults, NULL, &sheet, 1,
-                      cli->crs};
+    junction_sets js = {0};
+    int32_t *tags = malloc(rs->nfaults * sizeof *tags);
+    char **pnames = NULL;
+    fm_status st = FM_OK;
+    if (!tags || junction_sets_make(rs, &js))
+        st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    if (st == FM_OK)
+        st = fm_msh_tags_make(cli->msh_tags, (const char *const *)rs->names, rs->nfaults, tags,
+                              &pnames, err);
+    fm_faultset fs = {.mesh = rs->set,
+                      .names = (const char *const *)rs->names,
+                      .nfaults = rs->nfaults,
+                      .physical_tags = tags,
+                      .physical_names = (const char *const *)pnames,
+                      .msh_dense_nodes = cli->msh_tags == FM_MSH_TAGS_TANDEM,
+                      .cell_data = &sheet,
+                      .ncell_data = 1,
+                      .crs = rs->crs,
+                      .nodesets = js.set,
+                      .nnodesets = js.n};
     size_t n = strlen(cli->dir) + 32;
-    char *path = malloc(4 * n);
-    if (!path)
-        return fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
-    const char *ext[4] = {"vtu", "msh", "stl", "obj"};
-    for (int k = 0; k < 4; k++)
-        snprintf(path + (size_t)k * n, n, "%s/mesh.%s", cli->dir, ext[k]);
-    fm_faultset_outputs out = {path, path + n, path + 2 * n, path + 3 * n, cli->msh, cli->dir};
-    fm_status st = fm_faultset_write_all(&fs, &out, cli->jobs, err);
+    char *path = st == FM_OK ? malloc(5 * n) : NULL;
+    if (st == FM_OK && !path)
+        st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    if (st == FM_OK) {
+        const char *ext[5] = {"vtu", "msh", "stl", "obj", "exo"};
+        for (int k = 0; k < 5; k++)
+            snprintf(path + (size_t)k * n, n, "%s/mesh.%s", cli->dir, ext[k]);
+        fm_faultset_outputs out = {.vtu = path,
+                                   .msh = path + n,
+                                   .stl = path + 2 * n,
+                                   .obj = path + 3 * n,
+                                   .exo = path + 4 * n,
+                                   .msh_version = cli->msh,
+                                   .tsurf_dir = cli->dir};
+        st = fm_faultset_write_all(&fs, &out, cli->jobs, err);
+    }
     free(path);
+    free(tags);
+    fm_faultset_free_file_names(pnames, rs->nfaults);
+    free_junction_sets(&js);
     return st;
 }
 
@@ -1315,6 +1512,37 @@ static void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, fi
     free(excluded);
 }
 
+/* The CRS of the run: --crs, else the one the inputs name (all that name
+ * one must name the same), else the CFM's. -1 after saying why when the
+ * inputs disagree or memory runs out. */
+static int settle_crs(const remesh_cli *cli, const file_job *jobs, size_t njobs, run_state *rs)
+{
+    const char *crs = cli->crs, *from = NULL;
+    rs->crs_source = "option";
+    if (!crs) {
+        for (size_t i = 0; i < njobs; i++)
+            for (size_t o = 0; o < jobs[i].nobj; o++) {
+                const char *c = fm_tsurf_crs_code(jobs[i].objs[o]);
+                if (!c)
+                    continue;
+                if (crs && strcmp(c, crs) != 0) {
+                    fprintf(stderr,
+                            "faultmesh: the inputs name different coordinate systems (%s in "
+                            "%s, %s in %s): say which with --crs\n",
+                            crs, from, c, jobs[i].path);
+                    return -1;
+                }
+                crs = c;
+                from = jobs[i].path;
+            }
+        rs->crs_source = crs ? "input" : "default";
+        if (!crs)
+            crs = "EPSG:26711";
+    }
+    rs->crs = dup_str(crs);
+    return rs->crs ? 0 : -1;
+}
+
 static int run(const remesh_cli *cli, char **files, long nfiles)
 {
     fm_error err;
@@ -1336,6 +1564,13 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         jobs[i].path = files[i];
     double t0 = fm_clock_seconds();
     run_jobs(cli, NULL, 0, NULL, jobs, (size_t)nfiles);
+    if (settle_crs(cli, jobs, (size_t)nfiles, &rs)) {
+        for (long i = 0; i < nfiles; i++)
+            abandon_job(&jobs[i]);
+        free(jobs);
+        fm_mesh_destroy(rs.set);
+        return FM_EXIT_FAILURES;
+    }
     double t1 = fm_clock_seconds();
     fm_connect_plan *plan = NULL;
     if (cli->connect)
@@ -1388,6 +1623,7 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     free(rs.names);
     free(rs.node_vertex);
     free(rs.plan_res);
+    free(rs.crs);
     fm_connect_plan_destroy(plan);
     fm_mesh_destroy(rs.set);
     return rs.failed ? FM_EXIT_FAILURES : FM_EXIT_OK;
@@ -1427,6 +1663,18 @@ static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
             cli->msh = FM_MSH_22;
         else {
             fprintf(stderr, "faultmesh: --msh-version takes 4.1 or 2.2\n");
+            return -1;
+        }
+        cli->msh_version_given = 1;
+    } else if (!strcmp(a, "--msh-tags")) {
+        int found = 0;
+        for (int c = FM_MSH_TAGS_DEFAULT; c <= FM_MSH_TAGS_PYLITH && !found; c++)
+            if (val && !strcmp(val, fm_msh_tags_name((fm_msh_tags)c))) {
+                cli->msh_tags = (fm_msh_tags)c;
+                found = 1;
+            }
+        if (!found) {
+            fprintf(stderr, "faultmesh: --msh-tags takes default, tandem, seissol or pylith\n");
             return -1;
         }
     } else if (!strcmp(a, "--crs")) {
@@ -1472,6 +1720,19 @@ static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
 /* `--top extend D` grows tops over the fitted surface's extension, which
  * must reach that far up dip: D of depth is D / sin(dip) along a fault,
  * so the margin grows with D (the default 2 km is for closing gaps). */
+/* Tandem reads MSH 2.2 only; -1 (after saying why) when asked for 4.1. */
+static int settle_msh(remesh_cli *cli)
+{
+    if (cli->msh_tags != FM_MSH_TAGS_TANDEM)
+        return 0;
+    if (cli->msh_version_given && cli->msh != FM_MSH_22) {
+        fprintf(stderr, "faultmesh: --msh-tags tandem needs MSH 2.2 (Tandem reads no other)\n");
+        return -1;
+    }
+    cli->msh = FM_MSH_22;
+    return 0;
+}
+
 static void extend_fit(remesh_cli *cli)
 {
     if (cli->mesh.top == FM_TOP_EXTEND)
@@ -1490,7 +1751,7 @@ static void cli_defaults(remesh_cli *cli)
     fm_remesh_model_options_default(&cli->model);
     fm_remesh_options_default(&cli->mesh);
     cli->msh = FM_MSH_41;
-    cli->crs = "EPSG:26711";
+    cli->crs = NULL;
     cli->connect = 1;
     cli->carve = 1;
     cli->join = 1000;
@@ -1527,6 +1788,10 @@ int fm_cmd_remesh(int argc, char **argv)
             paths[npaths++] = argv[i];
     }
     extend_fit(&cli);
+    if (settle_msh(&cli)) {
+        free(paths);
+        return FM_EXIT_USAGE;
+    }
     if (!cli.dir || npaths == 0) {
         remesh_usage(stderr);
         free(paths);
@@ -1564,6 +1829,8 @@ int fm_cmd_demo(int argc, char **argv)
         }
     }
     extend_fit(&cli);
+    if (settle_msh(&cli))
+        return FM_EXIT_USAGE;
     if (!cli.dir) {
         fprintf(stderr, "usage: faultmesh demo [options] -o DIR\n");
         return FM_EXIT_USAGE;

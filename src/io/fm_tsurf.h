@@ -81,6 +81,20 @@ int fm_tsurf_add_part(fm_tsurf *ts);
 /* Sets a HEADER key (replacing an existing one). */
 fm_status fm_tsurf_set_header(fm_tsurf *ts, const char *key, const char *value);
 
+/* Names the coordinate system (the NAME line of the
+ * GOCAD_ORIGINAL_COORDINATE_SYSTEM block, which the object then has):
+ * GoCAD takes any text there, and fm_tsurf_crs_code() reads an
+ * authority code such as "EPSG:26711" back from it. FM_ERR_INVALID for a
+ * name empty or with a control character, FM_ERR_NOMEM. */
+fm_status fm_tsurf_set_crs_name(fm_tsurf *ts, const char *name);
+
+/* The CRS the object's coordinate-system block names unambiguously, as
+ * PROJ reads it: its NAME when that is an authority code
+ * (letters, ':', then letters, digits, '.', '-' or '_', e.g.
+ * "EPSG:26711"), else NULL. The CFM's files say "NAME Default", which
+ * names none. The string lives as long as ts. */
+const char *fm_tsurf_crs_code(const fm_tsurf *ts);
+
 /* Name from the HEADER (name:...), or "" if none. */
 const char *fm_tsurf_name(const fm_tsurf *ts);
 /* The geometry: all vertices, triangles tagged by part. */

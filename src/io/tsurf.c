@@ -3,6 +3,7 @@
 #include "tsurf_idmap.h"
 #include "tsurf_internal.h"
 
+#include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -223,6 +224,35 @@ const char *fm_tsurf_header_get(const fm_tsurf *ts, const char *key)
         if (strcmp(ts->hkeys.items[i], key) == 0)
             return ts->hvalues.items[i];
     return NULL;
+}
+
+fm_status fm_tsurf_set_crs_name(fm_tsurf *ts, const char *name)
+{
+    if (!name || !name[0])
+        return FM_ERR_INVALID;
+    for (const unsigned char *p = (const unsigned char *)name; *p; p++)
+        if (*p < 0x20 || *p == 0x7f)
+            return FM_ERR_INVALID;
+    if (set_str(&ts->crs_name, name))
+        return FM_ERR_NOMEM;
+    ts->has_crs = 1;
+    return FM_OK;
+}
+
+const char *fm_tsurf_crs_code(const fm_tsurf *ts)
+{
+    const char *s = ts->has_crs ? ts->crs_name : NULL;
+    if (!s)
+        return NULL;
+    size_t i = 0;
+    while (isalpha((unsigned char)s[i]))
+        i++;
+    if (i == 0 || s[i] != ':' || !s[i + 1])
+        return NULL;
+    for (i++; s[i]; i++)
+        if (!isalnum((unsigned char)s[i]) && !strchr(".-_", s[i]))
+            return NULL;
+    return s;
 }
 
 void fm_tsurf_get_crs(const fm_tsurf *ts, fm_tsurf_crs *crs)

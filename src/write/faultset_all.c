@@ -6,7 +6,7 @@
 
 #include "faultset_internal.h"
 
-enum { SINGLE_VTU, SINGLE_MSH, SINGLE_STL, SINGLE_OBJ, NSINGLE };
+enum { SINGLE_VTU, SINGLE_MSH, SINGLE_STL, SINGLE_OBJ, SINGLE_EXO, NSINGLE };
 
 typedef struct pool {
     const fm_faultset *fs;
@@ -29,6 +29,7 @@ static fm_status write_single(const pool *p, int kind, fm_error *err)
     case SINGLE_VTU: return fm_faultset_write_vtu(o->vtu, p->fs, err);
     case SINGLE_MSH: return fm_faultset_write_msh(o->msh, p->fs, o->msh_version, err);
     case SINGLE_STL: return fm_faultset_write_stl(o->stl, p->fs, err);
+    case SINGLE_EXO: return fm_faultset_write_exodus(o->exo, p->fs, err);
     default: return fm_faultset_write_obj(o->obj, p->fs, err);
     }
 }
@@ -82,6 +83,7 @@ fm_status fm_faultset_write_all(const fm_faultset *fs, const fm_faultset_outputs
                         : out->msh  ? out->msh
                         : out->stl  ? out->stl
                         : out->obj  ? out->obj
+                        : out->exo  ? out->exo
                                     : out->tsurf_dir;
     fm_status st = fm_faultset_validate(fs, where, err);
     if (st != FM_OK)
@@ -90,7 +92,7 @@ fm_status fm_faultset_write_all(const fm_faultset *fs, const fm_faultset_outputs
         return fm_error_set(err, FM_ERR_INVALID, out->msh, 0, "unknown MSH version %d",
                             (int)out->msh_version);
     pool p = {.fs = fs, .out = out, .mu = PTHREAD_MUTEX_INITIALIZER};
-    const char *paths[NSINGLE] = {out->vtu, out->msh, out->stl, out->obj};
+    const char *paths[NSINGLE] = {out->vtu, out->msh, out->stl, out->obj, out->exo};
     for (int k = 0; k < NSINGLE; k++)
         if (paths[k])
             p.singles[p.nsingles++] = k;

@@ -7,8 +7,9 @@
 
 #include "fm_faultset_write.h"
 
-/* Physical tag of fault i. */
+/* Physical tag and physical group name of fault i. */
 int32_t fs_physical_tag(const fm_faultset *fs, size_t i);
+const char *fs_physical_name(const fm_faultset *fs, size_t i);
 
 /* Per vertex, the lowest fault whose triangles use it, -1 if none:
  * malloc'ed, NULL when memory runs out. */

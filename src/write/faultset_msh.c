@@ -21,13 +21,46 @@ static void put_name(fs_out *o, const char *name)
     fs_out_str(o, "\"\n");
 }
 
+/* Whether no fault before i has i's physical tag. Quadratic only when
+ * tags are given; the default tags are distinct. */
+static int first_with_tag(const fm_faultset *fs, size_t i)
+{
+    if (!fs->physical_tags)
+        return 1;
+    for (size_t k = 0; k < i; k++)
+        if (fs->physical_tags[k] == fs->physical_tags[i])
+            return 0;
+    return 1;
+}
+
+/* A line of $Comments as a quoted string (see the header). */
+static void put_comment(fs_out *o, const char *key, const char *text)
+{
+    fs_out_char(o, '"');
+    fs_out_str(o, key);
+    for (const char *c = text; *c; c++)
+        fs_out_char(o, *c == '"' ? '\'' : *c);
+    fs_out_str(o, "\"\n");
+}
+
 static void put_head(fs_out *o, const fm_faultset *fs, const char *version)
 {
-    fs_out_printf(o, "$MeshFormat\n%s 0 8\n$EndMeshFormat\n$PhysicalNames\n%zu\n", version,
-                  fs->nfaults);
+    fs_out_printf(o, "$MeshFormat\n%s 0 8\n$EndMeshFormat\n$Comments\n", version);
+    put_comment(o, "written by faultmesh ", FM_VERSION_STRING);
+    if (fs->crs && fs->crs[0])
+        put_comment(o, "crs ", fs->crs);
+    put_comment(o, "units ", "metres, z up (negative below sea level)");
+    fs_out_str(o, "$EndComments\n");
+    /* one line per physical group: the first fault with each tag names it */
+    size_t ngroups = 0;
+    for (size_t i = 0; i < fs->nfaults; i++)
+        ngroups += first_with_tag(fs, i);
+    fs_out_printf(o, "$PhysicalNames\n%zu\n", ngroups);
     for (size_t i = 0; i < fs->nfaults; i++) {
+        if (!first_with_tag(fs, i))
+            continue;
         fs_out_printf(o, "2 %d ", (int)fs_physical_tag(fs, i));
-        put_name(o, fs->names[i]);
+        put_name(o, fs_physical_name(fs, i));
     }
     fs_out_str(o, "$EndPhysicalNames\n");
 }
@@ -118,17 +151,22 @@ static void put_41(fs_out *o, const fm_faultset *fs, const size_t *vstart, const
     fs_out_str(o, "$EndElements\n");
 }
 
-static void put_22(fs_out *o, const fm_faultset *fs, const int32_t *owner)
+/* MSH 2.2 node tags: vertex index + 1, or with fs->msh_dense_nodes the
+ * position among the written (used) vertices + 1; stored in owner[]'s
+ * place as a tag per vertex, 0 for a vertex not written. */
+static void put_22(fs_out *o, const fm_faultset *fs, int32_t *owner)
 {
     const double *x = fm_mesh_vertices(fs->mesh);
     const int32_t *tri = fm_mesh_triangles(fs->mesh), *tag = fm_mesh_tags(fs->mesh);
     size_t nv = fm_mesh_nvertices(fs->mesh), nt = fm_mesh_ntriangles(fs->mesh), nused = 0;
-    for (size_t v = 0; v < nv; v++)
+    for (size_t v = 0; v < nv; v++) {
         nused += owner[v] >= 0;
+        owner[v] = owner[v] < 0 ? 0 : fs->msh_dense_nodes ? (int32_t)nused : (int32_t)(v + 1);
+    }
     fs_out_printf(o, "$Nodes\n%zu\n", nused);
     for (size_t v = 0; v < nv; v++)
-        if (owner[v] >= 0) {
-            fs_out_u64(o, v + 1);
+        if (owner[v] > 0) {
+            fs_out_i64(o, owner[v]);
             fs_out_char(o, ' ');
             put_vertex(o, x + 3 * v);
         }
@@ -139,7 +177,11 @@ static void put_22(fs_out *o, const fm_faultset *fs, const int32_t *owner)
         fs_out_i64(o, fs_physical_tag(fs, (size_t)tag[t]));
         fs_out_char(o, ' ');
         fs_out_i64(o, (int64_t)tag[t] + 1);
-        put_triangle(o, tri + 3 * t);
+        for (int k = 0; k < 3; k++) {
+            fs_out_char(o, ' ');
+            fs_out_i64(o, owner[tri[3 * t + (size_t)k]]);
+        }
+        fs_out_char(o, '\n');
     }
     fs_out_str(o, "$EndElements\n");
 }

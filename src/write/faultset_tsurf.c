@@ -107,7 +107,10 @@ static fm_tsurf *build(const fm_faultset *fs, size_t f, const size_t *order, siz
                        fs_tsurf_scratch *sc)
 {
     fm_tsurf *ts = fm_tsurf_create(fs->names[f]);
-    if (!ts || fm_tsurf_add_part(ts) < 0) {
+    /* the CRS as the block's NAME, which GoCAD shows and our reader takes
+     * back as the input CRS (fm_tsurf_crs_code) */
+    if (!ts || fm_tsurf_add_part(ts) < 0 ||
+        (fs->crs && fs->crs[0] && fm_tsurf_set_crs_name(ts, fs->crs) != FM_OK)) {
         fm_tsurf_destroy(ts);
         return NULL;
     }

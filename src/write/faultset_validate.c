@@ -12,6 +12,11 @@ int32_t fs_physical_tag(const fm_faultset *fs, size_t i)
     return fs->physical_tags ? fs->physical_tags[i] : (int32_t)(i + 1);
 }
 
+const char *fs_physical_name(const fm_faultset *fs, size_t i)
+{
+    return fs->physical_names ? fs->physical_names[i] : fs->names[i];
+}
+
 int32_t *fs_vertex_owner(const fm_faultset *fs)
 {
     size_t nv = fm_mesh_nvertices(fs->mesh), nt = fm_mesh_ntriangles(fs->mesh);
@@ -114,18 +119,37 @@ static fm_status check_names(const fm_faultset *fs, const char *path, fm_error *
     if (fs->crs && bad_text(fs->crs))
         return fm_error_set(err, FM_ERR_INVALID, path, 0,
                             "CRS: a control character or not UTF-8");
+    for (size_t i = 0; fs->physical_names && i < fs->nfaults; i++) {
+        const char *n = fs->physical_names[i];
+        if (!n || !n[0] || bad_text(n))
+            return fm_error_set(err, FM_ERR_INVALID, path, 0,
+                                "physical name of fault %zu: empty, a control character or "
+                                "not UTF-8",
+                                i);
+    }
     if (fs->physical_tags)
         for (size_t i = 0; i < fs->nfaults; i++) {
             if (fs->physical_tags[i] <= 0)
                 return fm_error_set(err, FM_ERR_INVALID, path, 0,
                                     "physical tag %d of fault %zu is not positive",
                                     (int)fs->physical_tags[i], i);
+            /* one group, one name */
             for (size_t k = 0; k < i; k++)
-                if (fs->physical_tags[k] == fs->physical_tags[i])
+                if (fs->physical_tags[k] == fs->physical_tags[i] &&
+                    strcmp(fs_physical_name(fs, k), fs_physical_name(fs, i)) != 0)
                     return fm_error_set(err, FM_ERR_INVALID, path, 0,
-                                        "faults %zu and %zu share physical tag %d", k, i,
-                                        (int)fs->physical_tags[i]);
+                                        "faults %zu and %zu share physical tag %d under "
+                                        "different names",
+                                        k, i, (int)fs->physical_tags[i]);
         }
+    for (size_t i = 0; i < fs->nnodesets; i++) {
+        const fm_faultset_nodeset *ns = &fs->nodesets[i];
+        if (!ns->name || !ns->name[0] || bad_text(ns->name) || (ns->n && !ns->vertices))
+            return fm_error_set(err, FM_ERR_INVALID, path, 0,
+                                "node set %zu: needs a UTF-8 name without control "
+                                "characters and its vertices",
+                                i);
+    }
     for (size_t i = 0; i < fs->ncell_data; i++) {
         const fm_vtu_array *a = &fs->cell_data[i];
         if (!a->name || !a->name[0] || strcmp(a->name, "fault_id") == 0 || a->ncomp < 1 ||
@@ -173,6 +197,12 @@ fm_status fm_faultset_validate(const fm_faultset *fs, const char *path, fm_error
                                     "triangle %zu names vertex %d of %zu", t,
                                     (int)tri[3 * t + (size_t)k], nv);
     }
+    for (size_t i = 0; i < fs->nnodesets; i++)
+        for (size_t k = 0; k < fs->nodesets[i].n; k++)
+            if (fs->nodesets[i].vertices[k] < 0 || (size_t)fs->nodesets[i].vertices[k] >= nv)
+                return fm_error_set(err, FM_ERR_INVALID, path, 0,
+                                    "node set %zu (%s) names vertex %d of %zu", i,
+                                    fs->nodesets[i].name, (int)fs->nodesets[i].vertices[k], nv);
     size_t *count = fs_fault_counts(fs);
     if (!count)
         return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");

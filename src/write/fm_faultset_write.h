@@ -1,6 +1,6 @@
 /* faultmesh write: a fault set (every remeshed fault of a run in one mesh)
- * as VTU, Gmsh MSH 4.1 / 2.2, binary STL, OBJ and one GoCAD TSurf per
- * fault.
+ * as VTU, Gmsh MSH 4.1 / 2.2, binary STL, OBJ, Exodus II and one GoCAD
+ * TSurf per fault.
  *
  * A fault set is one fm_mesh whose vertices are shared by all faults
  * (a node on the junction of two faults exists once) and whose triangle
@@ -31,23 +31,43 @@
 extern "C" {
 #endif
 
+/* A named set of vertices (e.g. the nodes two faults share along one
+ * intersection curve). */
+typedef struct fm_faultset_nodeset {
+    const char *name;         /* UTF-8, as the fault names */
+    const int32_t *vertices;  /* n vertex indices of the mesh, each used by some triangle */
+    size_t n;
+} fm_faultset_nodeset;
+
 typedef struct fm_faultset {
     const fm_mesh *mesh;      /* shared vertices; triangle tag = fault index */
     const char *const *names; /* nfaults UTF-8 names */
     size_t nfaults;
     /* MSH physical tag per fault; NULL means fault index + 1. Simulators
      * have their own conventions for which tag means what (tandem,
-     * SeisSol, PyLith), so the caller may impose them here. */
+     * SeisSol, PyLith), so the caller may impose them here. Faults may
+     * share a tag (one physical group holding several faults, as Tandem's
+     * and SeisSol's "fault" tags are) only when they share its name. */
     const int32_t *physical_tags;
     /* Extra per-triangle arrays passed through to the VTU only (double or
      * int32, ncomp values per triangle); "fault_id" is taken. */
     const fm_vtu_array *cell_data;
     size_t ncell_data;
     /* Coordinate reference system, e.g. "EPSG:26711"; NULL or "" for none.
-     * Recorded where a format has room: VTU field data "crs", STL header,
-     * OBJ comment. MSH has no place for it and TSurf keeps the CFM's
-     * default coordinate-system block. */
+     * Recorded where a format has room: VTU field data "crs", MSH
+     * $Comments, Exodus II info records, STL header, OBJ comment, TSurf's
+     * coordinate-system block. */
     const char *crs;
+    /* Name of each fault's physical group in MSH (nfaults names, UTF-8);
+     * NULL means the fault names. */
+    const char *const *physical_names;
+    /* MSH 2.2: number the written nodes 1..n in vertex order instead of
+     * vertex index + 1 (Tandem's reader takes only node tags 1..n). */
+    int msh_dense_nodes;
+    /* Named node sets of the Exodus II file besides the one per fault
+     * (the junction curves): each a list of vertex indices. */
+    const struct fm_faultset_nodeset *nodesets;
+    size_t nnodesets;
 } fm_faultset;
 
 /* Checks what every writer checks (see above); the writers call it. */
@@ -81,10 +101,64 @@ typedef enum fm_msh_version {
  * quotes, without escapes, and meshio splits the line shell-style, so '"'
  * is written as '\'' and '\\' as '/'; names are cut (at a UTF-8 character
  * boundary) to FM_MSH_NAME_MAX bytes, since Gmsh reads the line into a
- * fixed 256-byte buffer and loses the rest of the file after a longer one. */
+ * fixed 256-byte buffer and loses the rest of the file after a longer one.
+ *
+ * Faults sharing a physical tag make one physical group (named once).
+ * The CRS and the writer go in a $Comments section after $MeshFormat,
+ * each line a double-quoted string ('"' written as '\''): Gmsh and meshio
+ * skip sections they do not know, and Tandem's lexer, which stops on a
+ * bare word outside quotes, reads quoted strings as tokens and skips them. */
 #define FM_MSH_NAME_MAX 200
 fm_status fm_faultset_write_msh(const char *path, const fm_faultset *fs, fm_msh_version version,
                                 fm_error *err);
+
+/* Physical tags and names of the finite-element codes' conventions
+ * (README, "MSH tag conventions"):
+ *   DEFAULT  fault i: tag i + 1, name = the fault name;
+ *   TANDEM   every fault tag 3, name "fault" (Tandem: 1 free surface,
+ *            3 fault, 5 Dirichlet), to be written as MSH 2.2 with dense
+ *            node tags;
+ *   SEISSOL  every fault tag 103, name "fault" (SeisSol's Gmsh reader:
+ *            101 free surface, 103 dynamic rupture, 105 absorbing);
+ *   PYLITH   fault i: tag i + 1, name = a label PyLith's .cfg files can
+ *            name: the fault name's bytes A-Z a-z 0-9 '_' kept, every run
+ *            of others one '_', "fault_" put in front of one not starting
+ *            with a letter, "_2", "_3", ... after one already taken.
+ * Either way the geometrical entity of fault i stays i + 1. */
+typedef enum fm_msh_tags {
+    FM_MSH_TAGS_DEFAULT = 0,
+    FM_MSH_TAGS_TANDEM,
+    FM_MSH_TAGS_SEISSOL,
+    FM_MSH_TAGS_PYLITH
+} fm_msh_tags;
+
+/* "default", "tandem", "seissol", "pylith"; NULL for another value. */
+const char *fm_msh_tags_name(fm_msh_tags conv);
+
+/* The n tags (into tags[n]) and physical names (*names: malloc'ed array
+ * of n malloc'ed strings; free with fm_faultset_free_file_names) of
+ * convention conv for faults with these names. FM_ERR_INVALID for an
+ * unknown convention, FM_ERR_NOMEM. */
+fm_status fm_msh_tags_make(fm_msh_tags conv, const char *const *fault_names, size_t n,
+                           int32_t *tags, char ***names, fm_error *err);
+
+/* Exodus II (netCDF, through Debian's libexodusII), as Cubit writes a
+ * mesh for PyLith: coordinates X, Y, Z in metres as in the mesh; one
+ * element block per fault (id = fault index + 1, type "TRI3", name = the
+ * fault name), its triangles in mesh order and winding; one node set per
+ * fault (id = fault index + 1, name = the fault name, its nodes ascending)
+ * then one per fs->nodesets entry (id = nfaults + k + 1, its name, its
+ * vertices ascending, duplicates dropped). Node number = position among
+ * the vertices used by some triangle, in vertex order, + 1; element number
+ * = position in the blocks' order + 1. Names longer than 255 bytes are
+ * cut at a UTF-8 boundary (Exodus keeps at most 255).
+ *
+ * Title: "faultmesh fault set"; one QA record ("faultmesh", version, and
+ * empty date and time, so that the same input gives the same bytes); info
+ * records: the CRS ("crs: ...", over several 80-character lines when long),
+ * units and the z convention. Created under a temporary name in the same
+ * folder and renamed when closed (netCDF writes the file itself). */
+fm_status fm_faultset_write_exodus(const char *path, const fm_faultset *fs, fm_error *err);
 
 /* Binary STL: an 80-byte header naming faultmesh, the fault count and the
  * CRS (cut to fit; never starting with "solid", which readers take for
@@ -110,7 +184,9 @@ fm_status fm_faultset_write_obj(const char *path, const fm_faultset *fs, fm_erro
 
 /* One GoCAD TSurf per fault in directory dir (created if missing), with
  * only that fault's triangles and vertices (renumbered 1..n in mesh order
- * of the vertices) and HEADER name = the fault name.
+ * of the vertices) and HEADER name = the fault name. The
+ * GOCAD_ORIGINAL_COORDINATE_SYSTEM block is the CFM's (metres, z up,
+ * "ZPOSITIVE Elevation") with NAME = the CRS when set, "Default" without.
  *
  * File names (fm_faultset_tsurf_file_names): the name's bytes
  * A-Z a-z 0-9 '.' '-' '_' are kept, every run of other bytes (spaces,
@@ -131,6 +207,7 @@ typedef struct fm_faultset_outputs {
     const char *vtu, *msh, *stl, *obj; /* file paths */
     fm_msh_version msh_version;
     const char *tsurf_dir; /* one NAME.ts per fault, as fm_faultset_write_tsurf */
+    const char *exo;       /* Exodus II file path */
 } fm_faultset_outputs;
 
 /* Every requested output, written as the functions above write them, by
@@ -142,7 +219,7 @@ typedef struct fm_faultset_outputs {
  * After a failure no further file is started; those being written are
  * finished, so every file present is complete and a failing one leaves
  * nothing. The error returned is that of the first failing file in the
- * order VTU, MSH, STL, OBJ, TSurf by fault, and names it. */
+ * order VTU, MSH, STL, OBJ, Exodus II, TSurf by fault, and names it. */
 fm_status fm_faultset_write_all(const fm_faultset *fs, const fm_faultset_outputs *out,
                                 int nthreads, fm_error *err);
 

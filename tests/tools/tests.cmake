@@ -55,6 +55,26 @@ if(FM_SYSTEM_PYTHON)
   set_tests_properties(faultset_readers_independent PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
 endif()
 
+# Simulator formats (issue 6, items 4, 5, 7): mesh.exo read by meshio and
+# netCDF4 (blocks, node sets of faults and junctions, names, info
+# records), mesh.msh by meshio and Gmsh in every --msh-tags convention,
+# and the CRS in every output (check_fe_formats.py).
+#  - fe_formats_demo: the synthetic system, byte identity -j 1 / -j 2,
+#    usage errors, the CRS read back from the TSurf files we write, and
+#    the checker failing on a wrong convention and a tampered node set.
+#  - cfm_fe_formats_500m_1000: the whole CFM 500 m set at 1 km, connected,
+#    once per convention (skipped without the CFM; not in the ASan run).
+if(FM_SYSTEM_PYTHON)
+  add_test(NAME fe_formats_demo
+    COMMAND bash ${FM_TOOLS}/fe_formats_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/fe_formats_demo demo)
+  set_tests_properties(fe_formats_demo PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+  add_test(NAME cfm_fe_formats_500m_1000
+    COMMAND bash ${FM_TOOLS}/fe_formats_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_fe_formats ${FM_CFM_DIR}/CFM5.3/500m 1000)
+  set_tests_properties(cfm_fe_formats_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 3000)
+endif()
+
 # Remesh (the mesh issue). check_remesh.py recomputes everything from the
 # output files (meshio: VTU, MSH, STL, OBJ; Gmsh: MSH; the TSurf per fault;
 # distances to the original TSurf) and cross-checks report.json; skipped

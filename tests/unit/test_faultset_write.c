@@ -93,7 +93,8 @@ static fm_faultset sample_set(const fm_mesh *m)
     for (size_t i = 0; i < NT; i++)
         area_data[i] =
             fm_triangle_area(x + 3 * t[3 * i], x + 3 * t[3 * i + 1], x + 3 * t[3 * i + 2]);
-    fm_faultset fs = {m, names, 3, NULL, &extra, 1, "EPSG:26711"};
+    fm_faultset fs = {
+        .mesh = m, .names = names, .nfaults = 3, .cell_data = &extra, .ncell_data = 1, .crs = "EPSG:26711"};
     return fs;
 }
 
@@ -184,7 +185,13 @@ static void test_msh41(void)
         fm_mesh_destroy(m);
         return;
     }
-    CHECK(strncmp(buf, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n", 50) == 0);
+    CHECK(strncmp(buf,
+                  "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Comments\n\"written by faultmesh " FM_VERSION_STRING
+                  "\"\n\"crs EPSG:26711\"\n\"units metres, z up (negative below sea level)\"\n"
+                  "$EndComments\n$PhysicalNames\n3\n",
+                  strlen("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Comments\n\"written by faultmesh " FM_VERSION_STRING
+                  "\"\n\"crs EPSG:26711\"\n\"units metres, z up (negative below sea level)\"\n"
+                  "$EndComments\n$PhysicalNames\n3\n")) == 0);
     CHECK(strstr(buf, "\n2 2 \"San Andreas fault (Mojave, 'south') 1857\"\n") != NULL);
     CHECK(strstr(buf, "\n2 3 \"Falla de San Andr\xc3\xa9s / Ca\xc3\xb1\xc3\xb3n\"\n") != NULL);
     /* An independent pass over $Nodes and $Elements: every node declared
@@ -312,7 +319,7 @@ static void test_msh_names(void)
     fm_mesh_add_vertex(m, 0, 0, -1);
     fm_mesh_add_triangle(m, 0, 1, 2, 0);
     fm_mesh_add_triangle(m, 0, 2, 1, 1);
-    fm_faultset fs = {m, nm, 2, NULL, NULL, 0, NULL};
+    fm_faultset fs = {.mesh = m, .names = nm, .nfaults = 2};
     char dir[4096], path[4200];
     fm_error err;
     tmp_dir(dir, sizeof dir, "fsw_names");
@@ -457,7 +464,7 @@ static void test_file_names(void)
     fm_mesh_add_vertex(m, 0, 0, -1);
     for (int f = 0; f < 8; f++)
         fm_mesh_add_triangle(m, 0, 1, 2, f);
-    fm_faultset fs = {m, nm, 8, NULL, NULL, 0, NULL};
+    fm_faultset fs = {.mesh = m, .names = nm, .nfaults = 8};
     char **files = NULL;
     fm_error err;
     CHECK_EQ(fm_faultset_tsurf_file_names(&fs, &files, &err), FM_OK);
@@ -504,6 +511,116 @@ static void test_deterministic(void)
     fm_mesh_destroy(m2);
 }
 
+static const void *find_bytes(const char *hay, size_t n, const char *needle, size_t k)
+{
+    for (size_t i = 0; i + k <= n; i++)
+        if (memcmp(hay + i, needle, k) == 0)
+            return hay + i;
+    return NULL;
+}
+
+static void test_exodus(void)
+{
+    fm_mesh *m = sample_mesh();
+    fm_mesh_add_vertex(m, 1, 2, 3); /* used by no triangle */
+    fm_faultset fs = sample_set(m);
+    /* the Y junction: the shared column 4 (rows 0..3) */
+    int32_t column[4];
+    for (int r = 0; r < 4; r++)
+        column[r] = col(0, 4, r);
+    fm_faultset_nodeset ns = {"junction 0: a / b", column, 4};
+    fs.nodesets = &ns;
+    fs.nnodesets = 1;
+    char dir[4096], a[4200], b[4200];
+    fm_error err;
+    tmp_dir(dir, sizeof dir, "fsw_exo");
+    snprintf(a, sizeof a, "%s/a.exo", dir);
+    snprintf(b, sizeof b, "%s/b.exo", dir);
+    CHECK_EQ(fm_faultset_write_exodus(a, &fs, &err), FM_OK);
+    CHECK_EQ(fm_faultset_write_exodus(b, &fs, &err), FM_OK);
+    CHECK(fm_test_same_file(a, b)); /* no date, no time: same bytes */
+    size_t n = 0;
+    char *buf = fm_test_read_file(a, &n);
+    CHECK(buf && n > 4 && memcmp(buf, "CDF", 3) == 0); /* a netCDF file */
+    /* the names and the CRS are in it, whole */
+    CHECK(buf && find_bytes(buf, n, names[1], strlen(names[1])) != NULL);
+    CHECK(buf && find_bytes(buf, n, "crs: EPSG:26711", 15) != NULL);
+    CHECK(buf && find_bytes(buf, n, "junction 0: a / b", 17) != NULL);
+    free(buf);
+    int tmp = 0;
+    CHECK_EQ(count_entries(dir, &tmp), 2);
+    CHECK_EQ(tmp, 0);
+    /* a node set with a vertex of no triangle: refused, nothing written */
+    int32_t unused = NV;
+    ns = (fm_faultset_nodeset){"loose", &unused, 1};
+    snprintf(a, sizeof a, "%s/c.exo", dir);
+    CHECK_EQ(fm_faultset_write_exodus(a, &fs, &err), FM_ERR_INVALID);
+    CHECK(!exists(a));
+    CHECK_EQ(count_entries(dir, &tmp), 2);
+    CHECK_EQ(tmp, 0);
+    fm_mesh_destroy(m);
+}
+
+static void test_msh_conventions(void)
+{
+    const char *nm[5] = {"San Andreas (Mojave) 1857", "1992 Landers", "a--b", "a  b",
+                         "Ca\xc3\xb1\xc3\xb3n"};
+    int32_t tags[5];
+    char **pn = NULL;
+    fm_error err;
+    CHECK_EQ(fm_msh_tags_make(FM_MSH_TAGS_PYLITH, nm, 5, tags, &pn, &err), FM_OK);
+    static const char *labels[5] = {"San_Andreas_Mojave_1857", "fault_1992_Landers", "a_b", "a_b_2",
+                                    "Ca_n"};
+    for (int i = 0; pn && i < 5; i++) {
+        CHECK_STR(pn[i], labels[i]);
+        CHECK_EQ(tags[i], i + 1);
+    }
+    fm_faultset_free_file_names(pn, 5);
+    CHECK_EQ(fm_msh_tags_make(FM_MSH_TAGS_SEISSOL, nm, 5, tags, &pn, &err), FM_OK);
+    for (int i = 0; pn && i < 5; i++) {
+        CHECK_STR(pn[i], "fault");
+        CHECK_EQ(tags[i], 103);
+    }
+    fm_faultset_free_file_names(pn, 5);
+    CHECK_EQ(fm_msh_tags_make((fm_msh_tags)9, nm, 5, tags, &pn, &err), FM_ERR_INVALID);
+
+    /* Tandem: one group, MSH 2.2, node tags 1..n although vertex 0 is
+     * used by no triangle */
+    fm_mesh *m = fm_mesh_create();
+    fm_mesh_add_vertex(m, 9, 9, 9);
+    for (int i = 0; i < 4; i++)
+        fm_mesh_add_vertex(m, i % 2, i / 2, -1.5);
+    fm_mesh_add_triangle(m, 1, 2, 3, 0);
+    fm_mesh_add_triangle(m, 2, 4, 3, 1);
+    const char *two[2] = {"north", "south"};
+    CHECK_EQ(fm_msh_tags_make(FM_MSH_TAGS_TANDEM, two, 2, tags, &pn, &err), FM_OK);
+    fm_faultset fs = {.mesh = m, .names = two, .nfaults = 2, .physical_tags = tags,
+                      .physical_names = (const char *const *)pn, .msh_dense_nodes = 1,
+                      .crs = "say \"x\""};
+    char dir[4096], path[4200];
+    tmp_dir(dir, sizeof dir, "fsw_conv");
+    snprintf(path, sizeof path, "%s/t.msh", dir);
+    CHECK_EQ(fm_faultset_write_msh(path, &fs, FM_MSH_22, &err), FM_OK);
+    char *buf = fm_test_read_file(path, NULL);
+    CHECK(buf && strstr(buf, "\"crs say 'x'\"\n") != NULL);
+    CHECK(buf && strstr(buf, "$PhysicalNames\n1\n2 3 \"fault\"\n$EndPhysicalNames\n") != NULL);
+    CHECK(buf && strstr(buf, "$Nodes\n4\n1 0 0 -1.5\n2 1 0 -1.5\n3 0 1 -1.5\n4 1 1 -1.5\n") != NULL);
+    CHECK(buf && strstr(buf, "$Elements\n2\n1 2 2 3 1 1 2 3\n2 2 2 3 2 2 4 3\n") != NULL);
+    free(buf);
+    /* without dense numbering the tags keep the gap */
+    fs.msh_dense_nodes = 0;
+    CHECK_EQ(fm_faultset_write_msh(path, &fs, FM_MSH_22, &err), FM_OK);
+    buf = fm_test_read_file(path, NULL);
+    CHECK(buf && strstr(buf, "$Nodes\n4\n2 0 0 -1.5\n") != NULL);
+    free(buf);
+    /* shared tag, different names: refused */
+    const char *other[2] = {"fault", "not fault"};
+    fs.physical_names = other;
+    CHECK_EQ(fm_faultset_write_msh(path, &fs, FM_MSH_22, &err), FM_ERR_INVALID);
+    fm_faultset_free_file_names(pn, 2);
+    fm_mesh_destroy(m);
+}
+
 /* Each writer on bad input or an unwritable place: the error, and nothing
  * on disk. */
 typedef fm_status (*writer)(const char *, const fm_faultset *, fm_error *);
@@ -531,12 +648,18 @@ static fm_status w_ts(const char *p, const fm_faultset *s, fm_error *e)
 {
     return fm_faultset_write_tsurf(p, s, e);
 }
-static const writer writers[6] = {w_vtu, w_msh41, w_msh22, w_stl, w_obj, w_ts};
+static fm_status w_exo(const char *p, const fm_faultset *s, fm_error *e)
+{
+    return fm_faultset_write_exodus(p, s, e);
+}
+/* the TSurf writer last: it makes a directory, the read-only test skips it */
+#define NWRITERS 7
+static const writer writers[NWRITERS] = {w_vtu, w_msh41, w_msh22, w_stl, w_obj, w_exo, w_ts};
 
 static void expect_failure(const char *dir, const fm_faultset *fs, fm_status code)
 {
     char path[4200];
-    for (int w = 0; w < 6; w++) {
+    for (int w = 0; w < NWRITERS; w++) {
         fm_error err;
         fm_error_clear(&err);
         snprintf(path, sizeof path, "%s/out%d", dir, w);
@@ -568,9 +691,19 @@ static void test_rejects(void)
         fs.names = bad_names[i];
         expect_failure(dir, &fs, FM_ERR_INVALID);
     }
+    /* faults sharing a physical group under different names */
     static const int32_t dup_tags[3] = {1, 2, 1}, zero_tag[3] = {1, 0, 2};
     fs = good;
     fs.physical_tags = dup_tags;
+    expect_failure(dir, &fs, FM_ERR_INVALID);
+    /* a junction node set naming a vertex out of range, or without name */
+    static const int32_t out_of_range[2] = {3, NV};
+    fm_faultset_nodeset ns = {"junction", out_of_range, 2};
+    fs = good;
+    fs.nodesets = &ns;
+    fs.nnodesets = 1;
+    expect_failure(dir, &fs, FM_ERR_INVALID);
+    ns = (fm_faultset_nodeset){"", out_of_range, 1};
     expect_failure(dir, &fs, FM_ERR_INVALID);
     fs.physical_tags = zero_tag;
     expect_failure(dir, &fs, FM_ERR_INVALID);
@@ -600,7 +733,7 @@ static void test_rejects(void)
     if (fp)
         fclose(fp);
     snprintf(under, sizeof under, "%s/x", file);
-    for (int w = 0; w < 6; w++) {
+    for (int w = 0; w < NWRITERS; w++) {
         fm_error err;
         CHECK_EQ(writers[w](under, &good, &err), FM_ERR_IO);
         CHECK(strstr(err.message, under) != NULL);
@@ -614,7 +747,7 @@ static void test_rejects(void)
         snprintf(ro, sizeof ro, "%s/ro", dir);
         CHECK_EQ(fm_mkdir_p(ro, NULL), FM_OK);
         chmod(ro, 0555);
-        for (int w = 0; w < 5; w++) {
+        for (int w = 0; w < NWRITERS - 1; w++) {
             fm_error err;
             snprintf(under, sizeof under, "%s/out", ro);
             CHECK_EQ(writers[w](under, &good, &err), FM_ERR_IO);
@@ -645,7 +778,8 @@ int main(int argc, char **argv)
         FM_CASE(test_msh_names),  FM_CASE(test_stl),
         FM_CASE(test_obj),        FM_CASE(test_tsurf),
         FM_CASE(test_file_names), FM_CASE(test_deterministic),
-        FM_CASE(test_rejects),
+        FM_CASE(test_rejects),    FM_CASE(test_exodus),
+        FM_CASE(test_msh_conventions),
     };
     return fm_test_run(cases, sizeof cases / sizeof cases[0]);
 }

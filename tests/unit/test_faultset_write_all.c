@@ -54,7 +54,7 @@ static int count_entries(const char *dir, int *temporaries)
 }
 
 typedef struct paths {
-    char dir[4096], vtu[4200], msh[4200], stl[4200], obj[4200];
+    char dir[4096], vtu[4200], msh[4200], stl[4200], obj[4200], exo[4200];
 } paths;
 
 static void make_paths(paths *p, const char *name)
@@ -64,13 +64,14 @@ static void make_paths(paths *p, const char *name)
     snprintf(p->msh, sizeof p->msh, "%s/mesh.msh", p->dir);
     snprintf(p->stl, sizeof p->stl, "%s/mesh.stl", p->dir);
     snprintf(p->obj, sizeof p->obj, "%s/mesh.obj", p->dir);
+    snprintf(p->exo, sizeof p->exo, "%s/mesh.exo", p->dir);
     CHECK_EQ(fm_mkdir_p(p->dir, NULL), FM_OK);
 }
 
 static void test_same_bytes(void)
 {
     fm_mesh *m = sample_mesh();
-    fm_faultset fs = {m, names, NFAULTS, NULL, NULL, 0, "EPSG:26711"};
+    fm_faultset fs = {.mesh = m, .names = names, .nfaults = NFAULTS, .crs = "EPSG:26711"};
     fm_error err;
     char **files = NULL;
     CHECK_EQ(fm_faultset_tsurf_file_names(&fs, &files, &err), FM_OK);
@@ -83,17 +84,19 @@ static void test_same_bytes(void)
         CHECK_EQ(fm_faultset_write_stl(ref.stl, &fs, &err), FM_OK);
         CHECK_EQ(fm_faultset_write_obj(ref.obj, &fs, &err), FM_OK);
         CHECK_EQ(fm_faultset_write_tsurf(ref.dir, &fs, &err), FM_OK);
+        CHECK_EQ(fm_faultset_write_exodus(ref.exo, &fs, &err), FM_OK);
         for (int threads = 0; threads <= 5; threads++) {
             paths p;
             char name[32];
             snprintf(name, sizeof name, "fswa_%d_%d", v, threads);
             make_paths(&p, name);
-            fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, ver, p.dir};
+            fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, ver, p.dir, p.exo};
             CHECK_EQ(fm_faultset_write_all(&fs, &out, threads, &err), FM_OK);
             CHECK(fm_test_same_file(ref.vtu, p.vtu));
             CHECK(fm_test_same_file(ref.msh, p.msh));
             CHECK(fm_test_same_file(ref.stl, p.stl));
             CHECK(fm_test_same_file(ref.obj, p.obj));
+            CHECK(fm_test_same_file(ref.exo, p.exo));
             for (size_t f = 0; f < NFAULTS; f++) {
                 char a[4400], b[4400];
                 snprintf(a, sizeof a, "%s/%s", ref.dir, files[f]);
@@ -101,7 +104,7 @@ static void test_same_bytes(void)
                 CHECK(fm_test_same_file(a, b));
             }
             int tmp;
-            CHECK_EQ(count_entries(p.dir, &tmp), 4 + NFAULTS);
+            CHECK_EQ(count_entries(p.dir, &tmp), 5 + NFAULTS);
             CHECK_EQ(tmp, 0);
         }
     }
@@ -114,14 +117,14 @@ static void test_same_bytes(void)
 static void test_blocked(void)
 {
     fm_mesh *m = sample_mesh();
-    fm_faultset fs = {m, names, NFAULTS, NULL, NULL, 0, NULL};
+    fm_faultset fs = {.mesh = m, .names = names, .nfaults = NFAULTS};
     for (int threads = 1; threads <= 4; threads++) {
         paths p;
         char name[32];
         snprintf(name, sizeof name, "fswa_blocked_%d", threads);
         make_paths(&p, name);
         CHECK_EQ(fm_mkdir_p(p.msh, NULL), FM_OK);
-        fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, FM_MSH_41, p.dir};
+        fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, FM_MSH_41, p.dir, p.exo};
         fm_error err;
         fm_error_clear(&err);
         CHECK_EQ(fm_faultset_write_all(&fs, &out, threads, &err), FM_ERR_IO);
@@ -145,10 +148,10 @@ static void test_invalid(void)
 {
     fm_mesh *m = sample_mesh();
     fm_mesh_vertices_mut(m)[7] = NAN;
-    fm_faultset fs = {m, names, NFAULTS, NULL, NULL, 0, NULL};
+    fm_faultset fs = {.mesh = m, .names = names, .nfaults = NFAULTS};
     paths p;
     make_paths(&p, "fswa_invalid");
-    fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, FM_MSH_41, p.dir};
+    fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, FM_MSH_41, p.dir, p.exo};
     fm_error err;
     CHECK_EQ(fm_faultset_write_all(&fs, &out, 3, &err), FM_ERR_NUMERIC);
     int tmp;

@@ -1,0 +1,328 @@
+/* Fault set as Exodus II, the way Cubit hands a mesh to PyLith: one
+ * element block and one node set per fault, node sets of the junction
+ * curves, names stored. netCDF creates and writes the file itself, so the
+ * atomic write is done here: created under a temporary name in the same
+ * folder, renamed once closed. */
+#include <errno.h>
+#include <fcntl.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <exodusII.h>
+
+#include "faultset_internal.h"
+
+/* Exodus keeps names of at most this many bytes (NC_MAX_NAME - 1). */
+#define EXO_NAME_MAX 255
+/* An info record holds 80 characters, a QA field 32. */
+#define EXO_LINE 80
+
+static pthread_once_t opts_once = PTHREAD_ONCE_INIT;
+
+/* The library's default options may print or abort on an error; errors
+ * are reported through fm_error instead. */
+static void quiet_exodus(void) { ex_opts(EX_DEFAULT); }
+
+typedef struct exo_job {
+    const fm_faultset *fs;
+    int32_t *node;       /* per vertex: node number (1-based), 0 if unused */
+    size_t nnodes;
+    size_t *tstart, *torder; /* triangles grouped by fault */
+    char **names;        /* nfaults + nnodesets names cut to EXO_NAME_MAX */
+    char **info;         /* ninfo lines */
+    size_t ninfo;
+} exo_job;
+
+static char *cut_copy(const char *s, size_t max)
+{
+    size_t n = strlen(s);
+    if (n > max)
+        n = fs_utf8_cut(s, max);
+    char *d = malloc(n + 1);
+    if (d) {
+        memcpy(d, s, n);
+        d[n] = '\0';
+    }
+    return d;
+}
+
+static int add_info(exo_job *j, const char *text)
+{
+    char *d = cut_copy(text, EXO_LINE);
+    if (!d)
+        return -1;
+    j->info[j->ninfo++] = d;
+    return 0;
+}
+
+/* The CRS over as many 80-character lines as it needs ("crs: " first,
+ * "crs+ " on the continuation lines), cut at UTF-8 boundaries. */
+static int crs_info(exo_job *j, const char *crs)
+{
+    char line[EXO_LINE + 1];
+    const char *p = crs;
+    int first = 1;
+    while (first || *p) {
+        size_t room = EXO_LINE - 5, n = strlen(p);
+        if (n > room)
+            n = fs_utf8_cut(p, room);
+        snprintf(line, sizeof line, "%s%.*s", first ? "crs: " : "crs+ ", (int)n, p);
+        if (add_info(j, line))
+            return -1;
+        p += n;
+        first = 0;
+    }
+    return 0;
+}
+
+static int prepare(exo_job *j)
+{
+    const fm_faultset *fs = j->fs;
+    size_t nv = fm_mesh_nvertices(fs->mesh), nt = fm_mesh_ntriangles(fs->mesh);
+    int32_t *owner = fs_vertex_owner(fs);
+    if (!owner)
+        return -1;
+    j->node = owner; /* reused: owner -> node number */
+    for (size_t v = 0; v < nv; v++)
+        owner[v] = owner[v] >= 0 ? (int32_t)++j->nnodes : 0;
+    if (fs_group_by(fm_mesh_tags(fs->mesh), nt, fs->nfaults, &j->tstart, &j->torder))
+        return -1;
+    size_t nn = fs->nfaults + fs->nnodesets;
+    j->names = calloc(nn, sizeof *j->names);
+    if (!j->names)
+        return -1;
+    for (size_t i = 0; i < nn; i++) {
+        const char *s = i < fs->nfaults ? fs->names[i] : fs->nodesets[i - fs->nfaults].name;
+        if (!(j->names[i] = cut_copy(s, EXO_NAME_MAX)))
+            return -1;
+    }
+    size_t ncrs = fs->crs ? strlen(fs->crs) / (EXO_LINE - 5) + 2 : 0;
+    j->info = calloc(ncrs + 4, sizeof *j->info);
+    if (!j->info)
+        return -1;
+    if (add_info(j, "faultmesh " FM_VERSION_STRING ": fault set, one element block and node "
+                    "set per fault") ||
+        add_info(j, "units: metres; z up, negative below sea level") ||
+        (fs->crs && fs->crs[0] && crs_info(j, fs->crs)))
+        return -1;
+    return 0;
+}
+
+static void release(exo_job *j)
+{
+    free(j->node);
+    free(j->tstart);
+    free(j->torder);
+    for (size_t i = 0; j->names && i < j->fs->nfaults + j->fs->nnodesets; i++)
+        free(j->names[i]);
+    free(j->names);
+    for (size_t i = 0; i < j->ninfo; i++)
+        free(j->info[i]);
+    free(j->info);
+}
+
+static int cmp_i32(const void *a, const void *b)
+{
+    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* Node numbers of a set's vertices, ascending, without repeats; n set. */
+static int32_t *set_nodes(const exo_job *j, const int32_t *v, size_t *n)
+{
+    size_t k = 0, m = *n;
+    int32_t *out = malloc((m ? m : 1) * sizeof *out);
+    if (!out)
+        return NULL;
+    for (size_t i = 0; i < m; i++)
+        out[i] = j->node[v[i]];
+    qsort(out, m, sizeof *out, cmp_i32);
+    for (size_t i = 0; i < m; i++)
+        if (k == 0 || out[i] != out[k - 1])
+            out[k++] = out[i];
+    *n = k;
+    return out;
+}
+
+/* Everything after ex_create; an Exodus error code or -ENOMEM. */
+static int put_all(int exo, const exo_job *j)
+{
+    const fm_faultset *fs = j->fs;
+    size_t nv = fm_mesh_nvertices(fs->mesh), nf = fs->nfaults;
+    /* before ex_put_init, which sizes the name variables */
+    int rc = ex_set_max_name_length(exo, EXO_NAME_MAX);
+    if (rc < 0)
+        return rc;
+    rc = ex_put_init(exo, "faultmesh fault set", 3, (int64_t)j->nnodes,
+                         (int64_t)fm_mesh_ntriangles(fs->mesh), (int64_t)nf,
+                         (int64_t)(nf + fs->nnodesets), 0);
+    if (rc < 0)
+        return rc;
+    char *qa[1][4] = {{"faultmesh", FM_VERSION_STRING, "", ""}};
+    if ((rc = ex_put_qa(exo, 1, qa)) < 0 || (rc = ex_put_info(exo, (int)j->ninfo, j->info)) < 0)
+        return rc;
+
+    double *c = malloc((j->nnodes ? j->nnodes : 1) * 3 * sizeof *c);
+    int32_t *map = malloc((j->nnodes ? j->nnodes : 1) * sizeof *map);
+    if (!c || !map) {
+        free(c);
+        free(map);
+        return -ENOMEM;
+    }
+    const double *x = fm_mesh_vertices(fs->mesh);
+    for (size_t v = 0, k = 0; v < nv; v++)
+        if (j->node[v]) {
+            for (int d = 0; d < 3; d++)
+                c[(size_t)d * j->nnodes + k] = x[3 * v + (size_t)d];
+            map[k++] = (int32_t)(v + 1);
+        }
+    char *coord_names[3] = {"X", "Y", "Z"};
+    rc = ex_put_coord(exo, c, c + j->nnodes, c + 2 * j->nnodes);
+    if (rc >= 0)
+        rc = ex_put_coord_names(exo, coord_names);
+    /* node and element ids lead back to the mesh, as MSH tags do */
+    if (rc >= 0)
+        rc = ex_put_node_num_map(exo, map);
+    free(c);
+    free(map);
+    if (rc < 0)
+        return rc;
+
+    size_t nt = fm_mesh_ntriangles(fs->mesh);
+    const int32_t *tri = fm_mesh_triangles(fs->mesh);
+    int32_t *conn = malloc((nt ? nt : 1) * 3 * sizeof *conn);
+    int32_t *emap = malloc((nt ? nt : 1) * sizeof *emap);
+    if (!conn || !emap) {
+        free(conn);
+        free(emap);
+        return -ENOMEM;
+    }
+    for (size_t f = 0; f < nf && rc >= 0; f++) {
+        size_t n = j->tstart[f + 1] - j->tstart[f];
+        for (size_t i = 0; i < n; i++) {
+            size_t t = j->torder[j->tstart[f] + i];
+            for (int k = 0; k < 3; k++)
+                conn[3 * i + (size_t)k] = j->node[tri[3 * t + (size_t)k]];
+            emap[j->tstart[f] + i] = (int32_t)(t + 1);
+        }
+        rc = ex_put_elem_block(exo, (ex_entity_id)(f + 1), "TRI3", (int64_t)n, 3, 0);
+        if (rc >= 0)
+            rc = ex_put_elem_conn(exo, (ex_entity_id)(f + 1), conn);
+    }
+    if (rc >= 0)
+        rc = ex_put_elem_num_map(exo, emap);
+    free(conn);
+    free(emap);
+    if (rc >= 0)
+        rc = ex_put_names(exo, EX_ELEM_BLOCK, j->names);
+    if (rc < 0)
+        return rc;
+
+    /* node sets: each fault's nodes, then the given sets */
+    int32_t *fv = malloc((nt ? nt : 1) * 3 * sizeof *fv);
+    if (!fv)
+        return -ENOMEM;
+    for (size_t s = 0; s < nf + fs->nnodesets && rc >= 0; s++) {
+        size_t n;
+        const int32_t *v;
+        if (s < nf) {
+            n = 0;
+            for (size_t i = j->tstart[s]; i < j->tstart[s + 1]; i++)
+                for (int k = 0; k < 3; k++)
+                    fv[n++] = tri[3 * j->torder[i] + (size_t)k];
+            v = fv;
+        } else {
+            n = fs->nodesets[s - nf].n;
+            v = fs->nodesets[s - nf].vertices;
+        }
+        int32_t *nodes = set_nodes(j, v, &n);
+        if (!nodes) {
+            rc = -ENOMEM;
+            break;
+        }
+        rc = ex_put_node_set_param(exo, (ex_entity_id)(s + 1), (int64_t)n, 0);
+        if (rc >= 0 && n)
+            rc = ex_put_node_set(exo, (ex_entity_id)(s + 1), nodes);
+        free(nodes);
+    }
+    free(fv);
+    if (rc >= 0)
+        rc = ex_put_names(exo, EX_NODE_SET, j->names);
+    return rc;
+}
+
+/* Flushed to disk before the rename, as fm_atomic_commit does. */
+static int sync_file(const char *p)
+{
+    int fd = open(p, O_RDONLY);
+    if (fd < 0)
+        return -1;
+    int rc = fsync(fd);
+    close(fd);
+    return rc;
+}
+
+fm_status fm_faultset_write_exodus(const char *path, const fm_faultset *fs, fm_error *err)
+{
+    fm_status st = fm_faultset_validate(fs, path, err);
+    if (st != FM_OK)
+        return st;
+    exo_job j = {.fs = fs};
+    if (prepare(&j)) {
+        release(&j);
+        return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    }
+    for (size_t i = 0; i < fs->nnodesets; i++)
+        for (size_t k = 0; k < fs->nodesets[i].n; k++)
+            if (!j.node[fs->nodesets[i].vertices[k]]) {
+                st = fm_error_set(err, FM_ERR_INVALID, path, 0,
+                                  "node set %zu (%s): vertex %d is in no triangle", i,
+                                  fs->nodesets[i].name, (int)fs->nodesets[i].vertices[k]);
+                release(&j);
+                return st;
+            }
+    size_t n = strlen(path);
+    char *tmp = malloc(n + 16);
+    if (!tmp) {
+        release(&j);
+        return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    }
+    /* A unique name from mkstemp, then given to netCDF, which refuses to
+     * create it if anything took the name in between (EX_NOCLOBBER). */
+    snprintf(tmp, n + 16, "%s.tmp.XXXXXX", path);
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        st = fm_error_set(err, FM_ERR_IO, path, 0, "cannot create file: %s", strerror(errno));
+        free(tmp);
+        release(&j);
+        return st;
+    }
+    close(fd);
+    unlink(tmp);
+    pthread_once(&opts_once, quiet_exodus);
+    int cws = 8, iows = 8;
+    int exo = ex_create(tmp, EX_NOCLOBBER, &cws, &iows);
+    if (exo < 0) {
+        st = fm_error_set(err, FM_ERR_IO, path, 0, "cannot create Exodus II file (error %d)",
+                          exo);
+    } else {
+        int rc = put_all(exo, &j);
+        int rc_close = ex_close(exo);
+        if (rc == -ENOMEM)
+            st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        else if (rc < 0 || rc_close < 0)
+            st = fm_error_set(err, FM_ERR_IO, path, 0, "Exodus II write failed (error %d)",
+                              rc < 0 ? rc : rc_close);
+        else if (sync_file(tmp) != 0 || rename(tmp, path) != 0)
+            st = fm_error_set(err, FM_ERR_IO, path, 0, "cannot rename into place: %s",
+                              strerror(errno));
+        if (st != FM_OK)
+            unlink(tmp);
+    }
+    free(tmp);
+    release(&j);
+    return st;
+}
