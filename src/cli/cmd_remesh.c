@@ -61,8 +61,8 @@ typedef struct fault_result {
     size_t nthrough;
     size_t *used_curves;        /* plan curves its meshes took (as of its last meshing) */
     size_t nused;
-    fm_keyed *curve_pieces;     /* pieces of plan curves its mesh holds (key: curve << 32 |
-                                   piece k, nodes k to k + 1), sorted by key */
+    fm_keyed *curve_pieces;     /* pieces of plan curves its mesh holds (key: fm_edge_key of
+                                   the piece's two nodes, index: the curve), sorted */
     size_t npieces;
     size_t carved;              /* triangles removed where it met another fault */
     double carved_area;         /* their area, m^2 */
@@ -99,11 +99,13 @@ static int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets,
                     }
                     r->curve_pieces = g;
                 }
-                r->curve_pieces[r->npieces] = (fm_keyed){(uint64_t)sh[c].curve << 32 | i, r->npieces};
+                /* by its nodes, not its place in the sheet's list: the
+                 * sheets of two faults may hold different stretches */
+                r->curve_pieces[r->npieces] = (fm_keyed){key, sh[c].curve};
                 r->npieces++;
             }
     }
-    /* sheets list their curves in plan order each, not all together */
+    /* by key, for share_piece's search */
     if (rc == 0 && fm_sort_keyed(r->curve_pieces, r->npieces))
         rc = -1;
     return rc;
@@ -112,11 +114,14 @@ static int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets,
 /* Whether faults a and b both hold some piece of plan curve c. */
 static int share_piece(const fault_result *a, const fault_result *b, size_t c)
 {
-    for (size_t i = fm_keyed_lower_bound(a->curve_pieces, a->npieces, (uint64_t)c << 32);
-         i < a->npieces && a->curve_pieces[i].key >> 32 == c; i++) {
-        size_t at = fm_keyed_lower_bound(b->curve_pieces, b->npieces, a->curve_pieces[i].key);
-        if (at < b->npieces && b->curve_pieces[at].key == a->curve_pieces[i].key)
-            return 1;
+    for (size_t i = 0; i < a->npieces; i++) {
+        if (a->curve_pieces[i].index != c)
+            continue;
+        uint64_t key = a->curve_pieces[i].key;
+        for (size_t at = fm_keyed_lower_bound(b->curve_pieces, b->npieces, key);
+             at < b->npieces && b->curve_pieces[at].key == key; at++)
+            if (b->curve_pieces[at].index == c)
+                return 1;
     }
     return 0;
 }
