@@ -23,6 +23,7 @@
 #include "fm_sort.h"
 #include "fm_synth.h"
 #include "fm_tsurf.h"
+#include "sim_attrs.h"
 
 typedef struct remesh_cli {
     const char *dir;
@@ -36,6 +37,7 @@ typedef struct remesh_cli {
     int connect;  /* join faults that meet (default 1) */
     double join;  /* D: join tolerance, m */
     fm_connect_keep keep; /* which of two near-duplicate faults is kept */
+    sim_cli sim;          /* --slip, --metadata, --eqsim-coords */
 } remesh_cli;
 
 /* What one fault came to, for report.json. */
@@ -60,6 +62,7 @@ typedef struct fault_result {
     fm_keyed *curve_pieces;     /* pieces of plan curves its mesh holds (key: curve << 32 |
                                    piece k, nodes k to k + 1), sorted by key */
     size_t npieces;
+    size_t set_index1;          /* its fault index in the set + 1, 0 if not in it */
 } fault_result;
 
 /* Which pieces of its plan curves fault f's mesh holds (an edge between
@@ -164,7 +167,8 @@ static void remesh_usage(FILE *fp)
             "                        the area of one within 50 m of the other, as rupture\n"
             "                        composites over their section faults), keep the\n"
             "                        smaller (default: the sections) or the larger\n"
-            "  --quiet               no per-fault lines\n");
+            "  --quiet               no per-fault lines\n"
+            SIM_CLI_HELP);
     fputs(fm_cli_repair_help, fp);
 }
 
@@ -716,6 +720,7 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
                 r->error = dup_str("out of memory");
             } else {
                 rs->names[rs->nfaults++] = r->name;
+                r->set_index1 = rs->nfaults;
             }
         }
         free(job->ids ? job->ids[o] : NULL);
@@ -758,7 +763,7 @@ static void json_quality(fm_json *j, const fault_result *r, double H)
     fm_json_end_object(j);
 }
 
-static void json_fault(fm_json *j, const fault_result *r, double H)
+static void json_fault(fm_json *j, const fault_result *r, double H, const sim_attrs *sa)
 {
     fm_json_begin_object(j);
     fm_json_kv_string(j, "file", r->file ? r->file : "");
@@ -815,6 +820,8 @@ static void json_fault(fm_json *j, const fault_result *r, double H)
         fm_json_kv_number(j, "check", r->t_check);
         fm_json_end_object(j);
     }
+    if (sa && r->set_index1 && r->set_index1 <= sa->nfaults)
+        sim_json_fault(j, sa, r->set_index1 - 1);
     fm_json_end_object(j);
 }
 
@@ -945,7 +952,8 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
     fm_json_end_object(j);
 }
 
-static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_error *err)
+static fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_attrs *sa,
+                              fm_error *err)
 {
     size_t n = strlen(cli->dir) + 32;
     char *path = malloc(n);
@@ -976,7 +984,7 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     double worst_dist = 0, zmax = -INFINITY;
     for (size_t i = 0; i < rs->nres; i++) {
         const fault_result *r = &rs->res[i];
-        json_fault(&j, r, cli->mesh.size);
+        json_fault(&j, r, cli->mesh.size, sa);
         if (!r->status || strcmp(r->status, "ok"))
             continue;
         ok++;
@@ -994,6 +1002,8 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     fm_json_end_array(&j);
     size_t jcount[4];
     json_connect(&j, cli, rs, jcount);
+    if (sa)
+        sim_json_summary(&j, &cli->sim, sa);
     fm_json_key(&j, "summary");
     fm_json_begin_object(&j);
     fm_json_kv_int(&j, "faults", (int64_t)rs->nres);
@@ -1030,13 +1040,20 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
 }
 
 /* The fault set in every format, the files shared among cli->jobs threads
- * (the bytes do not depend on how many). */
-static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error *err)
+ * (the bytes do not depend on how many); the simulator files after them.
+ * *sa gets the element attributes (cleared when there are no faults). */
+static fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa,
+                           fm_error *err)
 {
+    memset(sa, 0, sizeof *sa);
     if (!rs->nfaults)
         return FM_OK;
     fm_faultset fs = {rs->set, (const char *const *)rs->names, rs->nfaults, NULL, NULL, 0,
                       cli->crs};
+    if (sim_attrs_make(&cli->sim, &fs, sa) != 0)
+        return fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    fs.cell_data = sa->cells;
+    fs.ncell_data = sizeof sa->cells / sizeof *sa->cells;
     size_t n = strlen(cli->dir) + 32;
     char *path = malloc(4 * n);
     if (!path)
@@ -1047,6 +1064,8 @@ static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error 
     fm_faultset_outputs out = {path, path + n, path + 2 * n, path + 3 * n, cli->msh, cli->dir};
     fm_status st = fm_faultset_write_all(&fs, &out, cli->jobs, err);
     free(path);
+    if (st == FM_OK)
+        st = sim_write(&cli->sim, &fs, sa, cli->dir, err);
     return st;
 }
 
@@ -1215,9 +1234,11 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     rs.time[0] = t1 - t0;
     rs.time[1] = t2 - t1;
     rs.time[2] = t3 - t2;
-    fm_status st = write_set(cli, &rs, &err);
+    sim_attrs sa;
+    fm_status st = write_set(cli, &rs, &sa, &err);
     if (st == FM_OK)
-        st = write_report(cli, &rs, &err);
+        st = write_report(cli, &rs, rs.nfaults ? &sa : NULL, &err);
+    sim_attrs_free(&sa);
     if (st != FM_OK) {
         fprintf(stderr, "faultmesh: %s\n", err.message);
         rs.failed++;
@@ -1247,6 +1268,9 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
 static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
 {
     const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    int sc = sim_cli_option(argc, argv, i, &cli->sim);
+    if (sc != 0)
+        return sc;
     if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
         if (!val)
             return -1;
@@ -1377,13 +1401,21 @@ int fm_cmd_remesh(int argc, char **argv)
         free(paths);
         return FM_EXIT_USAGE;
     }
+    if (sim_cli_load(&cli.sim, paths, npaths) != 0) {
+        sim_cli_free(&cli.sim);
+        free(paths);
+        return FM_EXIT_USAGE;
+    }
     char **files = NULL;
     long nfiles = fm_input_list(paths, npaths, &files);
     free(paths);
-    if (nfiles < 0)
+    if (nfiles < 0) {
+        sim_cli_free(&cli.sim);
         return FM_EXIT_USAGE;
+    }
     int rc = run(&cli, files, nfiles);
     fm_input_list_free(files, nfiles);
+    sim_cli_free(&cli.sim);
     return rc;
 }
 
@@ -1394,6 +1426,9 @@ int fm_cmd_demo(int argc, char **argv)
     /* The synthetic faults are 20 to 60 km long: 1 km triangles show
      * their shapes and mesh in a second. Local metres, no real CRS. */
     cli.crs = "local metres (synthetic)";
+    /* No real CRS to convert from: EQSim in the mesh's metres unless
+     * --crs and --eqsim-coords spherical say otherwise. */
+    cli.sim.eqsim = FM_EQSIM_RECTANGULAR;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -1413,10 +1448,16 @@ int fm_cmd_demo(int argc, char **argv)
         fprintf(stderr, "usage: faultmesh demo [options] -o DIR\n");
         return FM_EXIT_USAGE;
     }
+    if (sim_cli_load(&cli.sim, NULL, 0) != 0) {
+        sim_cli_free(&cli.sim);
+        return FM_EXIT_USAGE;
+    }
     size_t n = strlen(cli.dir) + 16;
     char *in = malloc(n);
-    if (!in)
+    if (!in) {
+        sim_cli_free(&cli.sim);
         return FM_EXIT_FAILURES;
+    }
     snprintf(in, n, "%s/input", cli.dir);
     fm_synth_options so;
     fm_synth_options_default(&so);
@@ -1427,6 +1468,7 @@ int fm_cmd_demo(int argc, char **argv)
         fprintf(stderr, "faultmesh: %s\n", err.message);
         fm_synth_destroy(s);
         free(in);
+        sim_cli_free(&cli.sim);
         return FM_EXIT_FAILURES;
     }
     fm_synth_destroy(s);
@@ -1437,5 +1479,6 @@ int fm_cmd_demo(int argc, char **argv)
     if (nfiles >= 0)
         fm_input_list_free(files, nfiles);
     free(in);
+    sim_cli_free(&cli.sim);
     return rc;
 }
