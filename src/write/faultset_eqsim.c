@@ -151,27 +151,40 @@ static fm_status convert_vertices(const fm_faultset *fs, fm_eqsim_coords coords,
 }
 
 /* Normal of the triangle p0 p1 p2 given as lat, lon (degrees) and
- * elevation z (m), in a local east-north-up frame at their centroid on
- * the WGS 84 ellipsoid: true north, metres. The triangle spans a few km,
- * so the first-order frame is exact far below a hundredth of a degree. */
+ * elevation z (m, taken as height over the WGS 84 ellipsoid) in the
+ * east-north-up frame at their mean latitude and longitude: true north,
+ * metres. The corners go through earth-centred coordinates exactly
+ * rather than a flat local approximation, whose curvature error (d^2/2R,
+ * 2 cm over 500 m) tilts thin triangles by degrees. */
 static void enu_normal(const double lat[3], const double lon[3], const double z[3], double n[3])
 {
     const double a = 6378137.0, f = 1 / 298.257223563, e2 = f * (2 - f);
-    double phi = (lat[0] + lat[1] + lat[2]) / 3 * DEG2RAD;
-    double h = (z[0] + z[1] + z[2]) / 3;
-    double s = sin(phi), w = sqrt(1 - e2 * s * s);
-    double rn = a / w + h, rm = a * (1 - e2) / (w * w * w) + h;
-    double p[3][3];
+    double p[3][3], c[3] = {0, 0, 0};
     for (int k = 0; k < 3; k++) {
-        double dl = remainder(lon[k] - lon[0], 360.0) * DEG2RAD;
-        p[k][0] = dl * rn * cos(phi);
-        p[k][1] = (lat[k] - lat[0]) * DEG2RAD * rm;
-        p[k][2] = z[k] - z[0];
+        double phi = lat[k] * DEG2RAD, lam = lon[k] * DEG2RAD, s = sin(phi);
+        double rn = a / sqrt(1 - e2 * s * s);
+        p[k][0] = (rn + z[k]) * cos(phi) * cos(lam);
+        p[k][1] = (rn + z[k]) * cos(phi) * sin(lam);
+        p[k][2] = (rn * (1 - e2) + z[k]) * s;
+        for (int d = 0; d < 3; d++)
+            c[d] += p[k][d] / 3;
+    }
+    double phi = (lat[0] + lat[1] + lat[2]) / 3 * DEG2RAD;
+    double lam = (lon[0] + lon[1] + lon[2]) / 3 * DEG2RAD;
+    double east[3] = {-sin(lam), cos(lam), 0};
+    double north[3] = {-sin(phi) * cos(lam), -sin(phi) * sin(lam), cos(phi)};
+    double up[3] = {cos(phi) * cos(lam), cos(phi) * sin(lam), sin(phi)};
+    double q[3][3];
+    for (int k = 0; k < 3; k++) {
+        double r[3] = {p[k][0] - c[0], p[k][1] - c[1], p[k][2] - c[2]};
+        q[k][0] = r[0] * east[0] + r[1] * east[1] + r[2] * east[2];
+        q[k][1] = r[0] * north[0] + r[1] * north[1] + r[2] * north[2];
+        q[k][2] = r[0] * up[0] + r[1] * up[1] + r[2] * up[2];
     }
     double e[3], g[3];
     for (int d = 0; d < 3; d++) {
-        e[d] = p[1][d] - p[0][d];
-        g[d] = p[2][d] - p[0][d];
+        e[d] = q[1][d] - q[0][d];
+        g[d] = q[2][d] - q[0][d];
     }
     n[0] = e[1] * g[2] - e[2] * g[1];
     n[1] = e[2] * g[0] - e[0] * g[2];

@@ -89,8 +89,10 @@ typedef enum fm_eqsim_coords {
  * Triangles: corners ordered by the element convention (counterclockwise
  * seen from above, the side the upward normal points to), rake, slip rate
  * (m/s), aseismic factor 0, strike and dip (degrees). Spherical: strike
- * from true north and dip, both recomputed in a local east-north-up frame
- * of the converted corners; rectangular: from grid north.
+ * from true north and dip, both recomputed from the converted corners
+ * (z taken as height over the WGS 84 ellipsoid) in earth-centred
+ * coordinates, seen in the east-north-up frame at the triangle's mean
+ * latitude and longitude; rectangular: from grid north.
  *
  * Numbers are the shortest round-trip text; no date, so the file is
  * byte-identical for identical input. */
