@@ -316,9 +316,27 @@ def main():
           float(s200[8]) == V[:, 2].min() and float(s200[9]) == V[:, 2].max(),
           "EQSim: 200 bounds = the vertices'")
     if sph:
-        tr = pyproj.Transformer.from_crs(crs, "EPSG:4326", always_xy=True)
+        # The file names the one PROJ operation it used for every vertex and
+        # gives its pipeline: it must be one of PROJ's own candidates from
+        # the input CRS to EPSG:4326, and pyproj runs it here.
+        meta = [r[1] for r in recs[:i102] if r[0] == "110"]
+        opname = next((m.split(": ", 1)[1].rsplit(", accuracy", 1)[0] for m in meta
+                       if m.startswith("PROJ operation")), None)
+        pipe = next((m.split(": ", 1)[1] for m in meta if m.startswith("PROJ pipeline")), None)
+        group = pyproj.transformer.TransformerGroup(crs, "EPSG:4326", always_xy=True)
+        op_names = [t.description.split(" + axis order change")[0] for t in group.transformers]
+        check(opname in op_names, "EQSim: the PROJ operation named (%s) is one of PROJ's for %s to "
+              "EPSG:4326" % (opname, crs))
+        tr = pyproj.Transformer.from_pipeline(pipe)
         lon_r, lat_r = tr.transform(pts[:, 0], pts[:, 1])
         ll = np.column_stack([lat_r, lon_r])
+        # pyproj's default transformer picks per point (another shift
+        # offshore): within 1e-4 degrees (10 m) all the same.
+        d_lon, d_lat = pyproj.Transformer.from_crs(crs, "EPSG:4326", always_xy=True).transform(
+            pts[:, 0], pts[:, 1])
+        dd = float(np.max(np.hypot(d_lon - lon_r, d_lat - lat_r)))
+        check(dd < 1e-4, "EQSim: pyproj's per-point default within %.2g deg of the file's one "
+              "operation" % dd)
         ecef = pyproj.Transformer.from_crs("EPSG:4979", "EPSG:4978", always_xy=True)
     else:
         ll = np.column_stack([pts[:, 1], pts[:, 0]])
