@@ -48,6 +48,11 @@ import math
 import os
 import re
 import sys
+import warnings
+
+# pyproj warns that grids it would rank higher are not installed: that is
+# the point of the file naming the operation it used.
+warnings.filterwarnings("ignore", message="Best transformation is not available")
 
 try:
     import meshio
