@@ -1401,7 +1401,7 @@ int fm_cmd_remesh(int argc, char **argv)
         free(paths);
         return FM_EXIT_USAGE;
     }
-    if (sim_cli_load(&cli.sim, paths, npaths) != 0) {
+    if (sim_cli_load(&cli.sim, cli.crs, paths, npaths) != 0) {
         sim_cli_free(&cli.sim);
         free(paths);
         return FM_EXIT_USAGE;
@@ -1448,7 +1448,7 @@ int fm_cmd_demo(int argc, char **argv)
         fprintf(stderr, "usage: faultmesh demo [options] -o DIR\n");
         return FM_EXIT_USAGE;
     }
-    if (sim_cli_load(&cli.sim, NULL, 0) != 0) {
+    if (sim_cli_load(&cli.sim, cli.crs, NULL, 0) != 0) {
         sim_cli_free(&cli.sim);
         return FM_EXIT_USAGE;
     }

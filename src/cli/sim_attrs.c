@@ -91,7 +91,7 @@ static char *metadata_beside(const char *input)
     return NULL;
 }
 
-int sim_cli_load(sim_cli *sc, char *const *paths, size_t npaths)
+int sim_cli_load(sim_cli *sc, const char *crs, char *const *paths, size_t npaths)
 {
     fm_error err;
     fm_error_clear(&err);
@@ -110,6 +110,10 @@ int sim_cli_load(sim_cli *sc, char *const *paths, size_t npaths)
     }
     if (sc->metadata_found && fm_metadata_read(sc->metadata_found, &sc->md, &err) != FM_OK) {
         fprintf(stderr, "faultmesh: %s\n", err.message);
+        return -1;
+    }
+    if (sc->eqsim == FM_EQSIM_SPHERICAL && fm_eqsim_check_crs(crs, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: %s; give --crs, or --eqsim-coords utm\n", err.message);
         return -1;
     }
     return 0;

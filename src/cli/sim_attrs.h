@@ -22,6 +22,7 @@ typedef struct sim_cli {
 } sim_cli;
 
 #define SIM_CLI_HELP                                                                          \
+    "simulator files: DIR/mesh.rsqsim (RSQSim) and DIR/mesh.eqsim (EQSim geometry)\n"       \
     "  --slip FILE           rake and slip rate per fault: CSV rows pattern,rake,slip_rate\n" \
     "                        (fault name or shell glob, degrees Aki & Richards, mm/yr)\n"     \
     "  --metadata FILE       CFM metadata CSV whose Slip Sense gives each fault's rake\n"     \
@@ -37,8 +38,9 @@ int sim_cli_option(int argc, char **argv, int *i, sim_cli *sc);
 
 /* Reads --slip and the metadata (--metadata, or the first
  * CFM5.3_Metadata.csv in the parent folder of an input folder, or of a
- * file's folder); 0, or -1 after printing why. */
-int sim_cli_load(sim_cli *sc, char *const *paths, size_t npaths);
+ * file's folder) and, for spherical EQSim, checks that PROJ can convert
+ * from crs; 0, or -1 after printing why. */
+int sim_cli_load(sim_cli *sc, const char *crs, char *const *paths, size_t npaths);
 void sim_cli_free(sim_cli *sc);
 
 /* Everything the outputs need, for a fault set of nfaults faults. */

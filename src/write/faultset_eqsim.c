@@ -211,6 +211,26 @@ static fm_status sim_proj_make(sim_proj *sp, const char *crs, const double bb[4]
     return FM_OK;
 }
 
+fm_status fm_eqsim_check_crs(const char *crs, fm_error *err)
+{
+    if (!crs || !crs[0])
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0,
+                            "spherical EQSim coordinates need a CRS (--crs)");
+    PJ_CONTEXT *ctx = proj_context_create();
+    if (!ctx)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "PROJ: cannot create a context");
+    proj_context_set_enable_network(ctx, 0);
+    proj_log_level(ctx, PJ_LOG_NONE);
+    PJ *P = proj_create_crs_to_crs(ctx, crs, "EPSG:4326", NULL);
+    fm_status st = FM_OK;
+    if (!P)
+        st = fm_error_set(err, FM_ERR_INVALID, NULL, 0,
+                          "PROJ cannot convert from CRS '%s' to WGS 84 (EPSG:4326)", crs);
+    proj_destroy(P);
+    proj_context_destroy(ctx);
+    return st;
+}
+
 /* Horizontal position of every used vertex in the file's coordinates:
  * lat (or y) and lon (or x). */
 static fm_status convert_vertices(const fm_faultset *fs, fm_eqsim_coords coords,

@@ -105,6 +105,10 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
                                   const fm_sim_slip *slip, fm_eqsim_coords coords,
                                   fm_error *err);
 
+/* FM_OK if PROJ knows crs and a way from it to WGS 84: what the
+ * spherical EQSim file needs, checked before a long run. */
+fm_status fm_eqsim_check_crs(const char *crs, fm_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -63,10 +63,10 @@ if [ "$what" = demo ]; then
     "$exe" demo --quiet --metadata "$tmp/none.csv" -o "$tmp/x" 2>"$tmp/err.txt"; rc=$?
     [ "$rc" = 2 ] && grep -q "none.csv" "$tmp/err.txt" && echo "ok    a missing --metadata file is a usage error" \
         || { echo "FAIL: missing --metadata: exit $rc"; fail=1; }
-    # Spherical without a real CRS fails and leaves no EQSim file.
+    # Spherical without a real CRS is a usage error, before any meshing.
     "$exe" demo --quiet --eqsim-coords spherical -o "$tmp/nocrs" 2>"$tmp/err.txt"; rc=$?
-    if [ "$rc" = 1 ] && [ ! -e "$tmp/nocrs/mesh.eqsim" ] && grep -q "PROJ cannot convert" "$tmp/err.txt"; then
-        echo "ok    spherical EQSim without a known CRS: an error, no file"
+    if [ "$rc" = 2 ] && [ ! -e "$tmp/nocrs/mesh.vtu" ] && grep -q "PROJ cannot convert" "$tmp/err.txt"; then
+        echo "ok    spherical EQSim without a known CRS: a usage error, nothing meshed"
     else echo "FAIL: spherical without a CRS: exit $rc"; fail=1; fi
 else
     cfm=$5
