@@ -97,11 +97,10 @@ static void put_int(fs_out *o, uint64_t v)
 
 /* The operation from the mesh's CRS to WGS 84 used for the whole set.
  * proj_create_crs_to_crs would choose per point among the candidates whose
- * area of use holds it: for the CFM, one Helmert shift onshore and
- * another offshore, a jump of metres between neighbouring nodes of a
- * fault crossing the coast. One operation for all keeps the geometry
- * whole: the first that PROJ ranks for the set's extent among those it
- * can run with the grids installed. */
+ * area of use holds it, so neighbouring nodes on either side of a border
+ * (a coastline, a state line) could get datum shifts metres apart. One
+ * operation for all keeps the geometry whole: the first that PROJ ranks
+ * for the set's extent among those it can run with the grids installed. */
 typedef struct sim_proj {
     PJ_CONTEXT *ctx;
     PJ *op;          /* normalised: x = lon, y = lat */

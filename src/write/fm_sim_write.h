@@ -79,7 +79,7 @@ typedef enum fm_eqsim_coords {
  * degrees (WGS 84), converted from fs->crs by PROJ with one operation for
  * every vertex: the first PROJ ranks for the set's extent among those it
  * can run with the grids installed, network off (per-point choice, as
- * proj_create_crs_to_crs does, would shift neighbouring nodes on either
+ * proj_create_crs_to_crs does, could shift neighbouring nodes on either
  * side of an area-of-use border by metres); its name, accuracy and
  * pipeline go into 110 records. For the CFM with Debian's proj-data:
  * "Inverse of UTM zone 11N + NAD27 to WGS 84 (6)", a Helmert shift good
