@@ -195,6 +195,13 @@ def main():
                  and any("rake unknown" in w for w in f["attributes"]["warnings"]))
     check(unknown == warned, "report.json: each of the %d faults with the default rake has a warning"
           % unknown)
+    no_rate = sum(1 for f in faults if f["attributes"]["slip_rate_from"] == "default")
+    rate_warned = sum(1 for f in faults if f["attributes"]["slip_rate_from"] == "default"
+                      and any("slip rate unknown" in w for w in f["attributes"]["warnings"]))
+    check(no_rate == rate_warned and rep["simulator"]["slip_rate_default"] == no_rate and
+          rep["simulator"]["rake_default"] == unknown,
+          "report.json: each of the %d faults with the default slip rate has a warning; "
+          "the summary counts agree" % no_rate)
 
     # --- VTU (meshio): the reference geometry ---
     m = meshio.read(os.path.join(d, "mesh.vtu"))
@@ -332,6 +339,10 @@ def main():
         op_names = [t.description.split(" + axis order change")[0] for t in group.transformers]
         check(opname in op_names, "EQSim: the PROJ operation named (%s) is one of PROJ's for %s to "
               "EPSG:4326" % (opname, crs))
+        check(pipe is not None, "EQSim: a 110 record gives the PROJ pipeline")
+        if pipe is None:
+            print("%d FAILED" % len(failures))
+            return 1
         tr = pyproj.Transformer.from_pipeline(pipe)
         lon_r, lat_r = tr.transform(pts[:, 0], pts[:, 1])
         ll = np.column_stack([lat_r, lon_r])
