@@ -9,7 +9,9 @@
  * remesh run writes (coordinates needing 15 to 17 digits), pass the output
  * folder of one, e.g. `faultmesh remesh --size 1000 -o /tmp/w_out ...` then
  * `bench_write /tmp/w_out`. OUTDIR (default /tmp/bench_write) receives
- * mesh.vtu, mesh.msh (4.1), mesh.stl, mesh.obj and ts/NAME.ts.
+ * mesh.vtu, mesh.msh (4.1), mesh.stl, mesh.obj, ts/NAME.ts, and the
+ * simulator files mesh.rsqsim and mesh.eqsim (spherical, through PROJ;
+ * rake 180, 1e-9 m/s on every fault).
  *
  * Prints the best wall and CPU time of each writer over REPEATS passes
  * (default 3), of all of them in a row, and of fm_faultset_write_all on
@@ -22,6 +24,7 @@
 #include "bench_common.h"
 #include "fm_atomic.h"
 #include "fm_faultset_write.h"
+#include "fm_sim_write.h"
 #include "fm_tsurf.h"
 
 typedef struct set {
@@ -142,10 +145,27 @@ static fm_status w_ts(const char *o, const fm_faultset *fs, fm_error *e)
     return fm_faultset_write_tsurf(p, fs, e);
 }
 
+static fm_sim_slip g_slip;
+
+static fm_status w_rsqsim(const char *o, const fm_faultset *fs, fm_error *e)
+{
+    char p[4096];
+    snprintf(p, sizeof p, "%s/mesh.rsqsim", o);
+    return fm_faultset_write_rsqsim(p, fs, &g_slip, e);
+}
+static fm_status w_eqsim(const char *o, const fm_faultset *fs, fm_error *e)
+{
+    char p[4096];
+    snprintf(p, sizeof p, "%s/mesh.eqsim", o);
+    return fm_faultset_write_eqsim(p, fs, &g_slip, FM_EQSIM_SPHERICAL, e);
+}
+
 static const struct {
     const char *name;
     writer fn;
-} writers[] = {{"vtu", w_vtu}, {"msh", w_msh}, {"stl", w_stl}, {"obj", w_obj}, {"tsurf", w_ts}};
+} writers[] = {{"vtu", w_vtu},       {"msh", w_msh},      {"stl", w_stl},
+               {"obj", w_obj},       {"tsurf", w_ts},     {"rsqsim", w_rsqsim},
+               {"eqsim", w_eqsim}};
 #define NWRITERS (sizeof writers / sizeof writers[0])
 
 int main(int argc, char **argv)
@@ -178,6 +198,14 @@ int main(int argc, char **argv)
                       .names = (const char *const *)s.names,
                       .nfaults = s.nfaults,
                       .crs = "EPSG:26711"};
+    double *rake = malloc((s.nfaults + 1) * sizeof *rake), *rate = malloc((s.nfaults + 1) * sizeof *rate);
+    if (!rake || !rate)
+        return 1;
+    for (size_t f = 0; f < s.nfaults; f++) {
+        rake[f] = 180;
+        rate[f] = 1e-9;
+    }
+    g_slip = (fm_sim_slip){rake, rate};
     fm_error err;
     if (fm_mkdir_p(out, &err) != FM_OK) {
         fprintf(stderr, "bench_write: %s\n", err.message);
@@ -238,6 +266,8 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < s.nfaults; i++)
         free(s.names[i]);
     free(s.names);
+    free(rake);
+    free(rate);
     fm_mesh_destroy(s.mesh);
     return 0;
 }

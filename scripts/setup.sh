@@ -8,10 +8,13 @@ packages=(
   libopenblas0-pthread       # thread-safe optimised BLAS for CHOLMOD's supernodal factor
                              # (run on one thread per fault, see src/fit/solve.c)
   liblapacke-dev             # LAPACKE: banded least squares of the trimming curves
+  libproj-dev proj-data      # PROJ: EQSim geometry to WGS 84 lat/lon; proj-data holds the
+                             # NAD27 -> WGS 84 grids PROJ picks (network access stays off)
   python3                    # Debian's interpreter for the independent test checks
   python3-meshio python3-gmsh  # real readers of our outputs (VTU, MSH, IGES) in the tests
   libexodusii-dev libnetcdf-dev  # Exodus II writer (mesh.exo), on netCDF
   python3-netcdf4            # meshio's Exodus II reader in the tests
+  python3-pyproj             # independent lat/lon conversion in the EQSim test (check_sim.py)
 )
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi

@@ -24,6 +24,7 @@
 #include "fm_sort.h"
 #include "fm_synth.h"
 #include "fm_tsurf.h"
+#include "sim_attrs.h"
 
 typedef struct remesh_cli {
     const char *dir;
@@ -40,6 +41,7 @@ typedef struct remesh_cli {
     double join;  /* D: join tolerance, m */
     fm_connect_keep keep; /* which of two near-duplicate faults is kept */
     int carve;    /* remove what still crosses between faults (default 1 when connecting) */
+    sim_cli sim;          /* --slip, --metadata, --eqsim-coords */
 } remesh_cli;
 
 /* What one fault came to, for report.json. */
@@ -183,7 +185,8 @@ static void remesh_usage(FILE *fp)
             "                        the area of one within 50 m of the other, as rupture\n"
             "                        composites over their section faults), keep the\n"
             "                        smaller (default: the sections) or the larger\n"
-            "  --quiet               no per-fault lines\n");
+            "  --quiet               no per-fault lines\n"
+            SIM_CLI_HELP);
     fputs(fm_cli_repair_help, fp);
 }
 
@@ -933,7 +936,7 @@ static void json_quality(fm_json *j, const fault_result *r, double H)
     fm_json_end_object(j);
 }
 
-static void json_fault(fm_json *j, const fault_result *r, double H)
+static void json_fault(fm_json *j, const fault_result *r, double H, const sim_attrs *sa)
 {
     fm_json_begin_object(j);
     fm_json_kv_string(j, "file", r->file ? r->file : "");
@@ -994,6 +997,8 @@ static void json_fault(fm_json *j, const fault_result *r, double H)
         fm_json_kv_number(j, "check", r->t_check);
         fm_json_end_object(j);
     }
+    if (sa && r->set_index < sa->nfaults)
+        sim_json_fault(j, sa, r->set_index);
     fm_json_end_object(j);
 }
 
@@ -1129,7 +1134,8 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
     fm_json_end_object(j);
 }
 
-static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_error *err)
+static fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_attrs *sa,
+                              fm_error *err)
 {
     size_t n = strlen(cli->dir) + 32;
     char *path = malloc(n);
@@ -1164,7 +1170,7 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     double worst_dist = 0, zmax = -INFINITY;
     for (size_t i = 0; i < rs->nres; i++) {
         const fault_result *r = &rs->res[i];
-        json_fault(&j, r, cli->mesh.size);
+        json_fault(&j, r, cli->mesh.size, sa);
         if (!r->status || strcmp(r->status, "ok"))
             continue;
         ok++;
@@ -1182,6 +1188,8 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, fm_err
     fm_json_end_array(&j);
     size_t jcount[4];
     json_connect(&j, cli, rs, jcount);
+    if (sa)
+        sim_json_summary(&j, &cli->sim, sa);
     fm_json_key(&j, "summary");
     fm_json_begin_object(&j);
     fm_json_kv_int(&j, "faults", (int64_t)rs->nres);
@@ -1345,14 +1353,14 @@ static int junction_sets_make(const run_state *rs, junction_sets *js)
 }
 
 /* The fault set in every format, the files shared among cli->jobs threads
- * (the bytes do not depend on how many). */
-static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error *err)
+ * (the bytes do not depend on how many); the simulator files after them.
+ * *sa gets the element attributes (cleared when there are no faults). */
+static fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa,
+                           fm_error *err)
 {
+    memset(sa, 0, sizeof *sa);
     if (!rs->nfaults)
         return FM_OK;
-    /* which sheet of its fault a triangle is on (the repair stage's sheets:
-     * the parts of a branching fault) */
-    fm_vtu_array sheet = {"sheet", FM_VTU_INT32, 1, rs->sheet};
     junction_sets js = {0};
     int32_t *tags = malloc(rs->nfaults * sizeof *tags);
     char **pnames = NULL;
@@ -1368,11 +1376,19 @@ static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error 
                       .physical_tags = tags,
                       .physical_names = (const char *const *)pnames,
                       .msh_dense_nodes = cli->msh_tags == FM_MSH_TAGS_TANDEM,
-                      .cell_data = &sheet,
-                      .ncell_data = 1,
                       .crs = rs->crs,
                       .nodesets = js.set,
                       .nnodesets = js.n};
+    if (st == FM_OK && sim_attrs_make(&cli->sim, &fs, sa) != 0)
+        st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    /* the element attributes, and which sheet of its fault a triangle is on
+     * (the repair stage's sheets: the parts of a branching fault) */
+    fm_vtu_array cells[sizeof sa->cells / sizeof *sa->cells + 1];
+    memcpy(cells, sa->cells, sizeof sa->cells);
+    cells[sizeof sa->cells / sizeof *sa->cells] =
+        (fm_vtu_array){"sheet", FM_VTU_INT32, 1, rs->sheet};
+    fs.cell_data = cells;
+    fs.ncell_data = sizeof cells / sizeof *cells;
     size_t n = strlen(cli->dir) + 32;
     char *path = st == FM_OK ? malloc(5 * n) : NULL;
     if (st == FM_OK && !path)
@@ -1391,6 +1407,8 @@ static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error 
         st = fm_faultset_write_all(&fs, &out, cli->jobs, err);
     }
     free(path);
+    if (st == FM_OK)
+        st = sim_write(&cli->sim, &fs, sa, cli->dir, err);
     free(tags);
     fm_faultset_free_file_names(pnames, rs->nfaults);
     free_junction_sets(&js);
@@ -1544,6 +1562,12 @@ static int settle_crs(const remesh_cli *cli, const file_job *jobs, size_t njobs,
         if (!crs)
             crs = "EPSG:26711";
     }
+    fm_error err;
+    fm_error_clear(&err);
+    if (cli->sim.eqsim == FM_EQSIM_SPHERICAL && fm_eqsim_check_crs(crs, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: %s; give --crs, or --eqsim-coords utm\n", err.message);
+        return -1;
+    }
     rs->crs = dup_str(crs);
     return rs->crs ? 0 : -1;
 }
@@ -1602,9 +1626,11 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     rs.time[0] = t1 - t0;
     rs.time[1] = t2 - t1;
     rs.time[2] = t3 - t2;
-    fm_status st = write_set(cli, &rs, &err);
+    sim_attrs sa;
+    fm_status st = write_set(cli, &rs, &sa, &err);
     if (st == FM_OK)
-        st = write_report(cli, &rs, &err);
+        st = write_report(cli, &rs, rs.nfaults ? &sa : NULL, &err);
+    sim_attrs_free(&sa);
     if (st != FM_OK) {
         fprintf(stderr, "faultmesh: %s\n", err.message);
         rs.failed++;
@@ -1639,6 +1665,9 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
 static int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
 {
     const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    int sc = sim_cli_option(argc, argv, i, &cli->sim);
+    if (sc != 0)
+        return sc;
     if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
         if (!val)
             return -1;
@@ -1802,13 +1831,21 @@ int fm_cmd_remesh(int argc, char **argv)
         free(paths);
         return FM_EXIT_USAGE;
     }
+    if (sim_cli_load(&cli.sim, cli.crs, paths, npaths) != 0) {
+        sim_cli_free(&cli.sim);
+        free(paths);
+        return FM_EXIT_USAGE;
+    }
     char **files = NULL;
     long nfiles = fm_input_list(paths, npaths, &files);
     free(paths);
-    if (nfiles < 0)
+    if (nfiles < 0) {
+        sim_cli_free(&cli.sim);
         return FM_EXIT_USAGE;
+    }
     int rc = run(&cli, files, nfiles);
     fm_input_list_free(files, nfiles);
+    sim_cli_free(&cli.sim);
     return rc;
 }
 
@@ -1819,6 +1856,9 @@ int fm_cmd_demo(int argc, char **argv)
     /* The synthetic faults are 20 to 60 km long: 1 km triangles show
      * their shapes and mesh in a second. Local metres, no real CRS. */
     cli.crs = "local metres (synthetic)";
+    /* No real CRS to convert from: EQSim in the mesh's metres unless
+     * --crs and --eqsim-coords spherical say otherwise. */
+    cli.sim.eqsim = FM_EQSIM_RECTANGULAR;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -1840,10 +1880,16 @@ int fm_cmd_demo(int argc, char **argv)
         fprintf(stderr, "usage: faultmesh demo [options] -o DIR\n");
         return FM_EXIT_USAGE;
     }
+    if (sim_cli_load(&cli.sim, cli.crs, NULL, 0) != 0) {
+        sim_cli_free(&cli.sim);
+        return FM_EXIT_USAGE;
+    }
     size_t n = strlen(cli.dir) + 16;
     char *in = malloc(n);
-    if (!in)
+    if (!in) {
+        sim_cli_free(&cli.sim);
         return FM_EXIT_FAILURES;
+    }
     snprintf(in, n, "%s/input", cli.dir);
     fm_synth_options so;
     fm_synth_options_default(&so);
@@ -1854,6 +1900,7 @@ int fm_cmd_demo(int argc, char **argv)
         fprintf(stderr, "faultmesh: %s\n", err.message);
         fm_synth_destroy(s);
         free(in);
+        sim_cli_free(&cli.sim);
         return FM_EXIT_FAILURES;
     }
     fm_synth_destroy(s);
@@ -1864,5 +1911,6 @@ int fm_cmd_demo(int argc, char **argv)
     if (nfiles >= 0)
         fm_input_list_free(files, nfiles);
     free(in);
+    sim_cli_free(&cli.sim);
     return rc;
 }

@@ -1,0 +1,71 @@
+/* faultmesh CLI: the simulator side of remesh and demo: --slip,
+ * --metadata, --eqsim-coords; per-element attributes (strike, dip, rake,
+ * slip rate) for the VTU and report.json; the RSQSim and EQSim files. */
+#ifndef FM_CLI_SIM_ATTRS_H
+#define FM_CLI_SIM_ATTRS_H
+
+#include <stddef.h>
+
+#include "fm_faultset_write.h"
+#include "fm_json.h"
+#include "fm_metadata.h"
+#include "fm_sim_write.h"
+
+typedef struct sim_cli {
+    const char *slip_path;     /* --slip */
+    const char *metadata_path; /* --metadata; NULL: looked for beside the inputs */
+    fm_eqsim_coords eqsim;     /* --eqsim-coords */
+    /* Read by sim_cli_load. */
+    fm_metadata *md;
+    fm_slip_table *slip;
+    char *metadata_found; /* the metadata file used (malloc'ed), NULL if none */
+} sim_cli;
+
+#define SIM_CLI_HELP                                                                          \
+    "simulator files: DIR/mesh.rsqsim (RSQSim) and DIR/mesh.eqsim (EQSim geometry)\n"       \
+    "  --slip FILE           rake and slip rate per fault: CSV rows pattern,rake,slip_rate\n" \
+    "                        (fault name or shell glob, degrees Aki & Richards, mm/yr)\n"     \
+    "  --metadata FILE       CFM metadata CSV whose Slip Sense gives each fault's rake\n"     \
+    "                        (default: CFM5.3_Metadata.csv in the parent folder of an\n"      \
+    "                        input folder, if there is one)\n"                                \
+    "  --eqsim-coords spherical|utm\n"                                                        \
+    "                        EQSim geometry in WGS 84 lat/lon via PROJ (default) or in\n"     \
+    "                        the mesh's own metres (rectangular)\n"
+
+/* Consumes argv[*i] (and its value) if it is one of the options above:
+ * 1 if consumed (with *i on the value), 0 if not one, -1 bad value. */
+int sim_cli_option(int argc, char **argv, int *i, sim_cli *sc);
+
+/* Reads --slip and the metadata (--metadata, or the first
+ * CFM5.3_Metadata.csv in the parent folder of an input folder, or of a
+ * file's folder) and, for spherical EQSim, checks that PROJ can convert
+ * from crs (when given: else settle_crs checks the CRS the inputs name);
+ * 0, or -1 after printing why. */
+int sim_cli_load(sim_cli *sc, const char *crs, char *const *paths, size_t npaths);
+void sim_cli_free(sim_cli *sc);
+
+/* Everything the outputs need, for a fault set of nfaults faults. */
+typedef struct sim_attrs {
+    size_t nfaults, ntriangles;
+    fm_fault_slip *slip;            /* per fault */
+    double *rake_f, *rate_f;        /* per fault: degrees, m/s */
+    double *strike, *dip;           /* per triangle, degrees (grid north) */
+    double *rake_t, *rate_t;        /* per triangle: degrees, m/s */
+    double *mean_strike, *mean_dip; /* per fault (area-weighted; strike axial) */
+    fm_vtu_array cells[4];          /* strike, dip, rake, slip_rate */
+} sim_attrs;
+
+/* -1 when memory runs out (sim_attrs_free also then). */
+int sim_attrs_make(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a);
+void sim_attrs_free(sim_attrs *a);
+
+/* DIR/mesh.rsqsim and DIR/mesh.eqsim. */
+fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
+                    const char *dir, fm_error *err);
+
+/* Fault f's "attributes" object of report.json. */
+void sim_json_fault(fm_json *j, const sim_attrs *a, size_t f);
+/* The report's "simulator" object (files, metadata, defaults used). */
+void sim_json_summary(fm_json *j, const sim_cli *sc, const sim_attrs *a);
+
+#endif

@@ -1,0 +1,711 @@
+/* Fault set as an EQSim input geometry file (SCEC simulators' format,
+ * spec level 4, version 0.6). */
+#include <math.h>
+#include <proj.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fm_atomic.h"
+#include "faultset_internal.h"
+#include "fm_sim_write.h"
+#include "fs_out.h"
+#include "sim_internal.h"
+
+#define PI 3.14159265358979323846
+#define DEG2RAD (PI / 180.0)
+
+/* Record descriptors (120) and their fields (121: index, name, type
+ * 1 integer / 2 floating / 3 text, description), as the spec lists them. */
+typedef struct field_desc {
+    const char *name;
+    int type;
+    const char *text;
+} field_desc;
+
+static const field_desc summary_fields[] = {
+    {"n_section", 1, "Total number of fault sections in the file"},
+    {"n_vertex", 1, "Total number of vertices in the file"},
+    {"n_triangle", 1, "Total number of triangles in the file"},
+    {"n_rectangle", 1, "Total number of rectangles in the file"},
+    {"lat_lo", 2, "Lowest value of latitude (decimal degrees, positive north) or y (meters)"},
+    {"lat_hi", 2, "Highest value of latitude (decimal degrees, positive north) or y (meters)"},
+    {"lon_lo", 2, "Lowest value of longitude (decimal degrees, positive east) or x (meters)"},
+    {"lon_hi", 2, "Highest value of longitude (decimal degrees, positive east) or x (meters)"},
+    {"depth_lo", 2, "Lowest value of depth (meters, negative underground)"},
+    {"depth_hi", 2, "Highest value of depth (meters, negative underground)"},
+    {"coord_sys", 1, "Coordinate system (0 = spherical, 1 = rectangular)"},
+};
+static const field_desc section_fields[] = {
+    {"sid", 1, "Section identification number (positive integer)"},
+    {"name", 3, "Section name"},
+    {"n_vertex", 1, "Total number of vertices in the section"},
+    {"n_triangle", 1, "Total number of triangles in the section"},
+    {"n_rectangle", 1, "Total number of rectangles in the section"},
+    {"lat_lo", 2, "Lowest value of latitude (decimal degrees, positive north) or y (meters)"},
+    {"lat_hi", 2, "Highest value of latitude (decimal degrees, positive north) or y (meters)"},
+    {"lon_lo", 2, "Lowest value of longitude (decimal degrees, positive east) or x (meters)"},
+    {"lon_hi", 2, "Highest value of longitude (decimal degrees, positive east) or x (meters)"},
+    {"depth_lo", 2, "Lowest value of depth in the section (meters, negative underground)"},
+    {"depth_hi", 2, "Highest value of depth in the section (meters, negative underground)"},
+    {"das_lo", 2, "Lowest value of distance-along-strike in the section (meters)"},
+    {"das_hi", 2, "Highest value of distance-along-strike in the section (meters)"},
+    {"fault_id", 1, "Fault identification number (positive integer)"},
+};
+static const field_desc vertex_fields[] = {
+    {"index", 1, "Vertex index number (consecutive integers, starting with 1)"},
+    {"lat", 2, "Latitude (decimal degrees, positive north) or y (meters)"},
+    {"lon", 2, "Longitude (decimal degrees, positive east) or x (meters)"},
+    {"depth", 2, "Depth (meters, negative underground)"},
+    {"das", 2, "Distance along strike (meters)"},
+    {"trace_flag", 1,
+     "Trace flag (0 = not on trace, 1 = on trace but not initial or final, 2 = initial point "
+     "on trace, 3 = final point on trace)"},
+};
+static const field_desc triangle_fields[] = {
+    {"index", 1, "Element index number (consecutive integers, starting with 1)"},
+    {"vertex_1", 1, "Vertex index number for corner #1 (counting counterclockwise as viewed from positive side of element)"},
+    {"vertex_2", 1, "Vertex index number for corner #2 (counting counterclockwise as viewed from positive side of element)"},
+    {"vertex_3", 1, "Vertex index number for corner #3 (counting counterclockwise as viewed from positive side of element)"},
+    {"rake", 2, "Rake angle (decimal degrees)"},
+    {"slip_rate", 2, "Element slip rate (meters/second)"},
+    {"aseis_factor", 2, "Element aseismicity factor"},
+    {"strike", 2, "Strike angle (decimal degrees)"},
+    {"dip", 2, "Dip angle (decimal degrees)"},
+};
+
+static void put_record_desc(fs_out *o, int kind, const char *name, const char *text,
+                            const field_desc *f, size_t n)
+{
+    fs_out_printf(o, "120 %d %s %zu    %s\n", kind, name, n, text);
+    for (size_t i = 0; i < n; i++)
+        fs_out_printf(o, "121 %zu %s %d    Field %zu: %s\n", i + 1, f[i].name, f[i].type, i + 1,
+                      f[i].text);
+}
+
+static void put_num(fs_out *o, double v)
+{
+    fs_out_char(o, ' ');
+    fs_out_double(o, v);
+}
+
+static void put_int(fs_out *o, uint64_t v)
+{
+    fs_out_char(o, ' ');
+    fs_out_u64(o, v);
+}
+
+/* The operation from the mesh's CRS to WGS 84 used for the whole set.
+ * proj_create_crs_to_crs would choose per point among the candidates whose
+ * area of use holds it, so neighbouring nodes on either side of a border
+ * (a coastline, a state line) could get datum shifts metres apart. One
+ * operation for all keeps the geometry whole: the first that PROJ ranks
+ * for the set's extent among those it can run with the grids installed. */
+typedef struct sim_proj {
+    PJ_CONTEXT *ctx;
+    PJ *op;          /* normalised: x = lon, y = lat */
+    char name[256];  /* the operation's name */
+    char accuracy[32];
+    char *pipeline;  /* its PROJ string (malloc'ed), for the file's metadata */
+} sim_proj;
+
+static void sim_proj_free(sim_proj *sp)
+{
+    proj_destroy(sp->op);
+    if (sp->ctx)
+        proj_context_destroy(sp->ctx);
+    free(sp->pipeline);
+    memset(sp, 0, sizeof *sp);
+}
+
+/* Longitude/latitude box of the set's x/y box through the source CRS's
+ * own geographic CRS (no datum change: only to rank operations). */
+static int extent_lonlat(PJ_CONTEXT *ctx, PJ *src, const double bb[4], double ll[4])
+{
+    PJ *geo = proj_crs_get_geodetic_crs(ctx, src);
+    PJ *P = geo ? proj_create_crs_to_crs_from_pj(ctx, src, geo, NULL, NULL) : NULL;
+    PJ *N = P ? proj_normalize_for_visualization(ctx, P) : NULL;
+    int ok = N != NULL;
+    ll[0] = ll[1] = INFINITY;
+    ll[2] = ll[3] = -INFINITY;
+    for (int i = 0; ok && i <= 4; i++)
+        for (int j = 0; ok && j <= 4; j++) {
+            double x = bb[0] + (bb[2] - bb[0]) * i / 4, y = bb[1] + (bb[3] - bb[1]) * j / 4;
+            PJ_COORD c = proj_trans(N, PJ_FWD, proj_coord(x, y, 0, HUGE_VAL));
+            if (!isfinite(c.xy.x) || !isfinite(c.xy.y) || c.xy.x == HUGE_VAL) {
+                ok = 0;
+                break;
+            }
+            ll[0] = fmin(ll[0], c.xy.x);
+            ll[1] = fmin(ll[1], c.xy.y);
+            ll[2] = fmax(ll[2], c.xy.x);
+            ll[3] = fmax(ll[3], c.xy.y);
+        }
+    proj_destroy(N);
+    proj_destroy(P);
+    proj_destroy(geo);
+    return ok ? 0 : -1;
+}
+
+static fm_status sim_proj_make(sim_proj *sp, const char *crs, const double bb[4],
+                               const char *path, fm_error *err)
+{
+    memset(sp, 0, sizeof *sp);
+    if (!crs || !crs[0])
+        return fm_error_set(err, FM_ERR_INVALID, path, 0,
+                            "spherical coordinates need the mesh's CRS (none given)");
+    if (!(sp->ctx = proj_context_create()))
+        return fm_error_set(err, FM_ERR_NOMEM, path, 0, "PROJ: cannot create a context");
+    /* Results must not depend on what a CDN serves today: only the grids
+     * installed locally (proj-data) are used. */
+    proj_context_set_enable_network(sp->ctx, 0);
+    proj_log_level(sp->ctx, PJ_LOG_NONE);
+    PJ *src = proj_create(sp->ctx, crs), *dst = proj_create(sp->ctx, "EPSG:4326");
+    PJ_OPERATION_FACTORY_CONTEXT *fc = NULL;
+    PJ_OBJ_LIST *ops = NULL;
+    double ll[4];
+    if (src && dst && extent_lonlat(sp->ctx, src, bb, ll) == 0 &&
+        (fc = proj_create_operation_factory_context(sp->ctx, NULL))) {
+        proj_operation_factory_context_set_grid_availability_use(
+            sp->ctx, fc, PROJ_GRID_AVAILABILITY_DISCARD_OPERATION_IF_MISSING_GRID);
+        proj_operation_factory_context_set_spatial_criterion(
+            sp->ctx, fc, PROJ_SPATIAL_CRITERION_PARTIAL_INTERSECTION);
+        proj_operation_factory_context_set_area_of_interest(sp->ctx, fc, ll[0], ll[1], ll[2],
+                                                            ll[3]);
+        ops = proj_create_operations(sp->ctx, src, dst, fc);
+    }
+    int n = ops ? proj_list_get_count(ops) : 0;
+    for (int i = 0; i < n && !sp->op; i++) {
+        PJ *op = proj_list_get(sp->ctx, ops, i);
+        if (op && proj_coordoperation_is_instantiable(sp->ctx, op)) {
+            sp->op = proj_normalize_for_visualization(sp->ctx, op);
+            const char *nm = proj_get_name(op);
+            snprintf(sp->name, sizeof sp->name, "%s", nm ? nm : "unnamed");
+            double acc = proj_coordoperation_get_accuracy(sp->ctx, op);
+            if (acc >= 0)
+                snprintf(sp->accuracy, sizeof sp->accuracy, "%g m", acc);
+            else
+                snprintf(sp->accuracy, sizeof sp->accuracy, "unknown");
+        }
+        proj_destroy(op);
+    }
+    proj_list_destroy(ops);
+    proj_operation_factory_context_destroy(fc);
+    proj_destroy(src);
+    proj_destroy(dst);
+    const char *ps = sp->op ? proj_as_proj_string(sp->ctx, sp->op, PJ_PROJ_5, NULL) : NULL;
+    if (ps && (sp->pipeline = malloc(strlen(ps) + 1)))
+        strcpy(sp->pipeline, ps);
+    if (!sp->op || !sp->pipeline) {
+        fm_status st = fm_error_set(err, FM_ERR_INVALID, path, 0,
+                                    "PROJ cannot convert from CRS '%s' to WGS 84 (EPSG:4326)%s%s",
+                                    crs, proj_context_errno(sp->ctx) ? ": " : "",
+                                    proj_context_errno(sp->ctx)
+                                        ? proj_context_errno_string(sp->ctx,
+                                                                    proj_context_errno(sp->ctx))
+                                        : "");
+        sim_proj_free(sp);
+        return st;
+    }
+    return FM_OK;
+}
+
+fm_status fm_eqsim_check_crs(const char *crs, fm_error *err)
+{
+    if (!crs || !crs[0])
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0,
+                            "spherical EQSim coordinates need a CRS (--crs)");
+    PJ_CONTEXT *ctx = proj_context_create();
+    if (!ctx)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "PROJ: cannot create a context");
+    proj_context_set_enable_network(ctx, 0);
+    proj_log_level(ctx, PJ_LOG_NONE);
+    PJ *P = proj_create_crs_to_crs(ctx, crs, "EPSG:4326", NULL);
+    fm_status st = FM_OK;
+    if (!P)
+        st = fm_error_set(err, FM_ERR_INVALID, NULL, 0,
+                          "PROJ cannot convert from CRS '%s' to WGS 84 (EPSG:4326)", crs);
+    proj_destroy(P);
+    proj_context_destroy(ctx);
+    return st;
+}
+
+/* Horizontal position of every used vertex in the file's coordinates:
+ * lat (or y) and lon (or x). */
+static fm_status convert_vertices(const fm_faultset *fs, fm_eqsim_coords coords,
+                                  const unsigned char *used, double *lat, double *lon,
+                                  sim_proj *sp, const char *path, fm_error *err)
+{
+    size_t nv = fm_mesh_nvertices(fs->mesh);
+    const double *x = fm_mesh_vertices(fs->mesh);
+    if (coords == FM_EQSIM_RECTANGULAR) {
+        for (size_t v = 0; v < nv; v++) {
+            lat[v] = x[3 * v + 1];
+            lon[v] = x[3 * v];
+        }
+        return FM_OK;
+    }
+    double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (size_t v = 0; v < nv; v++)
+        if (used[v]) {
+            bb[0] = fmin(bb[0], x[3 * v]);
+            bb[1] = fmin(bb[1], x[3 * v + 1]);
+            bb[2] = fmax(bb[2], x[3 * v]);
+            bb[3] = fmax(bb[3], x[3 * v + 1]);
+        }
+    fm_status st = sim_proj_make(sp, fs->crs, bb, path, err);
+    for (size_t v = 0; v < nv && st == FM_OK; v++) {
+        if (!used[v]) {
+            lat[v] = lon[v] = 0;
+            continue;
+        }
+        PJ_COORD c = proj_trans(sp->op, PJ_FWD, proj_coord(x[3 * v], x[3 * v + 1], 0, HUGE_VAL));
+        lon[v] = c.xy.x;
+        lat[v] = c.xy.y;
+        if (!isfinite(lat[v]) || !isfinite(lon[v]) || fabs(lat[v]) > 90)
+            st = fm_error_set(err, FM_ERR_NUMERIC, path, 0,
+                              "PROJ cannot convert vertex %zu (%.3f, %.3f) from '%s' to WGS 84",
+                              v, x[3 * v], x[3 * v + 1], fs->crs);
+    }
+    return st;
+}
+
+/* Normal of the triangle p0 p1 p2 given as lat, lon (degrees) and
+ * elevation z (m, taken as height over the WGS 84 ellipsoid) in the
+ * east-north-up frame at their mean latitude and longitude: true north,
+ * metres. The corners go through earth-centred coordinates exactly
+ * rather than a flat local approximation, whose curvature error (d^2/2R,
+ * 2 cm over 500 m) tilts thin triangles by degrees. */
+static void enu_normal(const double lat[3], const double lon[3], const double z[3], double n[3])
+{
+    const double a = 6378137.0, f = 1 / 298.257223563, e2 = f * (2 - f);
+    double p[3][3], c[3] = {0, 0, 0};
+    for (int k = 0; k < 3; k++) {
+        double phi = lat[k] * DEG2RAD, lam = lon[k] * DEG2RAD, s = sin(phi);
+        double rn = a / sqrt(1 - e2 * s * s);
+        p[k][0] = (rn + z[k]) * cos(phi) * cos(lam);
+        p[k][1] = (rn + z[k]) * cos(phi) * sin(lam);
+        p[k][2] = (rn * (1 - e2) + z[k]) * s;
+        for (int d = 0; d < 3; d++)
+            c[d] += p[k][d] / 3;
+    }
+    double phi = (lat[0] + lat[1] + lat[2]) / 3 * DEG2RAD;
+    double lam = (lon[0] + lon[1] + lon[2]) / 3 * DEG2RAD;
+    double east[3] = {-sin(lam), cos(lam), 0};
+    double north[3] = {-sin(phi) * cos(lam), -sin(phi) * sin(lam), cos(phi)};
+    double up[3] = {cos(phi) * cos(lam), cos(phi) * sin(lam), sin(phi)};
+    double q[3][3];
+    for (int k = 0; k < 3; k++) {
+        double r[3] = {p[k][0] - c[0], p[k][1] - c[1], p[k][2] - c[2]};
+        q[k][0] = r[0] * east[0] + r[1] * east[1] + r[2] * east[2];
+        q[k][1] = r[0] * north[0] + r[1] * north[1] + r[2] * north[2];
+        q[k][2] = r[0] * up[0] + r[1] * up[1] + r[2] * up[2];
+    }
+    double e[3], g[3];
+    for (int d = 0; d < 3; d++) {
+        e[d] = q[1][d] - q[0][d];
+        g[d] = q[2][d] - q[0][d];
+    }
+    n[0] = e[1] * g[2] - e[2] * g[1];
+    n[1] = e[2] * g[0] - e[0] * g[2];
+    n[2] = e[0] * g[1] - e[1] * g[0];
+}
+
+typedef struct edge_rec {
+    uint64_t key;
+    int32_t opp; /* the triangle's third vertex */
+    uint32_t tri; /* position within the section */
+} edge_rec;
+
+static int i32_cmp(const void *a, const void *b)
+{
+    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return (x > y) - (x < y);
+}
+
+static int edge_cmp(const void *a, const void *b)
+{
+    const edge_rec *x = a, *y = b;
+    if (x->key != y->key)
+        return x->key < y->key ? -1 : 1;
+    return x->tri < y->tri ? -1 : x->tri > y->tri;
+}
+
+/* Scratch of one section, sized for the largest. */
+typedef struct section_work {
+    int32_t (*corner)[3]; /* oriented corners of each triangle */
+    edge_rec *edge;
+    int32_t *local;       /* per mesh vertex: index within the section, -1 if not in it */
+    int32_t *verts;       /* the section's vertices, ascending */
+    double *das;
+    unsigned char *trace; /* per mesh vertex */
+} section_work;
+
+/* The section's mean strike direction (east, north): the area- and
+ * sin(dip)-weighted axial mean of its elements' strikes (axial, so that
+ * elements of a vertical fault ordered either way agree), pointed the way
+ * most of them point. */
+static void mean_strike(const double *x, int32_t (*corner)[3], size_t n, double dir[2])
+{
+    double c2 = 0, s2 = 0;
+    for (size_t i = 0; i < n; i++) {
+        const double *a = x + 3 * (size_t)corner[i][0], *b = x + 3 * (size_t)corner[i][1],
+                     *c = x + 3 * (size_t)corner[i][2];
+        double st, dp;
+        fm_element_orient(a, b, c, &st, &dp);
+        double area = fm_triangle_area(a, b, c) * sin(dp * DEG2RAD);
+        c2 += area * cos(2 * st * DEG2RAD);
+        s2 += area * sin(2 * st * DEG2RAD);
+    }
+    double th = (c2 == 0 && s2 == 0) ? 0 : atan2(s2, c2) / 2;
+    double sense = 0;
+    for (size_t i = 0; i < n; i++) {
+        const double *a = x + 3 * (size_t)corner[i][0], *b = x + 3 * (size_t)corner[i][1],
+                     *c = x + 3 * (size_t)corner[i][2];
+        double st, dp;
+        fm_element_orient(a, b, c, &st, &dp);
+        sense += fm_triangle_area(a, b, c) * sin(dp * DEG2RAD) * cos(st * DEG2RAD - th);
+    }
+    if (sense < 0)
+        th += PI;
+    dir[0] = sin(th);
+    dir[1] = cos(th);
+}
+
+/* Marks in w->trace the vertices on the section's upper edge (see the
+ * header); returns how many. */
+static size_t mark_trace(const double *x, section_work *w, size_t n)
+{
+    size_t ne = 0;
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            int32_t u = w->corner[i][k], v = w->corner[i][(k + 1) % 3];
+            int32_t lo = u < v ? u : v, hi = u < v ? v : u;
+            w->edge[ne++] = (edge_rec){((uint64_t)(uint32_t)lo << 32) | (uint32_t)hi,
+                                       w->corner[i][(k + 2) % 3], (uint32_t)i};
+        }
+    qsort(w->edge, ne, sizeof *w->edge, edge_cmp);
+    size_t marked = 0;
+    const double cos45 = sqrt(0.5);
+    for (size_t i = 0; i < ne;) {
+        size_t j = i + 1;
+        while (j < ne && w->edge[j].key == w->edge[i].key)
+            j++;
+        if (j - i == 1) {
+            int32_t u = (int32_t)(w->edge[i].key >> 32), v = (int32_t)(w->edge[i].key & 0xffffffffu);
+            const int32_t *c = w->corner[w->edge[i].tri];
+            const double *a = x + 3 * (size_t)c[0], *b = x + 3 * (size_t)c[1],
+                         *cc = x + 3 * (size_t)c[2];
+            double e1[3], e2[3], nrm[3];
+            for (int d = 0; d < 3; d++) {
+                e1[d] = b[d] - a[d];
+                e2[d] = cc[d] - a[d];
+            }
+            nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
+            nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
+            nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            double len = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+            if (len > 0) {
+                for (int d = 0; d < 3; d++)
+                    nrm[d] /= len;
+                /* Up dip within the element: vertical projected onto it. */
+                double ud[3] = {-nrm[2] * nrm[0], -nrm[2] * nrm[1], 1 - nrm[2] * nrm[2]};
+                double udl = sqrt(ud[0] * ud[0] + ud[1] * ud[1] + ud[2] * ud[2]);
+                const double *pu = x + 3 * (size_t)u, *pv = x + 3 * (size_t)v,
+                             *pw = x + 3 * (size_t)w->edge[i].opp;
+                double ed[3], o[3], ee = 0, oe = 0;
+                for (int d = 0; d < 3; d++) {
+                    ed[d] = pv[d] - pu[d];
+                    o[d] = (pu[d] + pv[d]) / 2 - pw[d];
+                    ee += ed[d] * ed[d];
+                    oe += o[d] * ed[d];
+                }
+                double ol = 0, dot = 0;
+                for (int d = 0; d < 3; d++) {
+                    o[d] -= ee > 0 ? oe / ee * ed[d] : 0;
+                    ol += o[d] * o[d];
+                    dot += o[d] * ud[d];
+                }
+                ol = sqrt(ol);
+                if (udl > 1e-6 && ol > 0 && dot > cos45 * ol * udl) {
+                    marked += !w->trace[u] + !w->trace[v];
+                    w->trace[u] = w->trace[v] = 1;
+                }
+            }
+        }
+        i = j;
+    }
+    return marked;
+}
+
+fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
+                                  const fm_sim_slip *slip, fm_eqsim_coords coords,
+                                  fm_error *err)
+{
+    fm_status st = fm_faultset_validate(fs, path, err);
+    if (st == FM_OK)
+        st = sim_check_slip(fs, slip, path, err);
+    if (st == FM_OK && coords != FM_EQSIM_SPHERICAL && coords != FM_EQSIM_RECTANGULAR)
+        st = fm_error_set(err, FM_ERR_INVALID, path, 0, "unknown EQSim coordinate system %d",
+                          (int)coords);
+    if (st != FM_OK)
+        return st;
+    size_t nv = fm_mesh_nvertices(fs->mesh), nt = fm_mesh_ntriangles(fs->mesh);
+    const double *x = fm_mesh_vertices(fs->mesh);
+    const int32_t *tri = fm_mesh_triangles(fs->mesh);
+    size_t *start = NULL, *order = NULL;
+    section_work w = {0};
+    sim_proj sp = {0};
+    double *lat = malloc((nv + 1) * sizeof *lat), *lon = malloc((nv + 1) * sizeof *lon);
+    unsigned char *used = calloc(nv + 1, 1);
+    size_t *nvsec = calloc(fs->nfaults + 1, sizeof *nvsec);
+    char **sect = calloc(fs->nfaults + 1, sizeof *sect);
+    int bad = !lat || !lon || !used || !nvsec || !sect ||
+              fs_group_by(fm_mesh_tags(fs->mesh), nt, fs->nfaults, &start, &order);
+    size_t maxt = 0;
+    for (size_t f = 0; !bad && f < fs->nfaults; f++) {
+        bad = !(sect[f] = fm_section_name(fs->names[f]));
+        if (start[f + 1] - start[f] > maxt)
+            maxt = start[f + 1] - start[f];
+    }
+    if (!bad) {
+        w.corner = malloc((maxt + 1) * sizeof *w.corner);
+        w.edge = malloc((3 * maxt + 1) * sizeof *w.edge);
+        w.local = malloc((nv + 1) * sizeof *w.local);
+        w.verts = malloc((3 * maxt + 1) * sizeof *w.verts);
+        w.das = malloc((3 * maxt + 1) * sizeof *w.das);
+        w.trace = calloc(nv + 1, 1);
+        bad = !w.corner || !w.edge || !w.local || !w.verts || !w.das || !w.trace;
+    }
+    if (bad)
+        st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    /* Vertex counts per section (a shared node counts in each) and the
+     * file's bounds, which record 200 gives before any section. */
+    size_t nvtotal = 0;
+    for (size_t v = 0; st == FM_OK && v < nv; v++)
+        w.local[v] = -1;
+    for (size_t f = 0; st == FM_OK && f < fs->nfaults; f++) {
+        for (size_t i = start[f]; i < start[f + 1]; i++)
+            for (int k = 0; k < 3; k++) {
+                int32_t v = tri[3 * order[i] + (size_t)k];
+                used[v] = 1;
+                if (w.local[v] != (int32_t)f) {
+                    w.local[v] = (int32_t)f;
+                    nvsec[f]++;
+                }
+            }
+        nvtotal += nvsec[f];
+    }
+    if (st == FM_OK)
+        st = convert_vertices(fs, coords, used, lat, lon, &sp, path, err);
+    double blat[2] = {INFINITY, -INFINITY}, blon[2] = {INFINITY, -INFINITY},
+           bz[2] = {INFINITY, -INFINITY};
+    for (size_t v = 0; st == FM_OK && v < nv; v++)
+        if (used[v]) {
+            blat[0] = fmin(blat[0], lat[v]);
+            blat[1] = fmax(blat[1], lat[v]);
+            blon[0] = fmin(blon[0], lon[v]);
+            blon[1] = fmax(blon[1], lon[v]);
+            bz[0] = fmin(bz[0], x[3 * v + 2]);
+            bz[1] = fmax(bz[1], x[3 * v + 2]);
+        }
+    fm_atomic_file *af = NULL;
+    fs_out *o = NULL;
+    if (st == FM_OK && !(af = fm_atomic_open(path, err)))
+        st = err ? err->code : FM_ERR_IO;
+    if (st == FM_OK && !(o = fs_out_open(fm_atomic_stream(af)))) {
+        fm_atomic_abort(af);
+        st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    }
+    if (st == FM_OK) {
+        int sph = coords == FM_EQSIM_SPHERICAL;
+        fs_out_str(o, "101 EQSim_Input_Geometry_2 4\n");
+        fs_out_printf(o, "111 faultmesh fault set: %zu sections, %zu triangles\n", fs->nfaults, nt);
+        fs_out_printf(o, "112 faultmesh %s\n", FM_VERSION_STRING);
+        if (sph) {
+            PJ_INFO pi = proj_info();
+            fs_out_printf(o, "110 Coordinates: spherical, latitude and longitude in decimal "
+                             "degrees on WGS 84 (EPSG:4326), converted with PROJ %s from %.200s\n",
+                          pi.version, fs->crs);
+            fs_out_printf(o, "110 PROJ operation (one for every vertex): %s, accuracy %s\n",
+                          sp.name, sp.accuracy);
+            fs_out_str(o, "110 PROJ pipeline: ");
+            fs_out_str(o, sp.pipeline);
+            fs_out_char(o, '\n');
+            fs_out_str(o, "110 Strike from true north, dip: from the converted corners in "
+                          "earth-centred coordinates (depth as height over the ellipsoid), seen "
+                          "in the east-north-up frame at each triangle\n");
+        } else {
+            fs_out_printf(o, "110 Coordinates: rectangular, y (north) in the lat fields and x "
+                             "(east) in the lon fields, meters, CRS %.200s\n",
+                          fs->crs && fs->crs[0] ? fs->crs : "not given");
+            fs_out_str(o, "110 Strike from grid north (+y), dip\n");
+        }
+        fs_out_str(o, "110 Depth: elevation in meters, negative underground; das: meters along "
+                      "the section's mean strike in the mesh's own coordinates\n");
+        fs_out_str(o, "110 Triangle corners counterclockwise seen from above (the upward normal "
+                      "side); rake: Aki & Richards; slip rate: meters/second\n");
+        fs_out_str(o, "102 End_Metadata\n");
+        put_record_desc(o, 200, "summary", "Record 200: Fault system summary", summary_fields,
+                        sizeof summary_fields / sizeof *summary_fields);
+        put_record_desc(o, 201, "section", "Record 201: Fault section information",
+                        section_fields, sizeof section_fields / sizeof *section_fields);
+        put_record_desc(o, 202, "vertex", "Record 202: Vertex", vertex_fields,
+                        sizeof vertex_fields / sizeof *vertex_fields);
+        put_record_desc(o, 203, "triangle", "Record 203: Triangle", triangle_fields,
+                        sizeof triangle_fields / sizeof *triangle_fields);
+        fs_out_str(o, "103 End_Descriptor\n");
+        fs_out_str(o, "200");
+        put_int(o, fs->nfaults);
+        put_int(o, nvtotal);
+        put_int(o, nt);
+        put_int(o, 0);
+        put_num(o, blat[0]);
+        put_num(o, blat[1]);
+        put_num(o, blon[0]);
+        put_num(o, blon[1]);
+        put_num(o, bz[0]);
+        put_num(o, bz[1]);
+        put_int(o, sph ? 0 : 1);
+        fs_out_char(o, '\n');
+
+        for (size_t v = 0; v < nv; v++)
+            w.local[v] = -1;
+        size_t vbase = 0, tbase = 0;
+        for (size_t f = 0; f < fs->nfaults; f++) {
+            size_t n = start[f + 1] - start[f], nsv = 0;
+            for (size_t i = 0; i < n; i++) {
+                sim_corners(fs, order[start[f] + i], w.corner[i]);
+                for (int k = 0; k < 3; k++) {
+                    int32_t v = w.corner[i][k];
+                    if (w.local[v] < 0) {
+                        w.local[v] = 0;
+                        w.verts[nsv++] = v;
+                    }
+                }
+            }
+            /* Mesh order of vertices within the section. */
+            qsort(w.verts, nsv, sizeof *w.verts, i32_cmp);
+            for (size_t k = 0; k < nsv; k++)
+                w.local[w.verts[k]] = (int32_t)k;
+            double dir[2];
+            mean_strike(x, w.corner, n, dir);
+            double das_lo = INFINITY, das_hi = -INFINITY;
+            for (size_t k = 0; k < nsv; k++) {
+                const double *p = x + 3 * (size_t)w.verts[k];
+                w.das[k] = dir[0] * p[0] + dir[1] * p[1];
+                das_lo = fmin(das_lo, w.das[k]);
+            }
+            for (size_t k = 0; k < nsv; k++) {
+                w.das[k] -= das_lo;
+                das_hi = fmax(das_hi, w.das[k]);
+            }
+            mark_trace(x, &w, n);
+            size_t first = nsv, last = nsv;
+            for (size_t k = 0; k < nsv; k++)
+                if (w.trace[w.verts[k]]) {
+                    if (first == nsv || w.das[k] < w.das[first])
+                        first = k;
+                    if (last == nsv || w.das[k] > w.das[last])
+                        last = k;
+                }
+            double sl[2] = {INFINITY, -INFINITY}, so[2] = {INFINITY, -INFINITY},
+                   sz[2] = {INFINITY, -INFINITY};
+            for (size_t k = 0; k < nsv; k++) {
+                int32_t v = w.verts[k];
+                sl[0] = fmin(sl[0], lat[v]);
+                sl[1] = fmax(sl[1], lat[v]);
+                so[0] = fmin(so[0], lon[v]);
+                so[1] = fmax(so[1], lon[v]);
+                sz[0] = fmin(sz[0], x[3 * (size_t)v + 2]);
+                sz[1] = fmax(sz[1], x[3 * (size_t)v + 2]);
+            }
+            fs_out_str(o, "201");
+            put_int(o, f + 1);
+            fs_out_char(o, ' ');
+            fs_out_str(o, sect[f]);
+            put_int(o, nsv);
+            put_int(o, n);
+            put_int(o, 0);
+            put_num(o, sl[0]);
+            put_num(o, sl[1]);
+            put_num(o, so[0]);
+            put_num(o, so[1]);
+            put_num(o, sz[0]);
+            put_num(o, sz[1]);
+            put_num(o, 0);
+            put_num(o, das_hi);
+            put_int(o, f + 1);
+            fs_out_char(o, '\n');
+            for (size_t k = 0; k < nsv; k++) {
+                int32_t v = w.verts[k];
+                fs_out_str(o, "202");
+                put_int(o, vbase + k + 1);
+                put_num(o, lat[v]);
+                put_num(o, lon[v]);
+                put_num(o, x[3 * (size_t)v + 2]);
+                put_num(o, w.das[k]);
+                int flag = !w.trace[v] ? 0 : k == first ? 2 : k == last ? 3 : 1;
+                put_int(o, (uint64_t)flag);
+                fs_out_char(o, '\n');
+            }
+            for (size_t i = 0; i < n; i++) {
+                const int32_t *c = w.corner[i];
+                double st_deg, dip_deg;
+                if (sph) {
+                    double la[3], lo[3], z[3], nrm[3];
+                    for (int k = 0; k < 3; k++) {
+                        la[k] = lat[c[k]];
+                        lo[k] = lon[c[k]];
+                        z[k] = x[3 * (size_t)c[k] + 2];
+                    }
+                    enu_normal(la, lo, z, nrm);
+                    sim_strike_dip(nrm, &st_deg, &dip_deg);
+                } else {
+                    fm_element_orient(x + 3 * (size_t)c[0], x + 3 * (size_t)c[1],
+                                      x + 3 * (size_t)c[2], &st_deg, &dip_deg);
+                }
+                fs_out_str(o, "203");
+                put_int(o, tbase + i + 1);
+                for (int k = 0; k < 3; k++)
+                    put_int(o, vbase + (size_t)w.local[c[k]] + 1);
+                put_num(o, slip->rake[f]);
+                put_num(o, slip->slip_rate[f]);
+                put_num(o, 0);
+                put_num(o, st_deg);
+                put_num(o, dip_deg);
+                fs_out_char(o, '\n');
+            }
+            for (size_t k = 0; k < nsv; k++) {
+                w.local[w.verts[k]] = -1;
+                w.trace[w.verts[k]] = 0;
+            }
+            vbase += nsv;
+            tbase += n;
+        }
+        fs_out_str(o, "999 End\n");
+        if (fs_out_finish(o) != 0) {
+            fm_atomic_abort(af);
+            st = fm_error_set(err, FM_ERR_IO, path, 0, "write failed");
+        } else {
+            st = fm_atomic_commit(af, err);
+        }
+    }
+    for (size_t f = 0; sect && f < fs->nfaults; f++)
+        free(sect[f]);
+    free(sect);
+    free(nvsec);
+    free(used);
+    free(lat);
+    free(lon);
+    free(start);
+    free(order);
+    free(w.corner);
+    free(w.edge);
+    free(w.local);
+    free(w.verts);
+    free(w.das);
+    free(w.trace);
+    sim_proj_free(&sp);
+    return st;
+}

@@ -1,0 +1,18 @@
+/* Helpers shared by the simulator writers (private to src/write). */
+#ifndef SIM_INTERNAL_H
+#define SIM_INTERNAL_H
+
+#include <stdint.h>
+
+#include "fm_sim_write.h"
+
+/* Strike and dip of a triangle with normal n, taken as pointing up
+ * (the sign of n[2] is ignored). */
+void sim_strike_dip(const double *n, double *strike, double *dip);
+/* Corners of triangle t ordered by the element convention; 1 if swapped. */
+int sim_corners(const fm_faultset *fs, size_t t, int32_t v[3]);
+/* One finite rake and slip rate >= 0 per fault. */
+fm_status sim_check_slip(const fm_faultset *fs, const fm_sim_slip *slip, const char *path,
+                         fm_error *err);
+
+#endif
