@@ -775,6 +775,11 @@ def main():
         # per fault, the nodes it shares with the faults it closes a gap to
         # (the curves of those junctions; report.json names the junctions)
         fnodes = {n: np.unique(tris[fid == k]) for k, n in enumerate(names)}
+        if "sheet" in cdata and len(tris):
+            sh_ = np.asarray(cdata["sheet"], dtype=np.int64)
+            nsheets = np.array([len(np.unique(sh_[fid == k])) for k in range(nf)])
+        else:
+            nsheets = np.ones(nf, dtype=np.int64)
         curve_nodes, curve_gaps = {}, {}
         for jn in report.get("connect", {}).get("junctions", []):
             if jn.get("type") == "unjoined" or not jn.get("gap_closed_m", 0) > 0:
@@ -815,6 +820,14 @@ def main():
             # gap's width from the curve). Past the edge anywhere else (a
             # bulge of the outline far from any such curve) it is held to
             # 100 m like a node inside.
+            # A branching fault (sheets in the VTU's "sheet" data) is one
+            # original: a sheet's fill over a closed gap may pass over
+            # another sheet's inside, whose points are then its nearest.
+            # Its far nodes count as past the edge wherever they are, and
+            # are held to the same closed-gap rule.
+            if nsheets[i] > 1 and far.any():
+                past = np.ones(int(far.sum()), bool)
+                F["dmax_in"][i] = float(d[~far].max()) if (~far).any() else 0.0
             xp, dp = X[nodes[far]][past], dfar[past]
             cn = curve_nodes.get(n)
             near = np.zeros(len(xp), bool)
