@@ -23,6 +23,7 @@
 #include "fm_sort.h"
 #include "fm_synth.h"
 #include "fm_tsurf.h"
+#include "remesh_cad.h"
 
 typedef struct remesh_cli {
     const char *dir;
@@ -60,6 +61,8 @@ typedef struct fault_result {
     fm_keyed *curve_pieces;     /* pieces of plan curves its mesh holds (key: curve << 32 |
                                    piece k, nodes k to k + 1), sorted by key */
     size_t npieces;
+    fm_cad_face **cad;          /* its faces in model.igs */
+    size_t ncad;
 } fault_result;
 
 /* Which pieces of its plan curves fault f's mesh holds (an edge between
@@ -299,10 +302,17 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
     r->sheets = fm_model_nsheets(model);
     r->join_failed = per ? calloc(r->sheets, 1) : NULL;
     fm_error *jerr = per ? calloc(r->sheets, sizeof *jerr) : NULL;
-    fm_status st = (per && (!r->join_failed || !jerr))
+    fm_remesh_boundary *bounds = calloc(r->sheets + 1, sizeof *bounds);
+    fm_status st = ((per && (!r->join_failed || !jerr)) || !bounds)
                        ? fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory")
                        : fm_remesh_model_joined(model, per, &mo, fault, ids, r->join_failed, jerr,
-                                                &r->ms, err);
+                                                &r->ms, bounds, err);
+    if (st == FM_OK)
+        st = fm_cli_cad_faces(model, bounds, r->name, cli->mesh.top != FM_TOP_KEEP,
+                              cli->mesh.sea_level, &r->cad, &r->ncad, err);
+    for (size_t i = 0; bounds && i < r->sheets; i++)
+        fm_remesh_boundary_free(&bounds[i]);
+    free(bounds);
     /* the first reason a sheet's curves did not fit, for the report */
     for (size_t i = 0; jerr && r->join_failed && i < r->sheets && !r->join_error; i++)
         if (r->join_failed[i])
@@ -372,6 +382,8 @@ typedef struct run_state {
     fault_result *res;
     size_t nres, cap;
     long failed;
+    const fm_cad_face **cad; /* the faces of the faults in set, in order */
+    size_t ncad;
 } run_state;
 
 static fault_result *new_result(run_state *rs)
@@ -492,6 +504,11 @@ static void reset_result(fault_result *r)
     free(r->error);
     free(r->join_failed);
     free(r->join_error);
+    for (size_t i = 0; i < r->ncad; i++)
+        fm_cad_face_destroy(r->cad[i]);
+    free(r->cad);
+    r->cad = NULL;
+    r->ncad = 0;
     r->error = r->join_error = NULL;
     r->join_failed = NULL;
     r->status = NULL;
@@ -711,11 +728,17 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
             char **nn = realloc(rs->names, (rs->nfaults + 1) * sizeof *nn);
             if (nn)
                 rs->names = nn;
-            if (!nn || append_fault(rs, fault, job->ids[o]) != FM_OK) {
+            const fm_cad_face **cad =
+                nn ? realloc(rs->cad, (rs->ncad + r->ncad + 1) * sizeof *cad) : NULL;
+            if (cad)
+                rs->cad = cad;
+            if (!cad || append_fault(rs, fault, job->ids[o]) != FM_OK) {
                 r->status = "error";
                 r->error = dup_str("out of memory");
             } else {
                 rs->names[rs->nfaults++] = r->name;
+                for (size_t k = 0; k < r->ncad; k++)
+                    rs->cad[rs->ncad++] = r->cad[k];
             }
         }
         free(job->ids ? job->ids[o] : NULL);
@@ -1046,6 +1069,10 @@ static fm_status write_set(const remesh_cli *cli, const run_state *rs, fm_error 
         snprintf(path + (size_t)k * n, n, "%s/mesh.%s", cli->dir, ext[k]);
     fm_faultset_outputs out = {path, path + n, path + 2 * n, path + 3 * n, cli->msh, cli->dir};
     fm_status st = fm_faultset_write_all(&fs, &out, cli->jobs, err);
+    if (st == FM_OK) {
+        snprintf(path, n, "%s/model.igs", cli->dir);
+        st = fm_cad_write_iges(path, rs->cad, rs->ncad, cli->crs, err);
+    }
     free(path);
     return st;
 }
@@ -1232,7 +1259,11 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         free(rs.res[i].through_curves);
         free(rs.res[i].used_curves);
         free(rs.res[i].curve_pieces);
+        for (size_t k = 0; k < rs.res[i].ncad; k++)
+            fm_cad_face_destroy(rs.res[i].cad[k]);
+        free(rs.res[i].cad);
     }
+    free(rs.cad);
     free(rs.res);
     free(rs.names);
     free(rs.node_vertex);
