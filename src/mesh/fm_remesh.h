@@ -148,9 +148,11 @@ typedef struct fm_remesh_sheet_curves {
  * the mesh's boundary nodes in order. The mesh may fall into several
  * parts (edge-connected): part[k] numbers them from 0 in the order of
  * their first triangle; each part has one outer loop, counter-clockwise
- * in (u, v) and listed first, then its holes, clockwise. Loops touching
- * at a node (a pinch) are traced apart, turning around the node through
- * the triangles. Every array is malloc'ed; fm_remesh_boundary_free
+ * in (u, v) and listed first, then its holes, clockwise. Loops are
+ * simple: at a node where the boundary passes twice (parts touching at a
+ * node, a hole touching the outline) the walk turns around the node
+ * through its own part's triangles, and a loop that still comes back to a
+ * node is cut there. Every array is malloc'ed; fm_remesh_boundary_free
  * releases them. */
 typedef struct fm_remesh_boundary {
     size_t nloops, nparts;

@@ -64,12 +64,18 @@ fm_status fm_remesh_boundary_of(const fm_mesh *m, const double *uv, const int64_
     size_t *parent = malloc((nt + 1) * sizeof *parent);
     size_t *label = malloc((nt + 1) * sizeof *label);
     unsigned char *seen = calloc(nh + 1, 1);
-    size_t *pts = malloc((nh + 1) * sizeof *pts); /* traced: half-edges, loop by loop */
+    size_t *pts = malloc((nh + 1) * sizeof *pts); /* loops: half-edges, loop by loop */
+    size_t *cur = malloc((nh + 1) * sizeof *cur);  /* the loop being traced */
+    size_t *stack = malloc((nh + 1) * sizeof *stack);
+    size_t nv = fm_mesh_nvertices(m);
+    long long *at = malloc((nv + 1) * sizeof *at); /* vertex -> place on the stack, or -1 */
     loop_rec *rec = NULL;
     size_t nrec = 0, cap = 0, npts = 0;
     fm_status rc = FM_OK;
-    if (!half || !parent || !label || !seen || !pts)
+    if (!half || !parent || !label || !seen || !pts || !cur || !stack || !at)
         goto nomem;
+    for (size_t v = 0; v < nv; v++)
+        at[v] = -1;
     for (size_t h = 0; h < nh; h++)
         half[h] = (fm_keyed){directed(T[h], T[h / 3 * 3 + (h % 3 + 1) % 3]), h};
     if (fm_sort_keyed(half, nh))
@@ -110,8 +116,7 @@ fm_status fm_remesh_boundary_of(const fm_mesh *m, const double *uv, const int64_
         int32_t a0 = T[h0], b0 = T[h0 / 3 * 3 + (h0 % 3 + 1) % 3];
         if (seen[h0] || find_half(half, nh, b0, a0) >= 0)
             continue;
-        size_t first = npts, h = h0;
-        double area = 0;
+        size_t ncur = 0, h = h0;
         for (;;) {
             if (seen[h]) {
                 rc = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,
@@ -119,9 +124,7 @@ fm_status fm_remesh_boundary_of(const fm_mesh *m, const double *uv, const int64_
                 goto done;
             }
             seen[h] = 1;
-            pts[npts++] = h;
-            int32_t va = T[h], vb = T[h / 3 * 3 + (h % 3 + 1) % 3];
-            area += uv[2 * va] * uv[2 * vb + 1] - uv[2 * vb] * uv[2 * va + 1];
+            cur[ncur++] = h;
             size_t g = h / 3 * 3 + (h % 3 + 1) % 3; /* vb -> next corner */
             for (size_t turns = 0;; turns++) {
                 int32_t ga = T[g], gb = T[g / 3 * 3 + (g % 3 + 1) % 3];
@@ -139,15 +142,43 @@ fm_status fm_remesh_boundary_of(const fm_mesh *m, const double *uv, const int64_
             if (h == h0)
                 break;
         }
-        if (nrec == cap) {
-            cap = cap ? 2 * cap : 8;
-            loop_rec *r = realloc(rec, cap * sizeof *r);
-            if (!r)
-                goto nomem;
-            rec = r;
+        /* A loop through a node twice (a hole touching the outline, or
+         * itself, at a node) is cut there into simple loops: each closes
+         * when the walk comes back to a node still on the stack. */
+        size_t ns = 0;
+        for (size_t i = 0; i <= ncur; i++) {
+            size_t hh = cur[i % ncur];
+            int32_t v = T[hh];
+            if (at[v] >= 0) { /* at i == ncur: the loop closes, all that is left */
+                size_t from = (size_t)at[v];
+                if (nrec == cap) {
+                    cap = cap ? 2 * cap : 8;
+                    loop_rec *r = realloc(rec, cap * sizeof *r);
+                    if (!r)
+                        goto nomem;
+                    rec = r;
+                }
+                double area = 0;
+                size_t first = npts;
+                for (size_t k = from; k < ns; k++) {
+                    size_t e = stack[k];
+                    int32_t va = T[e], vb = T[e / 3 * 3 + (e % 3 + 1) % 3];
+                    area += uv[2 * va] * uv[2 * vb + 1] - uv[2 * vb] * uv[2 * va + 1];
+                    pts[npts++] = e;
+                    if (k > from)
+                        at[va] = -1;
+                }
+                rec[nrec] = (loop_rec){label[h0 / 3], first, npts - first, area > 0, nrec};
+                nrec++;
+                ns = from;
+                if (i == ncur) {
+                    at[v] = -1;
+                    break;
+                }
+            }
+            at[v] = (long long)ns;
+            stack[ns++] = hh;
         }
-        rec[nrec] = (loop_rec){label[h0 / 3], first, npts - first, area > 0, nrec};
-        nrec++;
     }
     qsort(rec, nrec, sizeof *rec, by_part_outer_first);
     for (size_t k = 0; k < nrec; k++) {
@@ -190,6 +221,9 @@ done:
     free(label);
     free(seen);
     free(pts);
+    free(cur);
+    free(stack);
+    free(at);
     free(rec);
     return rc;
 }
