@@ -180,7 +180,8 @@ fm_status fm_remesh_boundary_of(const fm_mesh *m, const double *uv, const int64_
             stack[ns++] = hh;
         }
     }
-    qsort(rec, nrec, sizeof *rec, by_part_outer_first);
+    if (nrec > 1)
+        qsort(rec, nrec, sizeof *rec, by_part_outer_first);
     for (size_t k = 0; k < nrec; k++) {
         int first_of_part = k == 0 || rec[k].part != rec[k - 1].part;
         if (rec[k].outer != first_of_part) {
