@@ -307,9 +307,20 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
                        ? fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory")
                        : fm_remesh_model_joined(model, per, &mo, fault, ids, r->join_failed, jerr,
                                                 &r->ms, bounds, err);
-    if (st == FM_OK)
-        st = fm_cli_cad_faces(model, bounds, r->name, cli->mesh.top != FM_TOP_KEEP,
-                              cli->mesh.sea_level, &r->cad, &r->ncad, err);
+    if (st == FM_OK) {
+        /* which sheets have triangles (tag = sheet) */
+        unsigned char *meshed = calloc(r->sheets + 1, 1);
+        const int32_t *tag = fm_mesh_tags(*fault);
+        for (size_t t = 0; meshed && t < fm_mesh_ntriangles(*fault); t++)
+            if (tag[t] >= 0 && (size_t)tag[t] < r->sheets)
+                meshed[tag[t]] = 1;
+        size_t skipped = 0;
+        st = meshed ? fm_cli_cad_faces(model, bounds, meshed, r->name,
+                                       cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level, &r->cad,
+                                       &r->ncad, &skipped, err)
+                    : fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        free(meshed);
+    }
     for (size_t i = 0; bounds && i < r->sheets; i++)
         fm_remesh_boundary_free(&bounds[i]);
     free(bounds);

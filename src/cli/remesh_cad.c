@@ -2,6 +2,7 @@
  * surface trimmed by the boundary of its mesh (one face per connected
  * part), the boundary cut into curves where it passes between the
  * outline, a shared intersection curve and the sea-level line. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,12 +20,14 @@ static int edge_kind(const fm_remesh_boundary *b, size_t i, size_t j, int cut, d
     return 0;
 }
 
-fm_status fm_cli_cad_faces(const fm_model *m, const fm_remesh_boundary *bounds, const char *name,
-                           int cut, double level, fm_cad_face ***faces, size_t *nfaces,
+fm_status fm_cli_cad_faces(const fm_model *m, const fm_remesh_boundary *bounds,
+                           const unsigned char *sheet_meshed, const char *name, int cut,
+                           double level, fm_cad_face ***faces, size_t *nfaces, size_t *skipped,
                            fm_error *err)
 {
     *faces = NULL;
     *nfaces = 0;
+    *skipped = 0;
     size_t total = 0;
     for (size_t s = 0; s < fm_model_nsheets(m); s++)
         total += bounds[s].nparts;
@@ -35,6 +38,11 @@ fm_status fm_cli_cad_faces(const fm_model *m, const fm_remesh_boundary *bounds, 
     size_t n = 0;
     for (size_t s = 0; s < fm_model_nsheets(m) && st == FM_OK; s++) {
         const fm_remesh_boundary *b = &bounds[s];
+        if (b->nloops == 0 && sheet_meshed && sheet_meshed[s]) {
+            fprintf(stderr, "faultmesh: %s: sheet %zu left out of model.igs: its mesh's "
+                            "boundary could not be traced\n", name, s);
+            (*skipped)++;
+        }
         size_t np = b->nloops ? b->start[b->nloops] : 0;
         unsigned char *corner = malloc(np + 1);
         size_t *start = malloc((b->nloops + 1) * sizeof *start);
@@ -58,10 +66,20 @@ fm_status fm_cli_cad_faces(const fm_model *m, const fm_remesh_boundary *bounds, 
             for (size_t l = l0; l <= l1; l++)
                 start[l - l0] = b->start[l] - b->start[l0];
             const size_t a = b->start[l0];
+            fm_error ferr;
             st = fm_cad_face_create(name, fm_model_surface(m, s), b->uv + 2 * a, start, l1 - l0,
-                                    corner + a, &out[n], err);
-            if (st == FM_OK)
+                                    corner + a, &out[n], &ferr);
+            if (st == FM_OK) {
                 n++;
+            } else if (st != FM_ERR_NOMEM) {
+                /* the mesh stays; the face is left out, and said so */
+                fprintf(stderr, "faultmesh: %s: sheet %zu part %zu left out of model.igs: %s\n",
+                        name, s, b->part[l0], ferr.message);
+                (*skipped)++;
+                st = FM_OK;
+            } else {
+                *err = ferr;
+            }
             l0 = l1;
         }
         free(corner);

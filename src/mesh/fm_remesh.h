@@ -182,7 +182,8 @@ fm_status fm_remesh_boundary_of(const fm_mesh *m, const double *uv, const int64_
  * join_failed[i] (may be NULL) is set to 1 and
  * join_errors[i] (may be NULL) given the first failure. bounds (may be
  * NULL, else one per sheet) receives each sheet's domain, as meshed (no
- * loops for a sheet left empty); the caller frees each. */
+ * loops for a sheet left empty, or whose boundary fm_remesh_boundary_of
+ * cannot trace: the mesh is kept); the caller frees each. */
 /* The edges of mesh m both of whose ends carry a shared node (ids: per
  * vertex the shared node id or -1, as fm_remesh_model_joined gives them),
  * keyed fm_edge_key(id a, id b) and sorted by key; *n of them (malloc'ed;

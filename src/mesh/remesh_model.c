@@ -1,6 +1,5 @@
 /* Every sheet of a fault model meshed into one mesh. */
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -292,17 +291,18 @@ fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves
             break;
         if (bounds) {
             /* before the sheets are welded: a node shared by two sheets
-             * has a (u, v) in each */
-            st = fm_remesh_boundary_of(sheet, suv, sid, &bounds[i], err);
+             * has a (u, v) in each. A boundary that cannot be traced costs
+             * the sheet its CAD face (no loops), not its mesh. */
+            fm_error berr;
+            st = fm_remesh_boundary_of(sheet, suv, sid, &bounds[i], &berr);
             free(suv);
-            if (st != FM_OK) {
+            if (st == FM_ERR_NOMEM) {
                 free(sid);
                 fm_mesh_destroy(sheet);
-                char why[sizeof err->message];
-                snprintf(why, sizeof why, "%s", err->message);
-                fm_error_set(err, st, opt->name, 0, "sheet %zu: %s", i, why);
+                fm_error_set(err, st, opt->name, 0, "out of memory");
                 break;
             }
+            st = FM_OK;
         }
         if (curves && mark_absent(&curves[i], sid, sheet)) {
             free(sid);
