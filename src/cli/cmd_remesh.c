@@ -25,6 +25,7 @@
 #include "fm_synth.h"
 #include "fm_tsurf.h"
 #include "sim_attrs.h"
+#include "remesh_cad.h"
 
 typedef struct remesh_cli {
     const char *dir;
@@ -69,6 +70,8 @@ typedef struct fault_result {
     size_t carved;              /* triangles removed where it met another fault */
     double carved_area;         /* their area, m^2 */
     size_t set_index;           /* its fault index in the set written, SIZE_MAX if none */
+    fm_cad_face **cad;          /* its faces in model.igs */
+    size_t ncad;
 } fault_result;
 
 /* Which pieces of its plan curves fault f holds (an edge between two
@@ -321,10 +324,28 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
     r->sheets = fm_model_nsheets(model);
     r->join_failed = per ? calloc(r->sheets, 1) : NULL;
     fm_error *jerr = per ? calloc(r->sheets, sizeof *jerr) : NULL;
-    fm_status st = (per && (!r->join_failed || !jerr))
+    fm_remesh_boundary *bounds = calloc(r->sheets + 1, sizeof *bounds);
+    fm_status st = ((per && (!r->join_failed || !jerr)) || !bounds)
                        ? fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory")
                        : fm_remesh_model_joined(model, per, &mo, fault, ids, r->join_failed, jerr,
-                                                &r->ms, err);
+                                                &r->ms, bounds, err);
+    if (st == FM_OK) {
+        /* which sheets have triangles (tag = sheet) */
+        unsigned char *meshed = calloc(r->sheets + 1, 1);
+        const int32_t *tag = fm_mesh_tags(*fault);
+        for (size_t t = 0; meshed && t < fm_mesh_ntriangles(*fault); t++)
+            if (tag[t] >= 0 && (size_t)tag[t] < r->sheets)
+                meshed[tag[t]] = 1;
+        size_t skipped = 0;
+        st = meshed ? fm_cli_cad_faces(model, bounds, meshed, r->name,
+                                       cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level, &r->cad,
+                                       &r->ncad, &skipped, err)
+                    : fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        free(meshed);
+    }
+    for (size_t i = 0; bounds && i < r->sheets; i++)
+        fm_remesh_boundary_free(&bounds[i]);
+    free(bounds);
     /* the first reason a sheet's curves did not fit, for the report */
     for (size_t i = 0; jerr && r->join_failed && i < r->sheets && !r->join_error; i++)
         if (r->join_failed[i])
@@ -403,6 +424,8 @@ typedef struct run_state {
     long failed;
     char *crs;              /* the CRS recorded in every output */
     const char *crs_source; /* "option", "input" or "default" */
+    const fm_cad_face **cad; /* the faces of the faults in set, in order */
+    size_t ncad;
 } run_state;
 
 static fault_result *new_result(run_state *rs)
@@ -529,6 +552,11 @@ static void reset_result(fault_result *r)
     free(r->error);
     free(r->join_failed);
     free(r->join_error);
+    for (size_t i = 0; i < r->ncad; i++)
+        fm_cad_face_destroy(r->cad[i]);
+    free(r->cad);
+    r->cad = NULL;
+    r->ncad = 0;
     r->error = r->join_error = NULL;
     r->join_failed = NULL;
     r->status = NULL;
@@ -788,7 +816,11 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
             const fm_mesh **so = realloc(rs->set_orig, (rs->nfaults + 1) * sizeof *so);
             if (so)
                 rs->set_orig = so;
-            if (!nn || !sr || !so || append_fault(rs, fault, job->ids[o]) != FM_OK) {
+            const fm_cad_face **cad =
+                nn ? realloc(rs->cad, (rs->ncad + r->ncad + 1) * sizeof *cad) : NULL;
+            if (cad)
+                rs->cad = cad;
+            if (!nn || !sr || !so || !cad || append_fault(rs, fault, job->ids[o]) != FM_OK) {
                 r->status = "error";
                 r->error = dup_str("out of memory");
             } else {
@@ -796,6 +828,8 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
                 rs->set_orig[rs->nfaults] = fm_tsurf_mesh(job->objs[o]);
                 r->set_index = rs->nfaults;
                 rs->names[rs->nfaults++] = r->name;
+                for (size_t k = 0; k < r->ncad; k++)
+                    rs->cad[rs->ncad++] = r->cad[k];
             }
         }
         free(job->ids ? job->ids[o] : NULL);
@@ -1406,6 +1440,10 @@ static fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs
                                    .tsurf_dir = cli->dir};
         st = fm_faultset_write_all(&fs, &out, cli->jobs, err);
     }
+    if (st == FM_OK) {
+        snprintf(path, n, "%s/model.igs", cli->dir);
+        st = fm_cad_write_iges(path, rs->cad, rs->ncad, rs->crs, err);
+    }
     free(path);
     if (st == FM_OK)
         st = sim_write(&cli->sim, &fs, sa, cli->dir, err);
@@ -1645,7 +1683,11 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         free(rs.res[i].through_curves);
         free(rs.res[i].used_curves);
         free(rs.res[i].curve_pieces);
+        for (size_t k = 0; k < rs.res[i].ncad; k++)
+            fm_cad_face_destroy(rs.res[i].cad[k]);
+        free(rs.res[i].cad);
     }
+    free(rs.cad);
     free(rs.res);
     free(rs.set_res);
     free(rs.set_orig);

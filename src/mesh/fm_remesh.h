@@ -141,6 +141,37 @@ typedef struct fm_remesh_sheet_curves {
                                beyond stays) */
 } fm_remesh_sheet_curves;
 
+/* The domain a sheet's mesh covers, as its boundary in the sheet's (u, v)
+ * plane: the outline as clipped, extended or trimmed at shared curves and
+ * cut at sea level, exactly as meshed. Loop k is the closed polygon of
+ * points start[k] .. start[k + 1] - 1 (the last joins the first), through
+ * the mesh's boundary nodes in order. The mesh may fall into several
+ * parts (edge-connected): part[k] numbers them from 0 in the order of
+ * their first triangle; each part has one outer loop, counter-clockwise
+ * in (u, v) and listed first, then its holes, clockwise. Loops are
+ * simple: at a node where the boundary passes twice (parts touching at a
+ * node, a hole touching the outline) the walk turns around the node
+ * through its own part's triangles, and a loop that still comes back to a
+ * node is cut there. Every array is malloc'ed; fm_remesh_boundary_free
+ * releases them. */
+typedef struct fm_remesh_boundary {
+    size_t nloops, nparts;
+    size_t *start;   /* nloops + 1 */
+    size_t *part;    /* nloops */
+    double *uv;      /* 2 per point */
+    double *xyz;     /* 3 per point: the mesh node */
+    int64_t *node;   /* per point: its shared node id (fm_remesh_curve.node) or -1 */
+} fm_remesh_boundary;
+
+void fm_remesh_boundary_free(fm_remesh_boundary *b);
+
+/* The boundary of mesh m (triangles counter-clockwise in the (u, v) of
+ * its vertices, 2 per vertex; ids may be NULL) into *b. FM_ERR_TOPOLOGY
+ * when it is not a surface the loops of which can be traced (an edge used
+ * twice the same way, a part with no or two outer loops); FM_ERR_NOMEM. */
+fm_status fm_remesh_boundary_of(const fm_mesh *m, const double *uv, const int64_t *ids,
+                                fm_remesh_boundary *b, fm_error *err);
+
 /* fm_remesh_model with shared curves: curves[i] for sheet i (curves may be
  * NULL). node_out (may be NULL) receives per vertex of the mesh the shared
  * node id or -1. A sheet whose curves do not fit its domain together
@@ -149,7 +180,10 @@ typedef struct fm_remesh_sheet_curves {
  * at that does not fit so is tried as an interior curve: the two faults
  * still share its nodes); curves[i].dropped marks the others,
  * join_failed[i] (may be NULL) is set to 1 and
- * join_errors[i] (may be NULL) given the first failure. */
+ * join_errors[i] (may be NULL) given the first failure. bounds (may be
+ * NULL, else one per sheet) receives each sheet's domain, as meshed (no
+ * loops for a sheet left empty, or whose boundary fm_remesh_boundary_of
+ * cannot trace: the mesh is kept); the caller frees each. */
 /* The edges of mesh m both of whose ends carry a shared node (ids: per
  * vertex the shared node id or -1, as fm_remesh_model_joined gives them),
  * keyed fm_edge_key(id a, id b) and sorted by key; *n of them (malloc'ed;
@@ -159,7 +193,8 @@ fm_keyed *fm_remesh_shared_edges(const fm_mesh *m, const int64_t *ids, size_t *n
 fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves *curves,
                                  const fm_remesh_options *opt, fm_mesh **out, int64_t **node_out,
                                  unsigned char *join_failed, fm_error *join_errors,
-                                 fm_remesh_stats *stats, fm_error *err);
+                                 fm_remesh_stats *stats, fm_remesh_boundary *bounds,
+                                 fm_error *err);
 
 #ifdef __cplusplus
 }

@@ -9,7 +9,7 @@
 fm_status fm_remesh_model(const fm_model *m, const fm_remesh_options *opt, fm_mesh **out,
                           fm_remesh_stats *stats, fm_error *err)
 {
-    return fm_remesh_model_joined(m, NULL, opt, out, NULL, NULL, NULL, stats, err);
+    return fm_remesh_model_joined(m, NULL, opt, out, NULL, NULL, NULL, stats, NULL, err);
 }
 
 /* Appends ids (n of them, or n times -1) to *all, which holds *nall. */
@@ -151,7 +151,8 @@ static int mark_absent(const fm_remesh_sheet_curves *sc, const int64_t *sid, con
  * up one curve at a time (more nodes first); sc->dropped marks the rest. */
 static fm_status fit_some(const fm_model *m, size_t i, const fm_trim_loop **loops, size_t nl,
                           const fm_remesh_sheet_curves *sc, const fm_remesh_options *opt,
-                          fm_mesh **sheet, int64_t **sid, fm_remesh_stats *s, fm_error *err)
+                          fm_mesh **sheet, double **suv, int64_t **sid, fm_remesh_stats *s,
+                          fm_error *err)
 {
     size_t nc = sc->n;
     fm_remesh_curve *use = malloc((nc + 1) * sizeof *use);
@@ -174,6 +175,7 @@ static fm_status fit_some(const fm_model *m, size_t i, const fm_trim_loop **loop
     size_t nu = 0;
     fm_mesh *best = NULL;
     int64_t *best_id = NULL;
+    double *best_uv = NULL;
     fm_remesh_stats best_st;
     memset(&best_st, 0, sizeof best_st);
     fm_status st = FM_OK;
@@ -181,10 +183,11 @@ static fm_status fit_some(const fm_model *m, size_t i, const fm_trim_loop **loop
         use[nu] = sc->curves[order[k]];
         fm_mesh *mm = NULL;
         int64_t *id = NULL;
+        double *uvm = NULL;
         fm_remesh_stats ss;
         fm_error e2;
         st = fm_remesh_sheet_joined(fm_model_surface(m, i), loops, nl, use, nu + 1, opt,
-                                    (int32_t)i, &mm, NULL, &id, &ss, &e2);
+                                    (int32_t)i, &mm, suv ? &uvm : NULL, &id, &ss, &e2);
         int through = 0;
         if (st != FM_OK && st != FM_ERR_NOMEM && use[nu].end) {
             /* A flap it cannot cut off (its end does not reach the
@@ -194,13 +197,15 @@ static fm_status fit_some(const fm_model *m, size_t i, const fm_trim_loop **loop
             use[nu].end = 0;
             through = 1;
             st = fm_remesh_sheet_joined(fm_model_surface(m, i), loops, nl, use, nu + 1, opt,
-                                        (int32_t)i, &mm, NULL, &id, &ss, &e2);
+                                        (int32_t)i, &mm, suv ? &uvm : NULL, &id, &ss, &e2);
         }
         if (st == FM_OK) {
             fm_mesh_destroy(best);
             free(best_id);
+            free(best_uv);
             best = mm;
             best_id = id;
+            best_uv = uvm;
             best_st = ss;
             nu++;
             if (sc->dropped)
@@ -214,13 +219,16 @@ static fm_status fit_some(const fm_model *m, size_t i, const fm_trim_loop **loop
     if (st == FM_ERR_NOMEM) {
         fm_mesh_destroy(best);
         free(best_id);
+        free(best_uv);
         return FM_ERR_NOMEM;
     }
     if (!best)
         return fm_remesh_sheet_joined(fm_model_surface(m, i), loops, nl, NULL, 0, opt, (int32_t)i,
-                                      sheet, NULL, sid, s, err);
+                                      sheet, suv, sid, s, err);
     *sheet = best;
     *sid = best_id;
+    if (suv)
+        *suv = best_uv;
     *s = best_st;
     return FM_OK;
 }
@@ -228,9 +236,12 @@ static fm_status fit_some(const fm_model *m, size_t i, const fm_trim_loop **loop
 fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves *curves,
                                  const fm_remesh_options *opt, fm_mesh **out, int64_t **node_out,
                                  unsigned char *join_failed, fm_error *join_errors,
-                                 fm_remesh_stats *stats, fm_error *err)
+                                 fm_remesh_stats *stats, fm_remesh_boundary *bounds,
+                                 fm_error *err)
 {
     *out = NULL;
+    for (size_t i = 0; bounds && i < fm_model_nsheets(m); i++)
+        memset(&bounds[i], 0, sizeof bounds[i]);
     if (node_out)
         *node_out = NULL;
     int64_t *ids = NULL;
@@ -254,12 +265,13 @@ fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves
         fm_mesh *sheet = NULL;
         fm_remesh_stats s;
         int64_t *sid = NULL;
+        double *suv = NULL;
         const fm_remesh_curve *cv = curves ? curves[i].curves : NULL;
         size_t nc = curves ? curves[i].n : 0;
         if (join_failed)
             join_failed[i] = 0;
         st = fm_remesh_sheet_joined(fm_model_surface(m, i), loops, nl, cv, nc, opt, (int32_t)i,
-                                    &sheet, NULL, &sid, &s, err);
+                                    &sheet, bounds ? &suv : NULL, &sid, &s, err);
         if (st != FM_OK && st != FM_ERR_NOMEM && nc > 0) {
             /* Curves that do not fit the domain together: the sheet takes
              * as many as fit, longest first (one bad curve should not
@@ -269,13 +281,29 @@ fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves
                 join_failed[i] = 1;
             if (join_errors)
                 join_errors[i] = *err;
-            st = fit_some(m, i, loops, nl, &curves[i], opt, &sheet, &sid, &s, err);
+            st = fit_some(m, i, loops, nl, &curves[i], opt, &sheet, bounds ? &suv : NULL, &sid,
+                          &s, err);
         } else if (curves && curves[i].dropped) {
             memset(curves[i].dropped, 0, nc);
         }
         free(loops);
         if (st != FM_OK)
             break;
+        if (bounds) {
+            /* before the sheets are welded: a node shared by two sheets
+             * has a (u, v) in each. A boundary that cannot be traced costs
+             * the sheet its CAD face (no loops), not its mesh. */
+            fm_error berr;
+            st = fm_remesh_boundary_of(sheet, suv, sid, &bounds[i], &berr);
+            free(suv);
+            if (st == FM_ERR_NOMEM) {
+                free(sid);
+                fm_mesh_destroy(sheet);
+                fm_error_set(err, st, opt->name, 0, "out of memory");
+                break;
+            }
+            st = FM_OK;
+        }
         if (curves && mark_absent(&curves[i], sid, sheet)) {
             free(sid);
             fm_mesh_destroy(sheet);
@@ -310,15 +338,14 @@ fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves
         sum.extended = fmax(sum.extended, s.extended);
         sum.time += s.time;
     }
+    if (st == FM_OK && weld_shared(all, ids))
+        st = fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
     if (st != FM_OK) {
         fm_mesh_destroy(all);
         free(ids);
+        for (size_t i = 0; bounds && i < fm_model_nsheets(m); i++)
+            fm_remesh_boundary_free(&bounds[i]);
         return st;
-    }
-    if (weld_shared(all, ids)) {
-        fm_mesh_destroy(all);
-        free(ids);
-        return fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
     }
     if (stats)
         *stats = sum;

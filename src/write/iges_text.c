@@ -1,5 +1,6 @@
 /* IGES free-format parameters packed into fixed 80-column lines. */
 #include "iges_internal.h"
+#include "fm_dtoa.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -147,12 +148,11 @@ void iges_format_real(double x, char *buf)
         strcpy(buf, "0.");
         return;
     }
+    /* the shortest of %.15g, %.16g and %.17g that reads back as x, as
+     * every text writer prints it, without printf + strtod's cost (a
+     * whole-set model.igs holds some ten million reals) */
     char raw[40];
-    for (int prec = 15; prec <= 17; prec++) {
-        snprintf(raw, sizeof raw, "%.*g", prec, x);
-        if (prec == 17 || strtod(raw, NULL) == x)
-            break;
-    }
+    fm_format_double(raw, x);
     normalise(raw, buf);
 }
 

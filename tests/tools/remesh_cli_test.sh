@@ -61,7 +61,7 @@ if [ -f "$r" ]; then
 else
     bad "no report.json"
 fi
-for f in mesh.vtu mesh.msh mesh.stl mesh.obj SYNT-MAIN-SS-Main_strike_slip_fault-SYN1.ts \
+for f in mesh.vtu mesh.msh mesh.stl mesh.obj model.igs SYNT-MAIN-SS-Main_strike_slip_fault-SYN1.ts \
          SYNT-SWFB-BLND-Blind_fault-SYN1.ts; do
     [ -s "$tmp/m/$f" ] && ok || bad "$f not written"
 done

@@ -125,6 +125,19 @@ if(FM_SYSTEM_PYTHON)
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_connect_500m_1000 ${FM_CFM_DIR}/CFM5.3/500m
             --size 1000 -- --size 1000 --top cut --criteria failures,min-angle-30,edge-band,boundary-edge,distance-rms,coverage,top)
   set_tests_properties(cfm_connect_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
+  # cad_demo / cfm_cad_500m_1000: model.igs, the CAD model of the meshed
+  # set, read by Gmsh (OpenCASCADE) and checked against mesh.msh by
+  # check_cad.py: faces named after the faults, areas, points on the fault
+  # meshes, trims along the mesh boundary, trims at junctions; the demo's
+  # faces also meshed by Gmsh, and a mismatched model must fail.
+  add_test(NAME cad_demo
+    COMMAND bash ${FM_TOOLS}/cad_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/cad_demo demo)
+  set_tests_properties(cad_demo PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+  add_test(NAME cfm_cad_500m_1000
+    COMMAND bash ${FM_TOOLS}/cad_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_cad cfm ${FM_CFM_DIR}/CFM5.3/500m)
+  set_tests_properties(cfm_cad_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
   # cfm_connect_report_500m_1000: every near pair of the whole set has its
   # line in report.json (made and sharing edges, or open with a reason), and
   # no two faults cross or touch away from shared nodes and edges (what the

@@ -1,0 +1,237 @@
+/* The CAD model of a meshed fault set: fitted surfaces trimmed by the
+ * meshed domains, as IGES (fm_cad_write.h). */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fm_cad_write.h"
+#include "fm_iges.h"
+
+struct fm_cad_face {
+    char *name;
+    int degree;
+    size_t nu, nv;
+    double *knots_u, *knots_v, *ctrl;
+    double dom[4];
+    /* one degree-1 curve per stretch; points of curve c at
+     * pts[2 first[c]] .. (count[c] of them), knots at knots + kfirst[c] */
+    size_t ncurves, nloops;
+    size_t *curve_first, *curve_count, *loop_first; /* loop_first: nloops + 1 curves */
+    double *pts, *knots;
+};
+
+void fm_cad_face_destroy(fm_cad_face *f)
+{
+    if (!f)
+        return;
+    free(f->name);
+    free(f->knots_u);
+    free(f->knots_v);
+    free(f->ctrl);
+    free(f->curve_first);
+    free(f->curve_count);
+    free(f->loop_first);
+    free(f->pts);
+    free(f->knots);
+    free(f);
+}
+
+static double *dup_doubles(const double *v, size_t n)
+{
+    double *d = malloc((n + 1) * sizeof *d);
+    if (d && n)
+        memcpy(d, v, n * sizeof *d);
+    return d;
+}
+
+fm_status fm_cad_face_create(const char *name, const fm_fit_surface *s, const double *uv,
+                             const size_t *start, size_t nloops, const unsigned char *corner,
+                             fm_cad_face **out, fm_error *err)
+{
+    *out = NULL;
+    const char *what = name ? name : "face";
+    if (nloops == 0)
+        return fm_error_set(err, FM_ERR_INVALID, what, 0, "CAD face without an outline");
+    fm_cad_face *f = calloc(1, sizeof *f);
+    if (!f)
+        return fm_error_set(err, FM_ERR_NOMEM, what, 0, "out of memory");
+    size_t nku, nkv;
+    const double *ku = fm_fit_surface_knots(s, 0, &nku), *kv = fm_fit_surface_knots(s, 1, &nkv);
+    fm_fit_surface_heights(s, &f->nu, &f->nv);
+    f->degree = fm_fit_surface_degree(s);
+    fm_fit_surface_domain(s, f->dom);
+    f->name = malloc(strlen(name ? name : "") + 1);
+    f->knots_u = dup_doubles(ku, nku);
+    f->knots_v = dup_doubles(kv, nkv);
+    f->ctrl = malloc((3 * f->nu * f->nv + 1) * sizeof *f->ctrl);
+    /* Curves: a loop with k > 0 corners has k, one without has 1. Each
+     * has its points and the closing one. */
+    size_t npts = start[nloops] - start[0], ncurves = 0;
+    for (size_t l = 0; l < nloops; l++) {
+        size_t k = 0;
+        for (size_t i = start[l]; corner && i < start[l + 1]; i++)
+            k += corner[i] != 0;
+        ncurves += k ? k : 1;
+    }
+    f->curve_first = malloc((ncurves + 1) * sizeof *f->curve_first);
+    f->curve_count = malloc((ncurves + 1) * sizeof *f->curve_count);
+    f->loop_first = malloc((nloops + 1) * sizeof *f->loop_first);
+    f->pts = malloc((2 * (npts + ncurves) + 1) * sizeof *f->pts);
+    f->knots = malloc(((npts + 3 * ncurves) + 1) * sizeof *f->knots);
+    if (!f->name || !f->knots_u || !f->knots_v || !f->ctrl || !f->curve_first ||
+        !f->curve_count || !f->loop_first || !f->pts || !f->knots) {
+        fm_cad_face_destroy(f);
+        return fm_error_set(err, FM_ERR_NOMEM, what, 0, "out of memory");
+    }
+    strcpy(f->name, name ? name : "");
+    fm_fit_surface_control_points(s, f->ctrl);
+    double tol = 1e-7 * hypot(f->dom[1] - f->dom[0], f->dom[3] - f->dom[2]);
+    size_t w = 0;
+    for (size_t l = 0; l < nloops; l++) {
+        size_t a = start[l], n = start[l + 1] - start[l];
+        if (n < 3) {
+            fm_cad_face_destroy(f);
+            return fm_error_set(err, FM_ERR_INVALID, what, 0, "CAD face loop %zu of %zu points",
+                                l, n);
+        }
+        for (size_t i = a; i < a + n; i++)
+            if (!(uv[2 * i] >= f->dom[0] - tol && uv[2 * i] <= f->dom[1] + tol &&
+                  uv[2 * i + 1] >= f->dom[2] - tol && uv[2 * i + 1] <= f->dom[3] + tol)) {
+                fm_error_set(err, FM_ERR_INVALID, what, 0,
+                             "CAD face: trimming point (%.17g, %.17g) outside the surface's "
+                             "rectangle [%.17g, %.17g] x [%.17g, %.17g]",
+                             uv[2 * i], uv[2 * i + 1], f->dom[0], f->dom[1], f->dom[2], f->dom[3]);
+                fm_cad_face_destroy(f);
+                return FM_ERR_INVALID;
+            }
+        /* the first corner starts the first curve; none: point 0 */
+        size_t s0 = 0;
+        while (corner && s0 < n && !corner[a + s0])
+            s0++;
+        if (s0 == n)
+            s0 = 0;
+        f->loop_first[l] = f->ncurves;
+        size_t done = 0;
+        while (done < n) {
+            size_t c = f->ncurves++;
+            f->curve_first[c] = w;
+            size_t cnt = 0;
+            /* points from this corner up to and including the next one */
+            do {
+                size_t i = a + (s0 + done) % n;
+                memcpy(f->pts + 2 * w++, uv + 2 * i, 2 * sizeof *f->pts);
+                cnt++;
+                done++;
+            } while (done < n && !(corner && corner[a + (s0 + done) % n]));
+            size_t i = a + (s0 + done) % n;
+            memcpy(f->pts + 2 * w++, uv + 2 * i, 2 * sizeof *f->pts);
+            f->curve_count[c] = cnt + 1;
+        }
+    }
+    f->loop_first[nloops] = f->ncurves;
+    f->nloops = nloops;
+    /* knots of curve c: clamped, degree 1, one span per segment */
+    size_t kw = 0;
+    for (size_t c = 0; c < f->ncurves; c++) {
+        size_t m = f->curve_count[c];
+        f->knots[kw++] = 0;
+        for (size_t i = 0; i < m; i++)
+            f->knots[kw++] = (double)i;
+        f->knots[kw++] = (double)(m - 1);
+    }
+    *out = f;
+    return FM_OK;
+}
+
+static fm_status resolve_time(const char *path, long long *t, fm_error *err)
+{
+    *t = 0;
+    const char *env = getenv("SOURCE_DATE_EPOCH");
+    if (!env || !*env)
+        return FM_OK;
+    char *endp;
+    errno = 0;
+    long long v = strtoll(env, &endp, 10);
+    if (*endp || errno || v < 0)
+        return fm_error_set(err, FM_ERR_INVALID, path, 0,
+                            "SOURCE_DATE_EPOCH is not a number of seconds: %s", env);
+    *t = v;
+    return FM_OK;
+}
+
+fm_status fm_cad_write_iges(const char *path, const fm_cad_face *const *faces, size_t n,
+                            const char *crs, fm_error *err)
+{
+    size_t ncurves = 0, nloops = 0;
+    for (size_t i = 0; i < n; i++) {
+        ncurves += faces[i]->ncurves;
+        nloops += faces[i]->nloops;
+    }
+    fm_iges_face *out = calloc(n + 1, sizeof *out);
+    fm_iges_curve2d *cv = calloc(ncurves + 1, sizeof *cv);
+    fm_iges_loop *lp = calloc(nloops + 1, sizeof *lp);
+    if (!out || !cv || !lp) {
+        free(out);
+        free(cv);
+        free(lp);
+        return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    }
+    size_t cw = 0, lw = 0;
+    for (size_t i = 0; i < n; i++) {
+        const fm_cad_face *f = faces[i];
+        fm_iges_face *g = &out[i];
+        g->name = f->name;
+        g->surface.degree_u = g->surface.degree_v = f->degree;
+        g->surface.nu = f->nu;
+        g->surface.nv = f->nv;
+        g->surface.knots_u = f->knots_u;
+        g->surface.knots_v = f->knots_v;
+        g->surface.ctrl = f->ctrl;
+        g->surface.u0 = f->dom[0];
+        g->surface.u1 = f->dom[1];
+        g->surface.v0 = f->dom[2];
+        g->surface.v1 = f->dom[3];
+        size_t kw = 0;
+        for (size_t c = 0; c < f->ncurves; c++) {
+            cv[cw + c].degree = 1;
+            cv[cw + c].n = f->curve_count[c];
+            cv[cw + c].knots = f->knots + kw;
+            cv[cw + c].ctrl = f->pts + 2 * f->curve_first[c];
+            kw += f->curve_count[c] + 2;
+        }
+        for (size_t l = 0; l < f->nloops; l++) {
+            lp[lw + l].curves = cv + cw + f->loop_first[l];
+            lp[lw + l].ncurves = f->loop_first[l + 1] - f->loop_first[l];
+        }
+        g->outer = &lp[lw];
+        g->holes = lp + lw + 1;
+        g->nholes = f->nloops - 1;
+        cw += f->ncurves;
+        lw += f->nloops;
+    }
+    char desc[512];
+    snprintf(desc, sizeof desc,
+             "faultmesh " FM_VERSION_STRING " model.igs: the fault surfaces as meshed.\n"
+             "One trimmed B-spline surface (144) per connected part of each sheet,\n"
+             "named after its fault (406 form 15), trimmed at the mesh's outline,\n"
+             "the intersection curves it shares with other faults and sea level.\n"
+             "Units metres, z up (elevation, negative below sea level).\n"
+             "CRS: %.150s",
+             crs && *crs ? crs : "not given");
+    for (char *p = desc; *p; p++)
+        if (*p != '\n' && (*p < 32 || *p > 126))
+            *p = '?'; /* IGES text is printable ASCII */
+    fm_iges_options opt;
+    fm_iges_options_default(&opt);
+    opt.description = desc;
+    opt.product_id = "faultmesh fault model";
+    fm_status rc = resolve_time(path, &opt.time, err);
+    if (rc == FM_OK)
+        rc = fm_iges_write(path, out, n, &opt, err);
+    free(out);
+    free(cv);
+    free(lp);
+    return rc;
+}
