@@ -141,15 +141,6 @@ static int push_curve(size_t **list, size_t *n, size_t curve)
     return 0;
 }
 
-static char *dup_str(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d)
-        memcpy(d, s, n);
-    return d;
-}
-
 static void remesh_usage(FILE *fp)
 {
     fprintf(fp,
@@ -349,7 +340,7 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
     /* the first reason a sheet's curves did not fit, for the report */
     for (size_t i = 0; jerr && r->join_failed && i < r->sheets && !r->join_error; i++)
         if (r->join_failed[i])
-            r->join_error = dup_str(jerr[i].message);
+            r->join_error = strdup(jerr[i].message);
     free(jerr);
     /* the plan curves this fault could not take, for the junction table
      * (kept over meshings: a curve dropped once is excluded after), those
@@ -509,9 +500,9 @@ static void fit_file(const remesh_cli *cli, file_job *job)
         job->nobj = 0;
         if (job->res) {
             job->n = 1;
-            job->res->file = dup_str(path);
+            job->res->file = strdup(path);
             job->res->status = "error";
-            job->res->error = dup_str(err.message);
+            job->res->error = strdup(err.message);
         }
         return;
     }
@@ -535,12 +526,12 @@ static void fit_file(const remesh_cli *cli, file_job *job)
     for (size_t o = 0; o < nobj; o++) {
         fault_result *r = &job->res[o];
         const char *name = fm_tsurf_name(job->objs[o]);
-        r->file = dup_str(path);
-        r->name = dup_str(name[0] ? name : path);
+        r->file = strdup(path);
+        r->name = strdup(name[0] ? name : path);
         fm_error_clear(&err);
         if (fit_object(cli, path, fm_tsurf_mesh(job->objs[o]), r, &job->model[o], &err) != FM_OK) {
             r->status = "error";
-            r->error = dup_str(err.message);
+            r->error = strdup(err.message);
         }
     }
 }
@@ -601,14 +592,14 @@ static void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan,
         r->t_check += t_check;
         if (st == FM_OK && fm_mesh_ntriangles(fault) == 0) {
             r->status = "empty";
-            r->error = dup_str("nothing of the fault lies below sea level");
+            r->error = strdup("nothing of the fault lies below sea level");
             fm_mesh_destroy(fault);
         } else if (st == FM_OK) {
             r->status = "ok";
             job->mesh[o] = fault;
         } else {
             r->status = "error";
-            r->error = dup_str(err.message);
+            r->error = strdup(err.message);
             fm_mesh_destroy(fault);
         }
     }
@@ -787,9 +778,9 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
     if (!job->res) {
         fault_result *r = new_result(rs);
         if (r) {
-            r->file = dup_str(job->path);
+            r->file = strdup(job->path);
             r->status = "error";
-            r->error = dup_str("out of memory");
+            r->error = strdup("out of memory");
         }
         rs->failed++;
         fprintf(stderr, "faultmesh: %s: out of memory\n", job->path);
@@ -822,7 +813,7 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
                 rs->cad = cad;
             if (!nn || !sr || !so || !cad || append_fault(rs, fault, job->ids[o]) != FM_OK) {
                 r->status = "error";
-                r->error = dup_str("out of memory");
+                r->error = strdup("out of memory");
             } else {
                 rs->set_res[rs->nfaults] = rs->nres - 1;
                 rs->set_orig[rs->nfaults] = fm_tsurf_mesh(job->objs[o]);
@@ -1511,7 +1502,7 @@ static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t 
                  po.duplicates.tolerance,
                  po.duplicates.keep == FM_CONNECT_KEEP_LARGER ? "larger" : "smaller");
         r->status = "dropped";
-        r->error = dup_str(msg);
+        r->error = strdup(msg);
     }
     free(res);
     return plan;
@@ -1606,7 +1597,7 @@ static int settle_crs(const remesh_cli *cli, const file_job *jobs, size_t njobs,
         fprintf(stderr, "faultmesh: %s; give --crs, or --eqsim-coords utm\n", err.message);
         return -1;
     }
-    rs->crs = dup_str(crs);
+    rs->crs = strdup(crs);
     return rs->crs ? 0 : -1;
 }
 

@@ -100,10 +100,8 @@ int sim_cli_load(sim_cli *sc, const char *crs, char *const *paths, size_t npaths
         return -1;
     }
     if (sc->metadata_path) {
-        size_t n = strlen(sc->metadata_path) + 1;
-        if (!(sc->metadata_found = malloc(n)))
+        if (!(sc->metadata_found = strdup(sc->metadata_path)))
             return -1;
-        memcpy(sc->metadata_found, sc->metadata_path, n);
     } else {
         for (size_t i = 0; i < npaths && !sc->metadata_found; i++)
             sc->metadata_found = metadata_beside(paths[i]);

@@ -234,15 +234,6 @@ void fm_metadata_destroy(fm_metadata *m)
 
 size_t fm_metadata_count(const fm_metadata *m) { return m ? m->n : 0; }
 
-static char *dup_s(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d)
-        memcpy(d, s, n);
-    return d;
-}
-
 fm_status fm_metadata_read(const char *path, fm_metadata **out, fm_error *err)
 {
     *out = NULL;
@@ -301,7 +292,7 @@ fm_status fm_metadata_read(const char *path, fm_metadata **out, fm_error *err)
             }
             m->row = nr;
         }
-        md_row row = {dup_s(name), dup_s(trim(c.field[sense_col]))};
+        md_row row = {strdup(name), strdup(trim(c.field[sense_col]))};
         if (!row.name || !row.sense) {
             free(row.name);
             free(row.sense);
@@ -479,7 +470,7 @@ fm_status fm_slip_table_read(const char *path, fm_slip_table **out, fm_error *er
             }
             t->rule = nr;
         }
-        if (!(rule.pattern = dup_s(pat))) {
+        if (!(rule.pattern = strdup(pat))) {
             st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
             break;
         }

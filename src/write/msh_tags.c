@@ -17,15 +17,6 @@ const char *fm_msh_tags_name(fm_msh_tags conv)
     return NULL;
 }
 
-static char *dup_text(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d)
-        memcpy(d, s, n);
-    return d;
-}
-
 static int is_label_char(unsigned char c)
 {
     return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
@@ -70,9 +61,9 @@ fm_status fm_msh_tags_make(fm_msh_tags conv, const char *const *fault_names, siz
         tags[i] = conv == FM_MSH_TAGS_TANDEM    ? 3
                   : conv == FM_MSH_TAGS_SEISSOL ? 103
                                                 : (int32_t)(i + 1);
-        out[i] = fixed ? dup_text(fixed)
+        out[i] = fixed ? strdup(fixed)
                  : conv == FM_MSH_TAGS_PYLITH ? label_of(fault_names[i])
-                                              : dup_text(fault_names[i]);
+                                              : strdup(fault_names[i]);
         if (!out[i]) {
             fm_faultset_free_file_names(out, n);
             return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
