@@ -96,8 +96,6 @@ fm_mesh *cn_zone_clip(const cn_zone *z, double level);
 int cn_plane_side(const double *a, const double *b, const double *c, const double *p);
 int cn_edge_crosses_triangle(const double *p, const double *q, int64_t ip, int64_t iq,
                              const double *const t[3], const int64_t it[3]);
-/* Any intersection between two triangles (no perturbation needed: a touch counts). */
-int cn_triangles_intersect(const double *const a[3], const double *const b[3]);
 
 /* Calls fn(user, k) once for every k in [0, n), on nthreads threads (the
  * caller's among them), in no fixed order: fn stores its results by k. */

@@ -234,27 +234,3 @@ int cn_edge_crosses_triangle(const double *p, const double *q, int64_t ip, int64
     return 1;
 }
 
-static int edge_hits(const double *p, const double *q, const double *const t[3])
-{
-    int sp = fm_orient3d(t[0], t[1], t[2], p), sq = fm_orient3d(t[0], t[1], t[2], q);
-    if (sp * sq > 0 || (sp == 0 && sq == 0))
-        return 0;
-    int pos = 0, neg = 0;
-    for (int k = 0; k < 3; k++) {
-        int s = fm_orient3d(p, q, t[k], t[(k + 1) % 3]);
-        pos |= s > 0;
-        neg |= s < 0;
-    }
-    return !(pos && neg);
-}
-
-int cn_triangles_intersect(const double *const a[3], const double *const b[3])
-{
-    for (int k = 0; k < 3; k++) {
-        if (edge_hits(a[k], a[(k + 1) % 3], b))
-            return 1;
-        if (edge_hits(b[k], b[(k + 1) % 3], a))
-            return 1;
-    }
-    return 0;
-}
