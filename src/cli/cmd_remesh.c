@@ -377,7 +377,7 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
             if ((*ids)[v] >= 0)
                 memcpy(X + 3 * v, P + 3 * (*ids)[v], 3 * sizeof *X);
         size_t ne;
-        fm_keyed *edge = fm_remesh_shared_edges(*fault, *ids, &ne);
+        fm_keyed *edge = fm_remesh_shared_edges(*fault, *ids, -1, &ne);
         if (!edge || curve_pieces(plan, f, fm_model_nsheets(model), edge, ne, r))
             st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
         free(edge);
@@ -843,34 +843,22 @@ static void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
 /* The pieces of plan curves that fault tag of the set still holds. */
 static int set_curve_pieces(const run_state *rs, int32_t tag, fault_result *r)
 {
-    size_t f = 0, nv = fm_mesh_nvertices(rs->set), nt = fm_mesh_ntriangles(rs->set);
+    size_t f = 0, nv = fm_mesh_nvertices(rs->set);
     while (f < rs->nplan_faults && &rs->res[rs->plan_res[f]] != r)
         f++;
     if (f == rs->nplan_faults || !rs->node_vertex)
         return 0;
     int64_t *node = malloc((nv + 1) * sizeof *node);
-    fm_keyed *edge = malloc((3 * nt + 1) * sizeof *edge);
-    if (!node || !edge) {
-        free(node);
-        free(edge);
+    if (!node)
         return -1;
-    }
     for (size_t v = 0; v < nv; v++)
         node[v] = -1;
     for (size_t k = 0; k < fm_connect_plan_nnodes(rs->plan); k++)
         if (rs->node_vertex[k] >= 0)
             node[rs->node_vertex[k]] = (int64_t)k;
-    const int32_t *T = fm_mesh_triangles(rs->set), *tags = fm_mesh_tags(rs->set);
-    size_t ne = 0;
-    for (size_t t = 0; t < nt; t++)
-        for (int k = 0; tags[t] == tag && k < 3; k++) {
-            int64_t a = node[T[3 * t + k]], b = node[T[3 * t + (k + 1) % 3]];
-            if (a >= 0 && b >= 0) {
-                edge[ne] = (fm_keyed){fm_edge_key((uint64_t)a, (uint64_t)b), ne};
-                ne++;
-            }
-        }
-    int rc = fm_sort_keyed(edge, ne) ? -1 : curve_pieces(rs->plan, f, r->sheets, edge, ne, r);
+    size_t ne;
+    fm_keyed *edge = fm_remesh_shared_edges(rs->set, node, tag, &ne);
+    int rc = edge ? curve_pieces(rs->plan, f, r->sheets, edge, ne, r) : -1;
     free(node);
     free(edge);
     return rc;
@@ -1250,34 +1238,14 @@ static fm_status write_report(const remesh_cli *cli, const run_state *rs, const 
     return fm_atomic_commit(af, err);
 }
 
-/* Every edge of the set's triangles with the fault of its triangle
- * (key: edge, index: fault), sorted; NULL when out of memory. */
-static fm_keyed *set_edges(const fm_mesh *set, size_t *n)
-{
-    size_t nt = fm_mesh_ntriangles(set);
-    const int32_t *tri = fm_mesh_triangles(set), *tag = fm_mesh_tags(set);
-    fm_keyed *e = malloc((nt ? 3 * nt : 1) * sizeof *e);
-    if (!e)
-        return NULL;
-    for (size_t t = 0; t < nt; t++)
-        for (int k = 0; k < 3; k++)
-            e[3 * t + (size_t)k] = (fm_keyed){
-                fm_edge_key((uint64_t)tri[3 * t + (size_t)k], (uint64_t)tri[3 * t + (size_t)(k + 1) % 3]),
-                (size_t)tag[t]};
-    if (fm_sort_keyed(e, 3 * nt)) {
-        free(e);
-        return NULL;
-    }
-    *n = 3 * nt;
-    return e;
-}
-
-/* Whether edge p-q is an edge of a triangle of fault f. */
-static int fault_has_edge(const fm_keyed *e, size_t n, int32_t p, int32_t q, size_t f)
+/* Whether edge p-q is an edge of a triangle of fault f (sides: the set's,
+ * fm_mesh_sides; tag: the set's triangle tags). */
+static int fault_has_edge(const fm_keyed *side, size_t n, const int32_t *tag, int32_t p,
+                          int32_t q, size_t f)
 {
     uint64_t key = fm_edge_key((uint64_t)p, (uint64_t)q);
-    for (size_t i = fm_keyed_lower_bound(e, n, key); i < n && e[i].key == key; i++)
-        if (e[i].index == f)
+    for (size_t i = fm_keyed_lower_bound(side, n, key); i < n && side[i].key == key; i++)
+        if ((size_t)tag[side[i].index] == f)
             return 1;
     return 0;
 }
@@ -1321,6 +1289,7 @@ static int junction_set(const run_state *rs, size_t i, const fm_keyed *edges, si
     size_t fa = ra->set_index, fb = rb->set_index;
     if (fa == SIZE_MAX || fb == SIZE_MAX)
         return 0;
+    const int32_t *tag = fm_mesh_tags(rs->set);
     const fm_connect_shared *c[2] = {NULL, NULL};
     for (int side = 0; side < 2; side++) {
         const fm_connect_shared *sh = NULL;
@@ -1340,8 +1309,8 @@ static int junction_set(const run_state *rs, size_t i, const fm_keyed *edges, si
         for (size_t k = 0; c[side] && k + 1 < c[side]->n; k++) {
             int32_t p = rs->node_vertex[c[side]->node[k]];
             int32_t q = rs->node_vertex[c[side]->node[k + 1]];
-            if (p < 0 || q < 0 || !fault_has_edge(edges, nedges, p, q, fa) ||
-                !fault_has_edge(edges, nedges, p, q, fb))
+            if (p < 0 || q < 0 || !fault_has_edge(edges, nedges, tag, p, q, fa) ||
+                !fault_has_edge(edges, nedges, tag, p, q, fb))
                 continue;
             v[nv++] = p;
             v[nv++] = q;
@@ -1369,7 +1338,7 @@ static int junction_sets_make(const run_state *rs, junction_sets *js)
     js->set = calloc(nj ? nj : 1, sizeof *js->set);
     js->names = calloc(nj ? nj : 1, sizeof *js->names);
     js->vertices = calloc(nj ? nj : 1, sizeof *js->vertices);
-    fm_keyed *edges = set_edges(rs->set, &nedges);
+    fm_keyed *edges = fm_mesh_sides(rs->set, &nedges);
     int rc = js->set && js->names && js->vertices && edges ? 0 : -1;
     for (size_t i = 0; rc == 0 && i < nj; i++)
         rc = junction_set(rs, i, edges, nedges, js);

@@ -12,6 +12,7 @@
 #include <stdint.h>
 
 #include "fm_core.h"
+#include "fm_sort.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -79,6 +80,12 @@ double fm_triangle_min_angle(const double *a, const double *b, const double *c);
 double fm_angle_at(const double *p, const double *q, const double *r);
 /* Distance from p to the segment a-b (a point when a == b). */
 double fm_segment_distance3(const double *p, const double *a, const double *b);
+
+/* Every side of every triangle of m, 3 per triangle, keyed fm_edge_key of
+ * its two vertices, index the triangle, sorted by key (stably: a side's
+ * triangles in triangle order); *n of them (malloc'ed). NULL when out of
+ * memory. */
+fm_keyed *fm_mesh_sides(const fm_mesh *m, size_t *n);
 /* Sine of the smallest angle: the same order as fm_triangle_min_angle (the
  * smallest angle is at most 60 degrees) without its atan2, for code that
  * only compares triangles (mesh optimisation). 0 for a degenerate one. */

@@ -141,3 +141,23 @@ void fm_mesh_truncate(fm_mesh *m, size_t nv, size_t nt)
     if (nt < m->nt)
         m->nt = nt;
 }
+
+fm_keyed *fm_mesh_sides(const fm_mesh *m, size_t *n)
+{
+    size_t nt = fm_mesh_ntriangles(m);
+    const int32_t *T = fm_mesh_triangles(m);
+    fm_keyed *side = malloc((3 * nt + 1) * sizeof *side);
+    *n = 0;
+    if (!side)
+        return NULL;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++)
+            side[3 * t + (size_t)k] = (fm_keyed){
+                fm_edge_key((uint32_t)T[3 * t + (size_t)k], (uint32_t)T[3 * t + (size_t)(k + 1) % 3]), t};
+    if (fm_sort_keyed(side, 3 * nt)) {
+        free(side);
+        return NULL;
+    }
+    *n = 3 * nt;
+    return side;
+}

@@ -223,26 +223,17 @@ static double *fault_areas(const fm_mesh *m, size_t *nf)
  * (it holds a piece of a curve the two share). NULL when out of memory. */
 static unsigned char *on_junction(const fm_mesh *m)
 {
-    size_t nt = fm_mesh_ntriangles(m);
-    const int32_t *T = fm_mesh_triangles(m), *tag = fm_mesh_tags(m);
+    size_t nt = fm_mesh_ntriangles(m), ns;
+    const int32_t *tag = fm_mesh_tags(m);
     unsigned char *on = calloc(nt + 1, 1);
-    fm_keyed *side = malloc((3 * nt + 1) * sizeof *side);
-    if (!on || !side || !nt) {
-        free(side);
-        return on;
-    }
-    for (size_t t = 0; t < nt; t++)
-        for (int k = 0; k < 3; k++)
-            side[3 * t + k] =
-                (fm_keyed){fm_edge_key((uint32_t)T[3 * t + k], (uint32_t)T[3 * t + (k + 1) % 3]), t};
-    if (fm_sort_keyed(side, 3 * nt)) {
-        free(side);
+    fm_keyed *side = on ? fm_mesh_sides(m, &ns) : NULL;
+    if (!side) {
         free(on);
         return NULL;
     }
-    for (size_t s = 0, e; s < 3 * nt; s = e) {
+    for (size_t s = 0, e; s < ns; s = e) {
         int mixed = 0;
-        for (e = s + 1; e < 3 * nt && side[e].key == side[s].key; e++)
+        for (e = s + 1; e < ns && side[e].key == side[s].key; e++)
             mixed |= tag[side[e].index] != tag[side[s].index];
         for (size_t i = s; mixed && i < e; i++)
             on[side[i].index] = 1;

@@ -184,11 +184,12 @@ fm_status fm_remesh_boundary_of(const fm_mesh *m, const double *uv, const int64_
  * NULL, else one per sheet) receives each sheet's domain, as meshed (no
  * loops for a sheet left empty, or whose boundary fm_remesh_boundary_of
  * cannot trace: the mesh is kept); the caller frees each. */
-/* The edges of mesh m both of whose ends carry a shared node (ids: per
- * vertex the shared node id or -1, as fm_remesh_model_joined gives them),
- * keyed fm_edge_key(id a, id b) and sorted by key; *n of them (malloc'ed;
- * free it). NULL when out of memory. */
-fm_keyed *fm_remesh_shared_edges(const fm_mesh *m, const int64_t *ids, size_t *n);
+/* The edges of the triangles of mesh m tagged tag (every triangle when
+ * tag < 0) both of whose ends carry a shared node (ids: per vertex the
+ * shared node id or -1, as fm_remesh_model_joined gives them), keyed
+ * fm_edge_key(id a, id b) and sorted by key; *n of them (malloc'ed; free
+ * it). NULL when out of memory. */
+fm_keyed *fm_remesh_shared_edges(const fm_mesh *m, const int64_t *ids, int32_t tag, size_t *n);
 
 fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves *curves,
                                  const fm_remesh_options *opt, fm_mesh **out, int64_t **node_out,

@@ -49,16 +49,16 @@ static int has_key(const fm_keyed *k, size_t n, uint64_t key)
     return at < n && k[at].key == key;
 }
 
-fm_keyed *fm_remesh_shared_edges(const fm_mesh *m, const int64_t *ids, size_t *n)
+fm_keyed *fm_remesh_shared_edges(const fm_mesh *m, const int64_t *ids, int32_t tag, size_t *n)
 {
     *n = 0;
     size_t nt = fm_mesh_ntriangles(m);
-    const int32_t *T = fm_mesh_triangles(m);
+    const int32_t *T = fm_mesh_triangles(m), *tags = fm_mesh_tags(m);
     fm_keyed *edge = malloc((3 * nt + 1) * sizeof *edge);
     if (!edge)
         return NULL;
     for (size_t t = 0; t < nt; t++)
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < 3 && (tag < 0 || tags[t] == tag); k++) {
             int64_t a = ids[T[3 * t + k]], b = ids[T[3 * t + (k + 1) % 3]];
             if (a >= 0 && b >= 0)
                 edge[(*n)++] = (fm_keyed){fm_edge_key((uint64_t)a, (uint64_t)b), 0};
@@ -131,7 +131,7 @@ static int mark_absent(const fm_remesh_sheet_curves *sc, const int64_t *sid, con
         return 0;
     }
     size_t ne;
-    fm_keyed *edge = fm_remesh_shared_edges(sheet, sid, &ne);
+    fm_keyed *edge = fm_remesh_shared_edges(sheet, sid, -1, &ne);
     if (!edge)
         return -1;
     for (size_t k = 0; k < sc->n; k++) {
