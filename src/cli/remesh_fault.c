@@ -1,0 +1,448 @@
+/* `faultmesh remesh`, one fault: read, repaired and fitted; meshed with
+ * the shared curves the plan gives it; checked against the original. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fm_check.h"
+#include "fm_clock.h"
+#include "fm_closest.h"
+#include "fm_sort.h"
+#include "fm_tsurf.h"
+#include "remesh_cad.h"
+#include "remesh_run.h"
+
+static int push_curve(size_t **list, size_t *n, size_t curve)
+{
+    size_t *g = realloc(*list, (*n + 1) * sizeof *g);
+    if (!g)
+        return -1;
+    *list = g;
+    g[(*n)++] = curve;
+    return 0;
+}
+
+/* Which pieces of its plan curves fault f holds (an edge between two
+ * consecutive nodes of the curve), given the edges of its mesh between
+ * shared nodes (fm_remesh_shared_edges): a sheet keeps only part of a
+ * curve that another of its curves cuts across. -1: out of memory. */
+int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets,
+                        const fm_keyed *edge, size_t ne, fault_result *r)
+{
+    free(r->curve_pieces);
+    r->curve_pieces = NULL;
+    r->npieces = 0;
+    size_t cap = 0;
+    int rc = 0;
+    for (size_t s = 0; rc == 0 && s < nsheets; s++) {
+        const fm_connect_shared *sh;
+        size_t n = fm_connect_plan_sheet(plan, f, s, &sh);
+        for (size_t c = 0; rc == 0 && c < n; c++)
+            for (size_t i = 0; i + 1 < sh[c].n; i++) {
+                uint64_t key = fm_edge_key((uint64_t)sh[c].node[i], (uint64_t)sh[c].node[i + 1]);
+                size_t at = fm_keyed_lower_bound(edge, ne, key);
+                if (at == ne || edge[at].key != key)
+                    continue;
+                if (r->npieces == cap) {
+                    cap = cap ? 2 * cap : 64;
+                    fm_keyed *g = realloc(r->curve_pieces, cap * sizeof *g);
+                    if (!g) {
+                        rc = -1;
+                        break;
+                    }
+                    r->curve_pieces = g;
+                }
+                /* by its nodes, not its place in the sheet's list: the
+                 * sheets of two faults may hold different stretches */
+                r->curve_pieces[r->npieces] = (fm_keyed){key, sh[c].curve};
+                r->npieces++;
+            }
+    }
+    /* by key, for share_piece's search */
+    if (rc == 0 && fm_sort_keyed(r->curve_pieces, r->npieces))
+        rc = -1;
+    return rc;
+}
+
+/* Whether faults a and b both hold some piece of plan curve c. */
+int share_piece(const fault_result *a, const fault_result *b, size_t c)
+{
+    for (size_t i = 0; i < a->npieces; i++) {
+        if (a->curve_pieces[i].index != c)
+            continue;
+        uint64_t key = a->curve_pieces[i].key;
+        for (size_t at = fm_keyed_lower_bound(b->curve_pieces, b->npieces, key);
+             at < b->npieces && b->curve_pieces[at].key == key; at++)
+            if (b->curve_pieces[at].index == c)
+                return 1;
+    }
+    return 0;
+}
+
+/* Area of a triangle's part with z <= level. */
+static double area_below(const double *a, const double *b, const double *c, double level)
+{
+    const double *p[3] = {a, b, c};
+    double poly[4][3];
+    int n = 0;
+    for (int i = 0; i < 3; i++) {
+        const double *u = p[i], *v = p[(i + 1) % 3];
+        double du = u[2] - level, dv = v[2] - level;
+        if (du <= 0)
+            memcpy(poly[n++], u, sizeof poly[0]);
+        if ((du < 0 && dv > 0) || (du > 0 && dv < 0)) {
+            double f = du / (du - dv);
+            for (int k = 0; k < 3; k++)
+                poly[n][k] = u[k] + f * (v[k] - u[k]);
+            n++;
+        }
+    }
+    double area = 0;
+    for (int i = 1; i + 1 < n; i++)
+        area += fm_triangle_area(poly[0], poly[i], poly[i + 1]);
+    return area;
+}
+
+static double fitted_area(const fm_model *m, int cut, double level)
+{
+    double area = 0;
+    for (size_t i = 0; i < fm_model_nsheets(m); i++) {
+        const fm_mesh *s = fm_model_samples(m, i);
+        if (!s)
+            continue;
+        const double *X = fm_mesh_vertices(s);
+        const int32_t *T = fm_mesh_triangles(s);
+        for (size_t t = 0; t < fm_mesh_ntriangles(s); t++) {
+            const double *a = X + 3 * T[3 * t], *b = X + 3 * T[3 * t + 1], *c = X + 3 * T[3 * t + 2];
+            area += cut ? area_below(a, b, c, level) : fm_triangle_area(a, b, c);
+        }
+    }
+    return area;
+}
+
+/* Repairs and fits one fault (one TSurf object). */
+static fm_status fit_object(const remesh_cli *cli, const char *path, const fm_mesh *orig,
+                            fault_result *r, fm_model **model, fm_error *err)
+{
+    fm_surface *surf = NULL;
+    double t0 = fm_clock_seconds();
+    fm_status st = fm_repair(orig, &cli->repair, &surf, err);
+    if (st == FM_OK)
+        st = fm_model_build(path, surf, &cli->model, model, err);
+    fm_surface_destroy(surf);
+    r->t_fit = fm_clock_seconds() - t0;
+    return st;
+}
+
+/* The shared curves the plan gives each sheet of fault f, as the mesher
+ * takes them; *store (free it) holds them. NULL when there are none. */
+static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f,
+                                           const fm_model *m, const unsigned char *excluded,
+                                           fm_remesh_curve **store, unsigned char **dropped,
+                                           size_t **curve_of, size_t *ntotal)
+{
+    *store = NULL;
+    *dropped = NULL;
+    *curve_of = NULL;
+    *ntotal = 0;
+    if (!plan)
+        return NULL;
+    size_t ns = fm_model_nsheets(m), total = 0;
+    for (size_t i = 0; i < ns; i++) {
+        const fm_connect_shared *sh;
+        size_t n = fm_connect_plan_sheet(plan, f, i, &sh);
+        for (size_t c = 0; c < n; c++)
+            total += !(excluded && excluded[sh[c].curve]);
+    }
+    if (total == 0)
+        return NULL;
+    fm_remesh_sheet_curves *per = calloc(ns, sizeof *per);
+    fm_remesh_curve *cv = malloc(total * sizeof *cv);
+    *dropped = calloc(total, 1);
+    *curve_of = malloc(total * sizeof **curve_of);
+    if (!per || !cv || !*dropped || !*curve_of) {
+        free(per);
+        free(cv);
+        free(*dropped);
+        free(*curve_of);
+        *dropped = NULL;
+        *curve_of = NULL;
+        return NULL;
+    }
+    *ntotal = total;
+    size_t k = 0;
+    for (size_t i = 0; i < ns; i++) {
+        const fm_connect_shared *sh;
+        size_t n = fm_connect_plan_sheet(plan, f, i, &sh);
+        per[i].curves = cv + k;
+        per[i].dropped = *dropped + k;
+        for (size_t c = 0; c < n; c++) {
+            if (excluded && excluded[sh[c].curve])
+                continue;
+            per[i].n++;
+            (*curve_of)[k] = sh[c].curve;
+            cv[k].uv = sh[c].uv;
+            cv[k].n = sh[c].n;
+            cv[k].node = sh[c].node;
+            cv[k].end = sh[c].end;
+            k++;
+        }
+    }
+    *store = cv;
+    return per;
+}
+
+/* Meshes a fitted fault into fault (tags = sheet; ids: shared node per
+ * vertex) and checks it against the original. */
+static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_mesh *orig,
+                             const fm_model *model, const fm_connect_plan *plan,
+                             const unsigned char *excluded, size_t f, fault_result *r,
+                             fm_mesh **fault, int64_t **ids, fm_error *err)
+{
+    double t1 = fm_clock_seconds();
+    fm_remesh_options mo = cli->mesh;
+    mo.name = path;
+    fm_remesh_curve *store = NULL;
+    unsigned char *dropped = NULL;
+    size_t *curve_of = NULL, ntotal = 0;
+    fm_remesh_sheet_curves *per =
+        plan_curves(plan, f, model, excluded, &store, &dropped, &curve_of, &ntotal);
+    r->sheets = fm_model_nsheets(model);
+    r->join_failed = per ? calloc(r->sheets, 1) : NULL;
+    fm_error *jerr = per ? calloc(r->sheets, sizeof *jerr) : NULL;
+    fm_remesh_boundary *bounds = calloc(r->sheets + 1, sizeof *bounds);
+    fm_status st = ((per && (!r->join_failed || !jerr)) || !bounds)
+                       ? fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory")
+                       : fm_remesh_model_joined(model, per, &mo, fault, ids, r->join_failed, jerr,
+                                                &r->ms, bounds, err);
+    if (st == FM_OK) {
+        /* which sheets have triangles (tag = sheet) */
+        unsigned char *meshed = calloc(r->sheets + 1, 1);
+        const int32_t *tag = fm_mesh_tags(*fault);
+        for (size_t t = 0; meshed && t < fm_mesh_ntriangles(*fault); t++)
+            if (tag[t] >= 0 && (size_t)tag[t] < r->sheets)
+                meshed[tag[t]] = 1;
+        size_t skipped = 0;
+        st = meshed ? fm_cli_cad_faces(model, bounds, meshed, r->name,
+                                       cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level, &r->cad,
+                                       &r->ncad, &skipped, err)
+                    : fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        free(meshed);
+    }
+    for (size_t i = 0; bounds && i < r->sheets; i++)
+        fm_remesh_boundary_free(&bounds[i]);
+    free(bounds);
+    /* the first reason a sheet's curves did not fit, for the report */
+    for (size_t i = 0; jerr && r->join_failed && i < r->sheets && !r->join_error; i++)
+        if (r->join_failed[i])
+            r->join_error = strdup(jerr[i].message);
+    free(jerr);
+    /* the plan curves this fault could not take, for the junction table
+     * (kept over meshings: a curve dropped once is excluded after), those
+     * it took, which its partners must take too, and those of them it was
+     * to end at but runs on past */
+    free(r->used_curves);
+    r->used_curves = ntotal ? malloc(ntotal * sizeof *r->used_curves) : NULL;
+    r->nused = 0;
+    free(r->through_curves);
+    r->through_curves = NULL;
+    r->nthrough = 0;
+    for (size_t k = 0; k < ntotal && st == FM_OK; k++) {
+        if (dropped[k] == 1) {
+            if (push_curve(&r->dropped_curves, &r->ndropped, curve_of[k]))
+                st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+            continue;
+        }
+        if (dropped[k] == 2 && push_curve(&r->through_curves, &r->nthrough, curve_of[k]))
+            st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        if (r->used_curves)
+            r->used_curves[r->nused++] = curve_of[k];
+    }
+    free(dropped);
+    free(curve_of);
+    free(per);
+    free(store);
+    r->fitted_area = fitted_area(model, cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level);
+    /* Shared nodes take the plan's position (on both surfaces), as in the
+     * fault set, so that the check measures what is written. */
+    if (st == FM_OK && plan && *ids) {
+        double *X = fm_mesh_vertices_mut(*fault);
+        const double *P = fm_connect_plan_nodes(plan);
+        for (size_t v = 0; v < fm_mesh_nvertices(*fault); v++)
+            if ((*ids)[v] >= 0)
+                memcpy(X + 3 * v, P + 3 * (*ids)[v], 3 * sizeof *X);
+        size_t ne;
+        fm_keyed *edge = fm_remesh_shared_edges(*fault, *ids, -1, &ne);
+        if (!edge || curve_pieces(plan, f, fm_model_nsheets(model), edge, ne, r))
+            st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        free(edge);
+    }
+    double t2 = fm_clock_seconds();
+    r->t_mesh = t2 - t1;
+    if (st == FM_OK && fm_mesh_ntriangles(*fault) > 0) {
+        fm_closest_tree *tree = fm_closest_tree_create(orig, err);
+        st = tree ? fm_check_quality(*fault, -1, cli->mesh.size, &r->q) : FM_ERR_NOMEM;
+        if (st == FM_OK)
+            st = fm_check_fidelity(*fault, -1, orig, tree, &r->fid);
+        if (st != FM_OK && tree)
+            fm_error_set(err, st, path, 0, "out of memory");
+        fm_closest_tree_destroy(tree);
+    }
+    r->t_check = fm_clock_seconds() - t2;
+    return st;
+}
+
+void fit_file(const remesh_cli *cli, file_job *job)
+{
+    fm_error err;
+    fm_error_clear(&err);
+    const char *path = job->path;
+    if (fm_tsurf_read_file(path, &job->objs, &job->nobj, &err) != FM_OK) {
+        job->res = calloc(1, sizeof *job->res);
+        job->mesh = calloc(1, sizeof *job->mesh);
+        job->objs = NULL;
+        job->nobj = 0;
+        if (job->res) {
+            job->n = 1;
+            job->res->file = strdup(path);
+            job->res->status = "error";
+            job->res->error = strdup(err.message);
+        }
+        return;
+    }
+    size_t nobj = job->nobj;
+    job->res = calloc(nobj ? nobj : 1, sizeof *job->res);
+    job->mesh = calloc(nobj ? nobj : 1, sizeof *job->mesh);
+    job->model = calloc(nobj ? nobj : 1, sizeof *job->model);
+    job->ids = calloc(nobj ? nobj : 1, sizeof *job->ids);
+    if (!job->res || !job->mesh || !job->model || !job->ids) {
+        free(job->res);
+        free(job->mesh);
+        free(job->model);
+        free(job->ids);
+        job->res = NULL;
+        job->mesh = NULL;
+        job->model = NULL;
+        job->ids = NULL;
+        return;
+    }
+    job->n = nobj;
+    for (size_t o = 0; o < nobj; o++) {
+        fault_result *r = &job->res[o];
+        const char *name = fm_tsurf_name(job->objs[o]);
+        r->file = strdup(path);
+        r->name = strdup(name[0] ? name : path);
+        fm_error_clear(&err);
+        if (fit_object(cli, path, fm_tsurf_mesh(job->objs[o]), r, &job->model[o], &err) != FM_OK) {
+            r->status = "error";
+            r->error = strdup(err.message);
+        }
+    }
+}
+
+/* A fault's meshing undone before it is meshed again (its dropped
+ * curves stay: the report names the fault that could not take them). */
+static void reset_result(fault_result *r)
+{
+    free(r->error);
+    free(r->join_failed);
+    free(r->join_error);
+    for (size_t i = 0; i < r->ncad; i++)
+        fm_cad_face_destroy(r->cad[i]);
+    free(r->cad);
+    r->cad = NULL;
+    r->ncad = 0;
+    r->error = r->join_error = NULL;
+    r->join_failed = NULL;
+    r->status = NULL;
+    memset(&r->q, 0, sizeof r->q);
+    memset(&r->fid, 0, sizeof r->fid);
+    memset(&r->ms, 0, sizeof r->ms);
+}
+
+/* Meshes the job's faults; again: only those marked in job->redo, with
+ * the curves in excluded left out. Models stay for another round
+ * (release_job frees them). */
+void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan,
+                      const unsigned char *excluded, file_job *job, int again)
+{
+    if (!job->res || !job->model)
+        return;
+    fm_error err;
+    for (size_t o = 0; o < job->n; o++) {
+        fault_result *r = &job->res[o];
+        fm_model *model = job->model[o];
+        if (!again && model && r->status) {
+            /* given up before meshing (a near-duplicate): its model goes here */
+            fm_model_destroy(model);
+            job->model[o] = NULL;
+        }
+        if (!model || (again ? !(job->redo && job->redo[o]) : r->status != NULL))
+            continue;
+        double t_mesh = r->t_mesh, t_check = r->t_check;
+        if (again) {
+            reset_result(r);
+            fm_mesh_destroy(job->mesh[o]);
+            job->mesh[o] = NULL;
+            free(job->ids[o]);
+            job->ids[o] = NULL;
+        }
+        fm_mesh *fault = NULL;
+        fm_error_clear(&err);
+        fm_status st = mesh_object(cli, job->path, fm_tsurf_mesh(job->objs[o]), model, plan,
+                                   excluded, job->first + o, r, &fault, &job->ids[o], &err);
+        /* the time of every meshing counts */
+        r->t_mesh += t_mesh;
+        r->t_check += t_check;
+        if (st == FM_OK && fm_mesh_ntriangles(fault) == 0) {
+            r->status = "empty";
+            r->error = strdup("nothing of the fault lies below sea level");
+            fm_mesh_destroy(fault);
+        } else if (st == FM_OK) {
+            r->status = "ok";
+            job->mesh[o] = fault;
+        } else {
+            r->status = "error";
+            r->error = strdup(err.message);
+            fm_mesh_destroy(fault);
+        }
+    }
+}
+
+void release_job(file_job *job)
+{
+    for (size_t o = 0; job->model && o < job->n; o++)
+        fm_model_destroy(job->model[o]);
+    free(job->model);
+    job->model = NULL;
+    fm_tsurf_free_all(job->objs, job->nobj);
+    job->objs = NULL;
+    job->nobj = 0;
+    free(job->redo);
+    job->redo = NULL;
+}
+
+/* Frees a job given up after fitting (the run stops before meshing). */
+void abandon_job(file_job *job)
+{
+    release_job(job);
+    for (size_t o = 0; job->res && o < job->n; o++) {
+        fault_result *r = &job->res[o];
+        free(r->file);
+        free(r->name);
+        free(r->error);
+        free(r->join_failed);
+        free(r->join_error);
+        free(r->dropped_curves);
+        free(r->through_curves);
+        free(r->used_curves);
+        free(r->curve_pieces);
+        fm_mesh_destroy(job->mesh ? job->mesh[o] : NULL);
+        free(job->ids ? job->ids[o] : NULL);
+    }
+    free(job->res);
+    free(job->mesh);
+    free(job->model);
+    free(job->ids);
+}

@@ -1,0 +1,183 @@
+/* `faultmesh remesh` and `faultmesh demo`: their options. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "remesh_run.h"
+
+void remesh_usage(FILE *fp)
+{
+    fprintf(fp,
+            "usage: faultmesh remesh [options] -o DIR FILE|DIR...\n"
+            "Meshes every fault at edge length H with well-shaped triangles on its\n"
+            "fitted surface, cut at sea level by default, and writes DIR/mesh.vtu,\n"
+            "DIR/mesh.msh, DIR/mesh.stl, DIR/mesh.obj, DIR/mesh.exo (Exodus II),\n"
+            "DIR/NAME.ts per fault and DIR/report.json.\n\n"
+            "options:\n"
+            "  -o, --output DIR      output folder (created if missing)\n"
+            "  --size H              target edge length in metres (default 1000)\n"
+            "  --top cut|keep        cut at sea level (z = 0, default) or keep the fitted top\n"
+            "  --top extend D        extend tops less than D metres below sea level up to it,\n"
+            "                        then cut\n"
+            "  --msh-version 4.1|2.2 Gmsh MSH format version (default 4.1; 2.2 with\n"
+            "                        --msh-tags tandem)\n"
+            "  --msh-tags default|tandem|seissol|pylith\n"
+            "                        MSH physical tags and names as that code expects\n"
+            "                        (default: one group per fault, named after it)\n"
+            "  --crs STRING          coordinate reference system recorded in the outputs\n"
+            "                        (default: the one the input TSurf files name, e.g.\n"
+            "                        NAME EPSG:26711 in their coordinate-system block,\n"
+            "                        else EPSG:26711, the CFM's UTM 11N NAD27)\n"
+            "  -j, --jobs N          threads (default: all cores); the output is the same\n"
+            "                        for any N\n"
+            "  --no-connect          mesh every fault on its own (default: faults that meet\n"
+            "                        share their nodes along the intersection)\n"
+            "  --keep-crossings      when connecting, keep the triangles of two faults that\n"
+            "                        still run through each other away from a shared curve\n"
+            "                        (default: the one losing the smaller share of its\n"
+            "                        area gives way there, reported)\n"
+            "  --join D              join faults whose surfaces come within D metres\n"
+            "                        (default 1000)\n"
+            "  --keep-duplicate smaller|larger\n"
+            "                        of two faults that nearly duplicate each other (half\n"
+            "                        the area of one within 50 m of the other, as rupture\n"
+            "                        composites over their section faults), keep the\n"
+            "                        smaller (default: the sections) or the larger\n"
+            "  --quiet               no per-fault lines\n"
+            SIM_CLI_HELP);
+    fputs(fm_cli_repair_help, fp);
+}
+
+int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
+{
+    const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    int sc = sim_cli_option(argc, argv, i, &cli->sim);
+    if (sc != 0)
+        return sc;
+    if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+        if (!val)
+            return -1;
+        cli->dir = val;
+    } else if (!strcmp(a, "--size")) {
+        if (fm_parse_double(a, val, &cli->mesh.size) || !(cli->mesh.size > 0))
+            return -1;
+    } else if (!strcmp(a, "--top")) {
+        if (val && !strcmp(val, "cut")) {
+            cli->mesh.top = FM_TOP_CUT;
+        } else if (val && !strcmp(val, "keep")) {
+            cli->mesh.top = FM_TOP_KEEP;
+        } else if (val && !strcmp(val, "extend")) {
+            cli->mesh.top = FM_TOP_EXTEND;
+            (*i)++;
+            const char *d = *i + 1 < argc ? argv[*i + 1] : NULL;
+            if (fm_parse_double("--top extend", d, &cli->mesh.top_extend))
+                return -1;
+        } else {
+            fprintf(stderr, "faultmesh: --top takes cut, keep or extend D\n");
+            return -1;
+        }
+    } else if (!strcmp(a, "--msh-version")) {
+        if (val && !strcmp(val, "4.1"))
+            cli->msh = FM_MSH_41;
+        else if (val && !strcmp(val, "2.2"))
+            cli->msh = FM_MSH_22;
+        else {
+            fprintf(stderr, "faultmesh: --msh-version takes 4.1 or 2.2\n");
+            return -1;
+        }
+        cli->msh_version_given = 1;
+    } else if (!strcmp(a, "--msh-tags")) {
+        int found = 0;
+        for (int c = FM_MSH_TAGS_DEFAULT; c <= FM_MSH_TAGS_PYLITH && !found; c++)
+            if (val && !strcmp(val, fm_msh_tags_name((fm_msh_tags)c))) {
+                cli->msh_tags = (fm_msh_tags)c;
+                found = 1;
+            }
+        if (!found) {
+            fprintf(stderr, "faultmesh: --msh-tags takes default, tandem, seissol or pylith\n");
+            return -1;
+        }
+    } else if (!strcmp(a, "--crs")) {
+        if (!val)
+            return -1;
+        cli->crs = val;
+    } else if (!strcmp(a, "--jobs") || !strcmp(a, "-j")) {
+        size_t n;
+        if (fm_parse_size(a, val, &n) || n < 1 || n > 1024)
+            return -1;
+        cli->jobs = (int)n;
+    } else if (!strcmp(a, "--quiet")) {
+        cli->quiet = 1;
+        return 1;
+    } else if (!strcmp(a, "--no-connect")) {
+        cli->connect = 0;
+        return 1;
+    } else if (!strcmp(a, "--keep-crossings")) {
+        cli->carve = 0;
+        return 1;
+    } else if (!strcmp(a, "--join")) {
+        if (fm_parse_double(a, val, &cli->join) || !(cli->join > 0))
+            return -1;
+    } else if (!strcmp(a, "--keep-duplicate")) {
+        if (!val) {
+            return -1;
+        } else if (!strcmp(val, "smaller")) {
+            cli->keep = FM_CONNECT_KEEP_SMALLER;
+        } else if (!strcmp(val, "larger")) {
+            cli->keep = FM_CONNECT_KEEP_LARGER;
+        } else {
+            fprintf(stderr, "faultmesh remesh: --keep-duplicate takes smaller or larger, not '%s'\n",
+                    val);
+            return -1;
+        }
+    } else {
+        return fm_cli_repair_option(argc, argv, i, &cli->repair);
+    }
+    (*i)++;
+    return 1;
+}
+
+/* Tandem reads MSH 2.2 only; -1 (after saying why) when asked for 4.1. */
+int settle_msh(remesh_cli *cli)
+{
+    if (cli->msh_tags != FM_MSH_TAGS_TANDEM)
+        return 0;
+    if (cli->msh_version_given && cli->msh != FM_MSH_22) {
+        fprintf(stderr, "faultmesh: --msh-tags tandem needs MSH 2.2 (Tandem reads no other)\n");
+        return -1;
+    }
+    cli->msh = FM_MSH_22;
+    return 0;
+}
+
+/* `--top extend D` grows tops over the fitted surface's extension, which
+ * must reach that far up dip: D of depth is D / sin(dip) along a fault,
+ * so the margin grows with D (the default 2 km is for closing gaps). */
+void extend_fit(remesh_cli *cli)
+{
+    if (cli->mesh.top == FM_TOP_EXTEND)
+        cli->model.fit.extend = fmax(cli->model.fit.extend, 1.5 * cli->mesh.top_extend + cli->mesh.size);
+    /* A gap of D to a fault met at an angle is longer than D over the
+     * ending fault's own surface (D / sin of the angle): twice D covers
+     * angles down to 30 degrees (the default 2 km is that for D = 1 km). */
+    if (cli->connect)
+        cli->model.fit.extend = fmax(cli->model.fit.extend, 2 * cli->join);
+}
+
+void cli_defaults(remesh_cli *cli)
+{
+    memset(cli, 0, sizeof *cli);
+    fm_repair_options_default(&cli->repair);
+    fm_remesh_model_options_default(&cli->model);
+    fm_remesh_options_default(&cli->mesh);
+    cli->msh = FM_MSH_41;
+    cli->crs = NULL;
+    cli->connect = 1;
+    cli->carve = 1;
+    cli->join = 1000;
+    cli->keep = FM_CONNECT_KEEP_SMALLER;
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    cli->jobs = ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;
+}

@@ -1,0 +1,353 @@
+/* `faultmesh remesh`: what each fault and junction came to, on stdout
+ * and in report.json. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fm_atomic.h"
+#include "fm_json.h"
+#include "remesh_run.h"
+
+/* What a user should look at before trusting a meshed fault: the figures
+ * of the check that the mesh issue bounds, when this fault breaks them.
+ * Writes up to two messages into w (each up to 160 bytes); returns the
+ * count. Nodes of an extended top lie off the original by design. */
+static int fault_warnings(const fault_result *r, char w[2][160])
+{
+    int n = 0;
+    if (r->fid.max > 100.0 && r->ms.extended == 0)
+        snprintf(w[n++], 160,
+                 "nodes up to %.0f m from the original surface (the fitted surface departs from it)",
+                 r->fid.max);
+    size_t loose = r->q.below_20 - r->q.below_20_forced;
+    if (loose > 0)
+        snprintf(w[n++], 160, "%zu triangles under 20 degrees away from sharp outline corners",
+                 loose);
+    return n;
+}
+
+void print_fault(const fault_result *r, double H)
+{
+    if (strcmp(r->status, "ok")) {
+        printf("%-64s %s%s%s\n", r->name ? r->name : r->file, r->status, r->error ? ": " : "",
+               r->error ? r->error : "");
+        return;
+    }
+    printf("%-64s %7zu tri  min %5.1f deg  <30 %5.2f%%  edges in band %5.1f%%  node dist "
+           "%5.1f/%6.1f m%s\n",
+           r->name, r->q.triangles, r->q.angle_min,
+           100.0 * (double)r->q.below_30 / (double)(r->q.triangles ? r->q.triangles : 1),
+           100.0 * (double)r->q.edges_in_band / (double)(r->q.edges ? r->q.edges : 1), r->fid.rms,
+           r->fid.max, r->ms.cut ? "  cut" : "");
+    char w[2][160];
+    int nw = fault_warnings(r, w);
+    for (int k = 0; k < nw; k++)
+        printf("    warning: %s\n", w[k]);
+    (void)H;
+}
+
+static void json_carve(fm_json *j, const run_state *rs)
+{
+    if (!rs->carve)
+        return;
+    fm_json_kv_int(j, "carved_triangles", (int64_t)fm_carve_removed(rs->carve));
+    fm_json_kv_int(j, "carved_slivers_at_notches", (int64_t)fm_carve_slivers(rs->carve));
+    fm_json_key(j, "carved");
+    fm_json_begin_array(j);
+    for (size_t k = 0; k < fm_carve_npairs(rs->carve); k++) {
+        const fm_carve_pair *p = fm_carve_pair_at(rs->carve, k);
+        fm_json_begin_object(j);
+        fm_json_key(j, "faults");
+        fm_json_begin_array(j);
+        for (int s = 0; s < 2; s++)
+            fm_json_string(j, rs->res[rs->set_res[p->fault[s]]].name);
+        fm_json_end_array(j);
+        fm_json_kv_int(j, "triangle_pairs_met", (int64_t)p->contacts);
+        fm_json_kv_string(j, "removed_from", rs->res[rs->set_res[p->fault[p->yielded]]].name);
+        fm_json_kv_int(j, "triangles_removed", (int64_t)p->removed);
+        fm_json_kv_number(j, "area_removed_m2", p->area);
+        fm_json_kv_string(j, "reason",
+                          "the two meshes ran through each other away from any curve they "
+                          "share; the one losing the smaller share of its area gives way there");
+        fm_json_end_object(j);
+    }
+    fm_json_end_array(j);
+}
+
+static void json_quality(fm_json *j, const fault_result *r, double H)
+{
+    const fm_quality *q = &r->q;
+    fm_json_key(j, "quality");
+    fm_json_begin_object(j);
+    fm_json_kv_number(j, "min_angle_deg", q->angle_min);
+    fm_json_kv_number(j, "mean_min_angle_deg", q->angle_mean);
+    fm_json_kv_int(j, "triangles_below_30_deg", (int64_t)q->below_30);
+    fm_json_kv_int(j, "triangles_below_20_deg", (int64_t)q->below_20);
+    fm_json_kv_int(j, "triangles_below_20_deg_at_sharp_corners", (int64_t)q->below_20_forced);
+    fm_json_kv_int(j, "sharp_corners", (int64_t)q->sharp_corners);
+    fm_json_end_object(j);
+    fm_json_key(j, "size");
+    fm_json_begin_object(j);
+    fm_json_kv_number(j, "target_m", H);
+    fm_json_kv_int(j, "edges", (int64_t)q->edges);
+    fm_json_kv_int(j, "edges_within_0.7_1.4", (int64_t)q->edges_in_band);
+    fm_json_kv_number(j, "edge_min_m", q->edge_min);
+    fm_json_kv_number(j, "edge_p05_m", q->edge_p05);
+    fm_json_kv_number(j, "edge_median_m", q->edge_median);
+    fm_json_kv_number(j, "edge_p95_m", q->edge_p95);
+    fm_json_kv_number(j, "edge_max_m", q->edge_max);
+    fm_json_end_object(j);
+}
+
+static void json_fault(fm_json *j, const fault_result *r, double H, const sim_attrs *sa)
+{
+    fm_json_begin_object(j);
+    fm_json_kv_string(j, "file", r->file ? r->file : "");
+    if (r->name)
+        fm_json_kv_string(j, "name", r->name);
+    fm_json_kv_string(j, "status", r->status ? r->status : "error");
+    if (r->error)
+        fm_json_kv_string(j, "error", r->error);
+    if (r->status && !strcmp(r->status, "ok")) {
+        fm_json_kv_int(j, "sheets", (int64_t)r->sheets);
+        fm_json_kv_int(j, "triangles", (int64_t)r->q.triangles);
+        fm_json_kv_int(j, "nodes", (int64_t)r->q.nodes);
+        if (r->carved) {
+            fm_json_kv_int(j, "carved_triangles", (int64_t)r->carved);
+            fm_json_kv_number(j, "carved_area_m2", r->carved_area);
+        }
+        char w[2][160];
+        int nw = fault_warnings(r, w);
+        fm_json_key(j, "warnings");
+        fm_json_begin_array(j);
+        for (int k = 0; k < nw; k++)
+            fm_json_string(j, w[k]);
+        fm_json_end_array(j);
+        if (r->join_error)
+            fm_json_kv_string(j, "join_error", r->join_error);
+        fm_json_kv_number(j, "area_m2", r->q.area);
+        json_quality(j, r, H);
+        fm_json_key(j, "fidelity");
+        fm_json_begin_object(j);
+        fm_json_kv_number(j, "node_to_original_rms_m", r->fid.rms);
+        fm_json_kv_number(j, "node_to_original_max_m", r->fid.max);
+        /* Nodes farther than 100 m whose nearest original point is on
+         * (within 100 m of) its outline lie past the original's edge (a
+         * fault extended over a closed gap): their largest distance is
+         * reported apart from that of the nodes over its inside, so the
+         * fidelity proper can be told from the extent of what was filled
+         * beyond the edge. */
+        fm_json_kv_number(j, "inside_outline_max_m", r->fid.inside_max);
+        fm_json_kv_int(j, "inside_outline_nodes_over_100_m", (int64_t)r->fid.inside_over);
+        fm_json_kv_number(j, "beyond_outline_max_m", r->fid.beyond_max);
+        fm_json_kv_int(j, "beyond_outline_nodes_over_100_m", (int64_t)r->fid.beyond_nodes);
+        fm_json_kv_number(j, "fitted_area_m2", r->fitted_area);
+        fm_json_kv_number(j, "coverage", r->fitted_area > 0 ? r->q.area / r->fitted_area : 0);
+        fm_json_end_object(j);
+        fm_json_key(j, "top");
+        fm_json_begin_object(j);
+        fm_json_kv_bool(j, "cut", r->ms.cut);
+        fm_json_kv_int(j, "sea_level_nodes", (int64_t)r->ms.level_points);
+        fm_json_kv_number(j, "z_max_m", r->q.zmax);
+        fm_json_kv_int(j, "nodes_lowered_to_sea_level", (int64_t)r->ms.clamped);
+        fm_json_kv_number(j, "largest_lowering_m", r->ms.clamp_max);
+        fm_json_kv_number(j, "extended_m", r->ms.extended);
+        fm_json_end_object(j);
+        fm_json_key(j, "time_s");
+        fm_json_begin_object(j);
+        fm_json_kv_number(j, "fit", r->t_fit);
+        fm_json_kv_number(j, "mesh", r->t_mesh);
+        fm_json_kv_number(j, "check", r->t_check);
+        fm_json_end_object(j);
+    }
+    if (sa && r->set_index < sa->nfaults)
+        sim_json_fault(j, sa, r->set_index);
+    fm_json_end_object(j);
+}
+
+static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs, size_t count[4])
+{
+    memset(count, 0, 4 * sizeof *count);
+    fm_json_key(j, "connect");
+    fm_json_begin_object(j);
+    fm_json_kv_bool(j, "enabled", cli->connect && rs->plan);
+    fm_json_kv_number(j, "join_distance_m", cli->join);
+    if (!rs->plan) {
+        fm_json_end_object(j);
+        return;
+    }
+    const fm_connect_plan_stats *ps = fm_connect_plan_get_stats(rs->plan);
+    fm_json_kv_int(j, "sheet_pairs_within_join_distance", (int64_t)ps->pairs);
+    fm_json_kv_int(j, "near_duplicates_given_up", (int64_t)ps->duplicates);
+    fm_json_kv_int(j, "shared_nodes", (int64_t)fm_connect_plan_nnodes(rs->plan));
+    fm_json_key(j, "junctions");
+    fm_json_begin_array(j);
+    for (size_t i = 0; i < fm_connect_plan_njunctions(rs->plan); i++) {
+        const fm_connect_junction *jn = fm_connect_plan_junction(rs->plan, i);
+        const char *why;
+        size_t which;
+        fm_junction_type t = junction_outcome(rs, jn, &why, &which);
+        count[t]++;
+        fm_json_begin_object(j);
+        fm_json_key(j, "faults");
+        fm_json_begin_array(j);
+        for (int s = 0; s < 2; s++)
+            fm_json_string(j, rs->res[rs->plan_res[jn->fault[s]]].name);
+        fm_json_end_array(j);
+        fm_json_key(j, "sheets");
+        fm_json_begin_array(j);
+        for (int s = 0; s < 2; s++)
+            fm_json_int(j, (int64_t)jn->sheet[s]);
+        fm_json_end_array(j);
+        fm_json_kv_string(j, "type", fm_junction_type_name(t));
+        /* how each sheet meets the curve, whatever was made of it: tells a
+         * reader which fault was meant to end on the other (pairs that never
+         * meet have no curve and no roles) */
+        if (jn->length > 0) {
+            fm_json_key(j, "roles");
+            fm_json_begin_array(j);
+            for (int s = 0; s < 2; s++)
+                fm_json_string(j, jn->role[s] == FM_CONNECT_THROUGH     ? "through"
+                                  : jn->role[s] == FM_CONNECT_OVERSHOOT ? "overshoot"
+                                                                        : "gap");
+            fm_json_end_array(j);
+        }
+        /* a sheet stopped short of the other lost its flap past it too */
+        int cleared = jn->clearance > 0 && which == SIZE_MAX;
+        fm_json_kv_number(j, "gap_closed_m", t == FM_JUNCTION_UNJOINED ? 0 : jn->gap);
+        fm_json_kv_number(j, "overshoot_trimmed_m",
+                          t != FM_JUNCTION_UNJOINED ? jn->overshoot
+                          : cleared                 ? jn->overshoot + jn->clearance
+                                                    : 0);
+        fm_json_kv_number(j, "curve_length_m", jn->length);
+        fm_json_kv_number(j, "min_crossing_angle_deg", jn->min_angle);
+        if (jn->distance > 0)
+            fm_json_kv_number(j, "surface_distance_m", jn->distance);
+        if (cleared) {
+            fm_json_kv_number(j, "gap_left_m", jn->clearance);
+            fm_json_kv_string(j, "stops_short",
+                              rs->res[rs->plan_res[jn->fault[jn->short_side]]].name);
+        }
+        /* faults that were to end at the curve but run on past it */
+        int kept[2] = {0, 0};
+        for (int s = 0; s < 2 && t != FM_JUNCTION_UNJOINED; s++) {
+            const fault_result *fr = &rs->res[rs->plan_res[jn->fault[s]]];
+            for (size_t k = 0; k < fr->nthrough; k++)
+                kept[s] |= fr->through_curves[k] == (size_t)jn->curve;
+        }
+        if (kept[0] || kept[1]) {
+            fm_json_key(j, "flap_kept");
+            fm_json_begin_array(j);
+            for (int s = 0; s < 2; s++)
+                if (kept[s])
+                    fm_json_string(j, rs->res[rs->plan_res[jn->fault[s]]].name);
+            fm_json_end_array(j);
+        }
+        if (why) {
+            char msg[600];
+            if (which != SIZE_MAX)
+                snprintf(msg, sizeof msg, "%s (%s)", why, rs->res[rs->plan_res[which]].name);
+            fm_json_kv_string(j, "reason", which != SIZE_MAX ? msg : why);
+        }
+        fm_json_end_object(j);
+    }
+    fm_json_end_array(j);
+    fm_json_kv_int(j, "crossing", (int64_t)count[FM_JUNCTION_CROSSING]);
+    fm_json_kv_int(j, "T", (int64_t)count[FM_JUNCTION_T]);
+    fm_json_kv_int(j, "corner", (int64_t)count[FM_JUNCTION_CORNER]);
+    fm_json_kv_int(j, "unjoined", (int64_t)count[FM_JUNCTION_UNJOINED]);
+    json_carve(j, rs);
+    fm_json_end_object(j);
+}
+
+fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_attrs *sa,
+                              fm_error *err)
+{
+    size_t n = strlen(cli->dir) + 32;
+    char *path = malloc(n);
+    if (!path)
+        return fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    snprintf(path, n, "%s/report.json", cli->dir);
+    fm_atomic_file *af = fm_atomic_open(path, err);
+    free(path);
+    if (!af)
+        return err->code;
+    fm_json j;
+    fm_json_init(&j, fm_atomic_stream(af));
+    fm_json_begin_object(&j);
+    fm_json_kv_string(&j, "faultmesh_version", FM_VERSION_STRING);
+    fm_json_key(&j, "options");
+    fm_json_begin_object(&j);
+    fm_json_kv_number(&j, "size_m", cli->mesh.size);
+    fm_json_kv_string(&j, "top", cli->mesh.top == FM_TOP_CUT    ? "cut"
+                                 : cli->mesh.top == FM_TOP_KEEP ? "keep"
+                                                                : "extend");
+    if (cli->mesh.top == FM_TOP_EXTEND)
+        fm_json_kv_number(&j, "top_extend_m", cli->mesh.top_extend);
+    fm_json_kv_string(&j, "crs", rs->crs);
+    /* where it came from: --crs, the inputs' coordinate-system block, or
+     * the CFM's default */
+    fm_json_kv_string(&j, "crs_source", rs->crs_source);
+    fm_json_kv_string(&j, "msh_tags", fm_msh_tags_name(cli->msh_tags));
+    fm_json_end_object(&j);
+    fm_json_key(&j, "faults");
+    fm_json_begin_array(&j);
+    size_t tris = 0, below30 = 0, below20 = 0, forced = 0, edges = 0, band = 0, ok = 0, warned = 0;
+    double worst_dist = 0, zmax = -INFINITY;
+    for (size_t i = 0; i < rs->nres; i++) {
+        const fault_result *r = &rs->res[i];
+        json_fault(&j, r, cli->mesh.size, sa);
+        if (!r->status || strcmp(r->status, "ok"))
+            continue;
+        ok++;
+        char w[2][160];
+        warned += fault_warnings(r, w) > 0;
+        tris += r->q.triangles;
+        below30 += r->q.below_30;
+        below20 += r->q.below_20;
+        forced += r->q.below_20_forced;
+        edges += r->q.edges;
+        band += r->q.edges_in_band;
+        worst_dist = fmax(worst_dist, r->fid.max);
+        zmax = fmax(zmax, r->q.zmax);
+    }
+    fm_json_end_array(&j);
+    size_t jcount[4];
+    json_connect(&j, cli, rs, jcount);
+    if (sa)
+        sim_json_summary(&j, &cli->sim, sa);
+    fm_json_key(&j, "summary");
+    fm_json_begin_object(&j);
+    fm_json_kv_int(&j, "faults", (int64_t)rs->nres);
+    fm_json_kv_int(&j, "meshed", (int64_t)ok);
+    fm_json_kv_int(&j, "failed", rs->failed);
+    fm_json_kv_int(&j, "meshed_with_warnings", (int64_t)warned);
+    fm_json_kv_int(&j, "triangles", (int64_t)tris);
+    fm_json_kv_int(&j, "triangles_below_30_deg", (int64_t)below30);
+    fm_json_kv_int(&j, "triangles_below_20_deg", (int64_t)below20);
+    fm_json_kv_int(&j, "triangles_below_20_deg_at_sharp_corners", (int64_t)forced);
+    fm_json_kv_int(&j, "edges", (int64_t)edges);
+    fm_json_kv_int(&j, "edges_within_0.7_1.4", (int64_t)band);
+    fm_json_kv_number(&j, "node_to_original_max_m", worst_dist);
+    fm_json_kv_number(&j, "z_max_m", ok ? zmax : 0);
+    fm_json_kv_number(&j, "time_fit_s", rs->time[0]);
+    fm_json_kv_number(&j, "time_connect_s", rs->time[1]);
+    fm_json_kv_number(&j, "time_mesh_s", rs->time[2]);
+    fm_json_end_object(&j);
+    fm_json_end_object(&j);
+    if (!cli->quiet && rs->plan)
+        printf("junctions: %zu crossing, %zu T, %zu corner, %zu unjoined; %zu near-duplicate "
+               "faults given up; %zu shared nodes\n",
+               jcount[0], jcount[1], jcount[2], jcount[3],
+               fm_connect_plan_get_stats(rs->plan)->duplicates,
+               fm_connect_plan_nnodes(rs->plan));
+    if (!cli->quiet)
+        printf("faults %zu, meshed %zu (%zu with warnings), failed %ld; triangles %zu, below 30 deg "
+               "%.3f%%, below 20 deg %zu (%zu at sharp corners), edges in [0.7, 1.4] H %.2f%%, "
+               "worst node distance %.1f m\n",
+               rs->nres, ok, warned, rs->failed, tris,
+               tris ? 100.0 * (double)below30 / (double)tris : 0,
+               below20, forced, edges ? 100.0 * (double)band / (double)edges : 0, worst_dist);
+    return fm_atomic_commit(af, err);
+}

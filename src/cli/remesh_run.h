@@ -1,0 +1,150 @@
+/* faultmesh CLI, `remesh` and `demo`: what the files of the command share.
+ * The run flows cmd_remesh.c (run) -> remesh_pool.c (fit and mesh on
+ * threads, remesh_fault.c per fault) -> remesh_set.c (merge, last guard,
+ * write) -> remesh_report.c (report.json); remesh_options.c reads the
+ * options. */
+#ifndef FM_REMESH_RUN_H
+#define FM_REMESH_RUN_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "cli.h"
+#include "fm_cad_write.h"
+#include "fm_carve.h"
+#include "fm_check.h"
+#include "fm_connect.h"
+#include "fm_faultset_write.h"
+#include "fm_model.h"
+#include "fm_remesh.h"
+#include "fm_sort.h"
+#include "fm_tsurf.h"
+#include "sim_attrs.h"
+
+typedef struct remesh_cli {
+    const char *dir;
+    fm_repair_options repair;
+    fm_model_options model;
+    fm_remesh_options mesh;
+    fm_msh_version msh;
+    int msh_version_given;
+    fm_msh_tags msh_tags;
+    const char *crs; /* --crs, or NULL: from the inputs, else EPSG:26711 */
+    int quiet;
+    int jobs;   /* threads */
+    int connect;  /* join faults that meet (default 1) */
+    double join;  /* D: join tolerance, m */
+    fm_connect_keep keep; /* which of two near-duplicate faults is kept */
+    int carve;    /* remove what still crosses between faults (default 1 when connecting) */
+    sim_cli sim;          /* --slip, --metadata, --eqsim-coords */
+} remesh_cli;
+
+/* What one fault came to, for report.json. */
+typedef struct fault_result {
+    char *file, *name, *error;
+    const char *status; /* "ok", "empty" (nothing below sea level), "error" */
+    size_t sheets;
+    fm_quality q;
+    fm_fidelity fid;
+    fm_remesh_stats ms;
+    double fitted_area;  /* trimmed fitted surface (below sea level when cut), m^2 */
+    double t_fit, t_mesh, t_check;
+    unsigned char *join_failed; /* per sheet: its shared curves did not fit (meshed without) */
+    char *join_error;           /* why, for the first such sheet */
+    size_t *dropped_curves;     /* plan curves left out of its meshes */
+    size_t ndropped;
+    size_t *through_curves;     /* plan curves it was to end at but runs on past (as of
+                                   its last meshing) */
+    size_t nthrough;
+    size_t *used_curves;        /* plan curves its meshes took (as of its last meshing) */
+    size_t nused;
+    fm_keyed *curve_pieces;     /* pieces of plan curves its mesh holds (key: fm_edge_key of
+                                   the piece's two nodes, index: the curve), sorted */
+    size_t npieces;
+    size_t carved;              /* triangles removed where it met another fault */
+    double carved_area;         /* their area, m^2 */
+    size_t set_index;           /* its fault index in the set written, SIZE_MAX if none */
+    fm_cad_face **cad;          /* its faces in model.igs */
+    size_t ncad;
+} fault_result;
+
+typedef struct run_state {
+    fm_mesh *set;       /* all faults; tag = fault index */
+    int32_t *sheet;     /* per triangle of set: the sheet of its fault it is on */
+    char **names;
+    size_t nfaults;
+    const fm_connect_plan *plan;
+    int32_t *node_vertex; /* per plan node: its vertex in set, -1 until used */
+    size_t *plan_res;     /* per plan fault index (objects in input order): its entry in res */
+    size_t nplan_faults;
+    double time[3];       /* fit, connect, mesh + check (wall clock, s) */
+    size_t *set_res;      /* per fault of the set (triangle tag): its entry in res */
+    const fm_mesh **set_orig; /* and its original (valid until the jobs are released) */
+    fm_carve_result *carve; /* faults that still met after meshing; NULL when not carved */
+    fault_result *res;
+    size_t nres, cap;
+    long failed;
+    char *crs;              /* the CRS recorded in every output */
+    const char *crs_source; /* "option", "input" or "default" */
+    const fm_cad_face **cad; /* the faces of the faults in set, in order */
+    size_t ncad;
+} run_state;
+
+/* One input file's faults, fitted and then meshed by workers; merged
+ * into the run in file order, so the output does not depend on which
+ * thread did what. */
+typedef struct file_job {
+    const char *path;
+    fm_tsurf **objs;
+    size_t nobj;
+    size_t first;       /* plan fault index of object 0 */
+    fault_result *res;  /* per object (one entry if the file could not be read) */
+    fm_model **model;   /* per object; NULL unless fitted */
+    fm_mesh **mesh;     /* per object; NULL unless meshed */
+    int64_t **ids;      /* per object: shared node per mesh vertex */
+    unsigned char *redo; /* per object: mesh it again (a curve it took was dropped) */
+    size_t n;
+} file_job;
+
+/* remesh_options.c */
+void remesh_usage(FILE *fp);
+/* Options shared by remesh and demo: 1 if argv[*i] was one (its value
+ * consumed), -1 on error, 0 if not one of them. */
+int mesh_option(int argc, char **argv, int *i, remesh_cli *cli);
+int settle_msh(remesh_cli *cli);
+void extend_fit(remesh_cli *cli);
+void cli_defaults(remesh_cli *cli);
+
+/* remesh_fault.c */
+int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets, const fm_keyed *edge,
+                 size_t ne, fault_result *r);
+int share_piece(const fault_result *a, const fault_result *b, size_t c);
+void fit_file(const remesh_cli *cli, file_job *job);
+void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan, const unsigned char *excluded,
+               file_job *job, int again);
+void release_job(file_job *job);
+void abandon_job(file_job *job);
+
+/* remesh_pool.c */
+void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
+              const unsigned char *excluded, file_job *jobs, size_t n);
+void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
+                   size_t njobs);
+
+/* remesh_set.c */
+void merge_job(const remesh_cli *cli, file_job *job, run_state *rs);
+void carve_set(const remesh_cli *cli, run_state *rs);
+/* Junction jn as meshed: the plan's type, unless the mesher could not fit
+ * its curve into one of its sheets or the last guard took it away (*why
+ * then says so and *which names the fault; else *which is SIZE_MAX). */
+fm_junction_type junction_outcome(const run_state *rs, const fm_connect_junction *jn,
+                                  const char **why, size_t *which);
+fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa, fm_error *err);
+
+/* remesh_report.c */
+void print_fault(const fault_result *r, double H);
+fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_attrs *sa,
+                       fm_error *err);
+
+#endif

@@ -1,0 +1,407 @@
+/* `faultmesh remesh`: the faults merged into one set in input order
+ * (shared nodes become one vertex), the last guard against faults that
+ * still cross, and the set written in every format. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fm_check.h"
+#include "fm_closest.h"
+#include "fm_faultset_write.h"
+#include "fm_sort.h"
+#include "fm_tsurf.h"
+#include "remesh_run.h"
+
+static fault_result *new_result(run_state *rs)
+{
+    if (rs->nres == rs->cap) {
+        size_t cap = rs->cap ? 2 * rs->cap : 64;
+        fault_result *n = realloc(rs->res, cap * sizeof *n);
+        if (!n)
+            return NULL;
+        rs->res = n;
+        rs->cap = cap;
+    }
+    fault_result *r = &rs->res[rs->nres++];
+    memset(r, 0, sizeof *r);
+    return r;
+}
+
+/* Appends a fault to the set: a shared node is one vertex of the set,
+ * made when a fault first uses it, at the plan's position (on both
+ * surfaces). */
+static fm_status append_fault(run_state *rs, const fm_mesh *fault, const int64_t *ids)
+{
+    size_t nv = fm_mesh_nvertices(fault), nt = fm_mesh_ntriangles(fault);
+    int32_t *map = malloc((nv + 1) * sizeof *map);
+    if (!map || fm_mesh_reserve(rs->set, fm_mesh_nvertices(rs->set) + nv,
+                                fm_mesh_ntriangles(rs->set) + nt) != FM_OK) {
+        free(map);
+        return FM_ERR_NOMEM;
+    }
+    const double *X = fm_mesh_vertices(fault);
+    const double *P = rs->plan ? fm_connect_plan_nodes(rs->plan) : NULL;
+    for (size_t v = 0; v < nv; v++) {
+        int64_t id = ids ? ids[v] : -1;
+        if (id >= 0 && rs->node_vertex) {
+            if (rs->node_vertex[id] < 0)
+                rs->node_vertex[id] =
+                    fm_mesh_add_vertex(rs->set, P[3 * id], P[3 * id + 1], P[3 * id + 2]);
+            map[v] = rs->node_vertex[id];
+        } else {
+            map[v] = fm_mesh_add_vertex(rs->set, X[3 * v], X[3 * v + 1], X[3 * v + 2]);
+        }
+    }
+    const int32_t *T = fm_mesh_triangles(fault), *sheet = fm_mesh_tags(fault);
+    size_t base = fm_mesh_ntriangles(rs->set);
+    int32_t *grown = realloc(rs->sheet, (base + nt + 1) * sizeof *grown);
+    if (!grown) {
+        free(map);
+        return FM_ERR_NOMEM;
+    }
+    rs->sheet = grown;
+    for (size_t t = 0; t < nt; t++) {
+        fm_mesh_add_triangle(rs->set, map[T[3 * t]], map[T[3 * t + 1]], map[T[3 * t + 2]],
+                             (int32_t)rs->nfaults);
+        rs->sheet[base + t] = sheet ? sheet[t] : 0;
+    }
+    free(map);
+    return FM_OK;
+}
+
+/* Merges a job's faults into the run, in order. */
+void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
+{
+    if (!job->res) {
+        fault_result *r = new_result(rs);
+        if (r) {
+            r->file = strdup(job->path);
+            r->status = "error";
+            r->error = strdup("out of memory");
+        }
+        rs->failed++;
+        fprintf(stderr, "faultmesh: %s: out of memory\n", job->path);
+        return;
+    }
+    for (size_t o = 0; o < job->n; o++) {
+        fault_result *r = new_result(rs);
+        if (!r) {
+            rs->failed++;
+            continue;
+        }
+        *r = job->res[o];
+        r->set_index = SIZE_MAX;
+        if (rs->plan_res && job->model && job->first + o < rs->nplan_faults)
+            rs->plan_res[job->first + o] = rs->nres - 1;
+        fm_mesh *fault = job->mesh[o];
+        if (fault) {
+            char **nn = realloc(rs->names, (rs->nfaults + 1) * sizeof *nn);
+            if (nn)
+                rs->names = nn;
+            size_t *sr = realloc(rs->set_res, (rs->nfaults + 1) * sizeof *sr);
+            if (sr)
+                rs->set_res = sr;
+            const fm_mesh **so = realloc(rs->set_orig, (rs->nfaults + 1) * sizeof *so);
+            if (so)
+                rs->set_orig = so;
+            const fm_cad_face **cad =
+                nn ? realloc(rs->cad, (rs->ncad + r->ncad + 1) * sizeof *cad) : NULL;
+            if (cad)
+                rs->cad = cad;
+            if (!nn || !sr || !so || !cad || append_fault(rs, fault, job->ids[o]) != FM_OK) {
+                r->status = "error";
+                r->error = strdup("out of memory");
+            } else {
+                rs->set_res[rs->nfaults] = rs->nres - 1;
+                rs->set_orig[rs->nfaults] = fm_tsurf_mesh(job->objs[o]);
+                r->set_index = rs->nfaults;
+                rs->names[rs->nfaults++] = r->name;
+                for (size_t k = 0; k < r->ncad; k++)
+                    rs->cad[rs->ncad++] = r->cad[k];
+            }
+        }
+        free(job->ids ? job->ids[o] : NULL);
+        if (!strcmp(r->status, "error")) {
+            fprintf(stderr, "faultmesh: %s\n", r->error ? r->error : "out of memory");
+            rs->failed++;
+        }
+        if (!cli->quiet)
+            print_fault(r, cli->mesh.size);
+        fm_mesh_destroy(fault);
+    }
+    free(job->res);
+    free(job->mesh);
+    free(job->ids);
+    job->res = NULL;
+    job->mesh = NULL;
+    job->ids = NULL;
+}
+
+/* The pieces of plan curves that fault tag of the set still holds. */
+static int set_curve_pieces(const run_state *rs, int32_t tag, fault_result *r)
+{
+    size_t f = 0, nv = fm_mesh_nvertices(rs->set);
+    while (f < rs->nplan_faults && &rs->res[rs->plan_res[f]] != r)
+        f++;
+    if (f == rs->nplan_faults || !rs->node_vertex)
+        return 0;
+    int64_t *node = malloc((nv + 1) * sizeof *node);
+    if (!node)
+        return -1;
+    for (size_t v = 0; v < nv; v++)
+        node[v] = -1;
+    for (size_t k = 0; k < fm_connect_plan_nnodes(rs->plan); k++)
+        if (rs->node_vertex[k] >= 0)
+            node[rs->node_vertex[k]] = (int64_t)k;
+    size_t ne;
+    fm_keyed *edge = fm_remesh_shared_edges(rs->set, node, tag, &ne);
+    int rc = edge ? curve_pieces(rs->plan, f, r->sheets, edge, ne, r) : -1;
+    free(node);
+    free(edge);
+    return rc;
+}
+
+/* Where two faults still meet away from their shared curves (fm_carve.h),
+ * one of them gives way. A fault that lost triangles is measured again on
+ * what is left (the originals must still be there). */
+void carve_set(const remesh_cli *cli, run_state *rs)
+{
+    fm_error err;
+    fm_error_clear(&err);
+    if (fm_carve_crossings(rs->set, 2 * cli->mesh.size, rs->sheet, &rs->carve, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: faults that cross each other are left so: %s\n",
+                err.message);
+        return;
+    }
+    for (size_t k = 0; k < fm_carve_npairs(rs->carve); k++) {
+        const fm_carve_pair *p = fm_carve_pair_at(rs->carve, k);
+        fault_result *r = &rs->res[rs->set_res[p->fault[p->yielded]]];
+        if (r->carved)
+            continue; /* measured already */
+        int32_t tag = p->fault[p->yielded];
+        size_t before = r->q.triangles;
+        double area = r->q.area;
+        fm_closest_tree *tree = fm_closest_tree_create(rs->set_orig[tag], &err);
+        if (!tree || fm_check_quality(rs->set, tag, cli->mesh.size, &r->q) != FM_OK ||
+            fm_check_fidelity(rs->set, tag, rs->set_orig[tag], tree, &r->fid) != FM_OK)
+            fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
+        fm_closest_tree_destroy(tree);
+        r->carved = before - r->q.triangles;
+        r->carved_area = area - r->q.area;
+        if (set_curve_pieces(rs, tag, r))
+            fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
+    }
+}
+
+/* Junction i as meshed: the plan's type, unless the mesher could not fit
+ * its curve into one of its sheets (*why then says so and *which names
+ * the fault; else *which is SIZE_MAX). */
+fm_junction_type junction_outcome(const run_state *rs, const fm_connect_junction *jn,
+                                  const char **why, size_t *which)
+{
+    *why = jn->reason;
+    *which = SIZE_MAX;
+    if (jn->curve < 0)
+        return jn->type;
+    for (int s = 0; s < 2; s++) {
+        const fault_result *r = &rs->res[rs->plan_res[jn->fault[s]]];
+        int left_out = 0;
+        for (size_t k = 0; k < r->ndropped; k++)
+            left_out |= r->dropped_curves[k] == (size_t)jn->curve;
+        if (left_out) {
+            *why = "the curve could not be fitted into the outline of one of the sheets";
+            *which = jn->fault[s];
+            return FM_JUNCTION_UNJOINED;
+        }
+    }
+    if (jn->type != FM_JUNCTION_UNJOINED &&
+        !share_piece(&rs->res[rs->plan_res[jn->fault[0]]], &rs->res[rs->plan_res[jn->fault[1]]],
+                     (size_t)jn->curve)) {
+        /* each holds pieces of it, but none the same: another curve of one
+         * of them cut the rest away, or the last guard did */
+        int carved = rs->res[rs->plan_res[jn->fault[0]]].carved ||
+                     rs->res[rs->plan_res[jn->fault[1]]].carved;
+        *why = carved ? "the two sheets keep no common piece of the curve: it was carved away "
+                        "where one of them ran through another fault"
+                      : "the two sheets keep no common piece of the curve";
+        *which = jn->fault[0];
+        return FM_JUNCTION_UNJOINED;
+    }
+    return jn->type;
+}
+
+/* Whether edge p-q is an edge of a triangle of fault f (sides: the set's,
+ * fm_mesh_sides; tag: the set's triangle tags). */
+static int fault_has_edge(const fm_keyed *side, size_t n, const int32_t *tag, int32_t p,
+                          int32_t q, size_t f)
+{
+    uint64_t key = fm_edge_key((uint64_t)p, (uint64_t)q);
+    for (size_t i = fm_keyed_lower_bound(side, n, key); i < n && side[i].key == key; i++)
+        if ((size_t)tag[side[i].index] == f)
+            return 1;
+    return 0;
+}
+
+/* One node set per junction made: the nodes of its curve (as either
+ * sheet sees it) on an edge of both faults' triangles in the set, so that
+ * every node is one of both faults, named after the junction's index in
+ * report.json and its faults. A junction made whose faults keep no such
+ * edge has no set. Arrays malloc'ed (free_junction_sets). */
+typedef struct junction_sets {
+    fm_faultset_nodeset *set;
+    char **names;
+    int32_t **vertices;
+    size_t n;
+} junction_sets;
+
+static void free_junction_sets(junction_sets *js)
+{
+    for (size_t i = 0; i < js->n; i++) {
+        free(js->names[i]);
+        free(js->vertices[i]);
+    }
+    free(js->set);
+    free(js->names);
+    free(js->vertices);
+    memset(js, 0, sizeof *js);
+}
+
+/* Junction i's node set into js, if it is made and has one; -1 when out
+ * of memory. */
+static int junction_set(const run_state *rs, size_t i, const fm_keyed *edges, size_t nedges,
+                        junction_sets *js)
+{
+    const fm_connect_junction *jn = fm_connect_plan_junction(rs->plan, i);
+    const char *why;
+    size_t which;
+    if (junction_outcome(rs, jn, &why, &which) == FM_JUNCTION_UNJOINED || jn->curve < 0)
+        return 0;
+    const fault_result *ra = &rs->res[rs->plan_res[jn->fault[0]]];
+    const fault_result *rb = &rs->res[rs->plan_res[jn->fault[1]]];
+    size_t fa = ra->set_index, fb = rb->set_index;
+    if (fa == SIZE_MAX || fb == SIZE_MAX)
+        return 0;
+    const int32_t *tag = fm_mesh_tags(rs->set);
+    const fm_connect_shared *c[2] = {NULL, NULL};
+    for (int side = 0; side < 2; side++) {
+        const fm_connect_shared *sh = NULL;
+        size_t ns = fm_connect_plan_sheet(rs->plan, jn->fault[side], jn->sheet[side], &sh);
+        for (size_t k = 0; k < ns && !c[side]; k++)
+            if (sh[k].curve == (size_t)jn->curve)
+                c[side] = &sh[k];
+    }
+    size_t cap = 2 * ((c[0] ? c[0]->n : 0) + (c[1] ? c[1]->n : 0));
+    if (!cap)
+        return 0;
+    int32_t *v = malloc(cap * sizeof *v);
+    if (!v)
+        return -1;
+    size_t nv = 0;
+    for (int side = 0; side < 2; side++)
+        for (size_t k = 0; c[side] && k + 1 < c[side]->n; k++) {
+            int32_t p = rs->node_vertex[c[side]->node[k]];
+            int32_t q = rs->node_vertex[c[side]->node[k + 1]];
+            if (p < 0 || q < 0 || !fault_has_edge(edges, nedges, tag, p, q, fa) ||
+                !fault_has_edge(edges, nedges, tag, p, q, fb))
+                continue;
+            v[nv++] = p;
+            v[nv++] = q;
+        }
+    size_t len = strlen(ra->name) + strlen(rb->name) + 48;
+    char *name = nv ? malloc(len) : NULL;
+    if (!name) {
+        free(v);
+        return nv ? -1 : 0;
+    }
+    snprintf(name, len, "junction %zu: %s / %s", i, ra->name, rb->name);
+    js->names[js->n] = name;
+    js->vertices[js->n] = v;
+    js->set[js->n] = (fm_faultset_nodeset){name, v, nv};
+    js->n++;
+    return 0;
+}
+
+static int junction_sets_make(const run_state *rs, junction_sets *js)
+{
+    memset(js, 0, sizeof *js);
+    if (!rs->plan || !rs->node_vertex)
+        return 0;
+    size_t nj = fm_connect_plan_njunctions(rs->plan), nedges = 0;
+    js->set = calloc(nj ? nj : 1, sizeof *js->set);
+    js->names = calloc(nj ? nj : 1, sizeof *js->names);
+    js->vertices = calloc(nj ? nj : 1, sizeof *js->vertices);
+    fm_keyed *edges = fm_mesh_sides(rs->set, &nedges);
+    int rc = js->set && js->names && js->vertices && edges ? 0 : -1;
+    for (size_t i = 0; rc == 0 && i < nj; i++)
+        rc = junction_set(rs, i, edges, nedges, js);
+    free(edges);
+    return rc;
+}
+
+/* The fault set in every format, the files shared among cli->jobs threads
+ * (the bytes do not depend on how many); the simulator files after them.
+ * *sa gets the element attributes (cleared when there are no faults). */
+fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa,
+                           fm_error *err)
+{
+    memset(sa, 0, sizeof *sa);
+    if (!rs->nfaults)
+        return FM_OK;
+    junction_sets js = {0};
+    int32_t *tags = malloc(rs->nfaults * sizeof *tags);
+    char **pnames = NULL;
+    fm_status st = FM_OK;
+    if (!tags || junction_sets_make(rs, &js))
+        st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    if (st == FM_OK)
+        st = fm_msh_tags_make(cli->msh_tags, (const char *const *)rs->names, rs->nfaults, tags,
+                              &pnames, err);
+    fm_faultset fs = {.mesh = rs->set,
+                      .names = (const char *const *)rs->names,
+                      .nfaults = rs->nfaults,
+                      .physical_tags = tags,
+                      .physical_names = (const char *const *)pnames,
+                      .msh_dense_nodes = cli->msh_tags == FM_MSH_TAGS_TANDEM,
+                      .crs = rs->crs,
+                      .nodesets = js.set,
+                      .nnodesets = js.n};
+    if (st == FM_OK && sim_attrs_make(&cli->sim, &fs, sa) != 0)
+        st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    /* the element attributes, and which sheet of its fault a triangle is on
+     * (the repair stage's sheets: the parts of a branching fault) */
+    fm_vtu_array cells[sizeof sa->cells / sizeof *sa->cells + 1];
+    memcpy(cells, sa->cells, sizeof sa->cells);
+    cells[sizeof sa->cells / sizeof *sa->cells] =
+        (fm_vtu_array){"sheet", FM_VTU_INT32, 1, rs->sheet};
+    fs.cell_data = cells;
+    fs.ncell_data = sizeof cells / sizeof *cells;
+    size_t n = strlen(cli->dir) + 32;
+    char *path = st == FM_OK ? malloc(5 * n) : NULL;
+    if (st == FM_OK && !path)
+        st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    if (st == FM_OK) {
+        const char *ext[5] = {"vtu", "msh", "stl", "obj", "exo"};
+        for (int k = 0; k < 5; k++)
+            snprintf(path + (size_t)k * n, n, "%s/mesh.%s", cli->dir, ext[k]);
+        fm_faultset_outputs out = {.vtu = path,
+                                   .msh = path + n,
+                                   .stl = path + 2 * n,
+                                   .obj = path + 3 * n,
+                                   .exo = path + 4 * n,
+                                   .msh_version = cli->msh,
+                                   .tsurf_dir = cli->dir};
+        st = fm_faultset_write_all(&fs, &out, cli->jobs, err);
+    }
+    if (st == FM_OK) {
+        snprintf(path, n, "%s/model.igs", cli->dir);
+        st = fm_cad_write_iges(path, rs->cad, rs->ncad, rs->crs, err);
+    }
+    free(path);
+    if (st == FM_OK)
+        st = sim_write(&cli->sim, &fs, sa, cli->dir, err);
+    free(tags);
+    fm_faultset_free_file_names(pnames, rs->nfaults);
+    free_junction_sets(&js);
+    return st;
+}
