@@ -13,6 +13,11 @@
 #include "fm_synth.h"
 #include "remesh_run.h"
 
+static void told(void *user, size_t done, size_t total)
+{
+    progress_set(user, done, total, "outlines and pairs");
+}
+
 /* The junction plan over every fitted fault (objects in input order);
  * faults it gives up as near-duplicates are marked "dropped". NULL when
  * there is nothing to join or the plan failed (reported; the faults are
@@ -47,6 +52,8 @@ static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t 
     po.sea_level = cli->mesh.sea_level;
     po.nthreads = cli->jobs;
     po.duplicates.keep = cli->keep;
+    po.progress = told;
+    po.progress_user = cli->prog;
     fm_connect_plan *plan = NULL;
     fm_error err;
     fm_error_clear(&err);
@@ -144,13 +151,17 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     }
     double t1 = fm_clock_seconds();
     fm_connect_plan *plan = NULL;
-    if (cli->connect)
+    if (cli->connect) {
+        progress_begin(cli->prog, "connect", 0, NULL, 0);
         plan = make_plan(cli, jobs, (size_t)nfiles, &rs);
+        progress_end(cli->prog);
+    }
     double t2 = fm_clock_seconds();
     run_jobs(cli, plan, 1, NULL, jobs, (size_t)nfiles);
     if (plan)
         settle_curves(cli, plan, jobs, (size_t)nfiles);
     double t3 = fm_clock_seconds();
+    progress_begin(cli->prog, "merge and check", 0, NULL, 0);
     rs.plan = plan;
     if (plan) {
         size_t nn = fm_connect_plan_nnodes(plan);
@@ -165,18 +176,26 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     for (long i = 0; i < nfiles; i++)
         release_job(&jobs[i]);
     free(jobs);
+    progress_end(cli->prog);
+    double t4 = fm_clock_seconds();
     rs.time[0] = t1 - t0;
     rs.time[1] = t2 - t1;
     rs.time[2] = t3 - t2;
+    rs.time[3] = t4 - t3;
     sim_attrs sa;
+    progress_begin(cli->prog, "write", 0, NULL, 0);
     fm_status st = write_set(cli, &rs, &sa, &err);
+    rs.time[4] = fm_clock_seconds() - t4;
     if (st == FM_OK)
         st = write_report(cli, &rs, rs.nfaults ? &sa : NULL, &err);
     sim_attrs_free(&sa);
+    progress_end(cli->prog);
     if (st != FM_OK) {
         fprintf(stderr, "faultmesh: %s\n", err.message);
         rs.failed++;
     }
+    if (!cli->quiet)
+        print_summary(cli, &rs, stdout);
     for (size_t i = 0; i < rs.nres; i++) {
         free(rs.res[i].file);
         free(rs.res[i].name);
@@ -255,7 +274,12 @@ int fm_cmd_remesh(int argc, char **argv)
         sim_cli_free(&cli.sim);
         return FM_EXIT_USAGE;
     }
+    cli.prog = progress_create(stderr, cli.quiet     ? PROGRESS_QUIET
+                                       : cli.verbose ? PROGRESS_VERBOSE
+                                                     : PROGRESS_NORMAL,
+                               0);
     int rc = run(&cli, files, nfiles);
+    progress_destroy(cli.prog);
     fm_input_list_free(files, nfiles);
     sim_cli_free(&cli.sim);
     return rc;
@@ -319,7 +343,12 @@ int fm_cmd_demo(int argc, char **argv)
     char *args[1] = {in};
     char **files = NULL;
     long nfiles = fm_input_list(args, 1, &files);
+    cli.prog = progress_create(stderr, cli.quiet     ? PROGRESS_QUIET
+                                       : cli.verbose ? PROGRESS_VERBOSE
+                                                     : PROGRESS_NORMAL,
+                               0);
     int rc = nfiles < 0 ? FM_EXIT_FAILURES : run(&cli, files, nfiles);
+    progress_destroy(cli.prog);
     if (nfiles >= 0)
         fm_input_list_free(files, nfiles);
     free(in);

@@ -28,7 +28,7 @@ static int push_curve(size_t **list, size_t *n, size_t curve)
  * shared nodes (fm_remesh_shared_edges): a sheet keeps only part of a
  * curve that another of its curves cuts across. -1: out of memory. */
 int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets,
-                        const fm_keyed *edge, size_t ne, fault_result *r)
+                 const fm_keyed *edge, size_t ne, fault_result *r)
 {
     free(r->curve_pieces);
     r->curve_pieces = NULL;
@@ -365,7 +365,7 @@ static void reset_result(fault_result *r)
  * the curves in excluded left out. Models stay for another round
  * (release_job frees them). */
 void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan,
-                      const unsigned char *excluded, file_job *job, int again)
+               const unsigned char *excluded, file_job *job, int again)
 {
     if (!job->res || !job->model)
         return;

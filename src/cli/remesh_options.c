@@ -45,7 +45,10 @@ void remesh_usage(FILE *fp)
             "                        the area of one within 50 m of the other, as rupture\n"
             "                        composites over their section faults), keep the\n"
             "                        smaller (default: the sections) or the larger\n"
-            "  --quiet               no per-fault lines\n"
+            "  -q, --quiet           errors only (no progress, no summary)\n"
+            "  -v, --verbose         a line per fault and per stage as well\n"
+            "                        (default: a progress bar on a terminal, log lines\n"
+            "                        otherwise, on stderr; the summary on stdout)\n"
             SIM_CLI_HELP);
     fputs(fm_cli_repair_help, fp);
 }
@@ -108,8 +111,13 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
         if (fm_parse_size(a, val, &n) || n < 1 || n > 1024)
             return -1;
         cli->jobs = (int)n;
-    } else if (!strcmp(a, "--quiet")) {
+    } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
         cli->quiet = 1;
+        cli->verbose = 0;
+        return 1;
+    } else if (!strcmp(a, "--verbose") || !strcmp(a, "-v")) {
+        cli->verbose = 1;
+        cli->quiet = 0;
         return 1;
     } else if (!strcmp(a, "--no-connect")) {
         cli->connect = 0;

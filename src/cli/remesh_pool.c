@@ -17,9 +17,19 @@ typedef struct pool {
     const unsigned char *excluded; /* phase 2: plan curves left out */
     file_job *jobs;
     const size_t *order; /* the order jobs are handed out in */
+    const double *bytes;  /* per job: its file's size, the progress weight */
     size_t n, next;
     pthread_mutex_t mu;
 } pool;
+
+/* Whether a job has faults to mesh again. */
+static int marked(const file_job *job)
+{
+    for (size_t o = 0; job->redo && o < job->n; o++)
+        if (job->redo[o])
+            return 1;
+    return 0;
+}
 
 static void *worker(void *arg)
 {
@@ -30,11 +40,14 @@ static void *worker(void *arg)
         pthread_mutex_unlock(&p->mu);
         if (i >= p->n)
             return NULL;
-        file_job *job = &p->jobs[p->order ? p->order[i] : i];
+        size_t at = p->order ? p->order[i] : i;
+        file_job *job = &p->jobs[at];
         if (p->phase == 0)
             fit_file(p->cli, job);
         else
             mesh_file(p->cli, p->plan, p->excluded, job, p->phase == 2);
+        if (p->phase != 2 || marked(job))
+            progress_step(p->cli->prog, p->bytes ? p->bytes[at] : 1);
     }
 }
 
@@ -55,7 +68,7 @@ static int larger_first(const void *a, const void *b)
  * busy while the others idle (longest-processing-time-first scheduling).
  * Which thread meshes a fault never changes its result, and results are
  * merged in input order, so the order is free. */
-static size_t *schedule(const file_job *jobs, size_t n)
+static size_t *schedule(const file_job *jobs, size_t n, double *bytes)
 {
     size_t *order = malloc((n ? n : 1) * sizeof *order);
     job_key *key = malloc((n ? n : 1) * sizeof *key);
@@ -68,6 +81,8 @@ static size_t *schedule(const file_job *jobs, size_t n)
         struct stat sb;
         key[i].bytes = stat(jobs[i].path, &sb) == 0 ? (long long)sb.st_size : 0;
         key[i].index = i;
+        if (bytes)
+            bytes[i] = (double)key[i].bytes;
     }
     qsort(key, n, sizeof *key, larger_first);
     for (size_t i = 0; i < n; i++)
@@ -79,10 +94,20 @@ static size_t *schedule(const file_job *jobs, size_t n)
 /* Runs one phase of the jobs on cli->jobs threads (the calling one
  * included). */
 void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
-                     const unsigned char *excluded, file_job *jobs, size_t n)
+              const unsigned char *excluded, file_job *jobs, size_t n)
 {
-    size_t *order = schedule(jobs, n);
-    pool p = {cli, plan, phase, excluded, jobs, order, n, 0, PTHREAD_MUTEX_INITIALIZER};
+    double *bytes = malloc((n ? n : 1) * sizeof *bytes);
+    size_t *order = schedule(jobs, n, bytes);
+    size_t count = 0;
+    double weight = 0;
+    for (size_t i = 0; i < n; i++)
+        if (phase != 2 || marked(&jobs[i])) {
+            count++;
+            weight += bytes ? bytes[i] : 1;
+        }
+    static const char *stage[3] = {"read and fit", "mesh", "mesh again"};
+    progress_begin(cli->prog, stage[phase], count, "files", weight);
+    pool p = {cli, plan, phase, excluded, jobs, order, bytes, n, 0, PTHREAD_MUTEX_INITIALIZER};
     size_t nt = cli->jobs > 1 ? (size_t)cli->jobs - 1 : 0;
     pthread_t *th = nt ? calloc(nt, sizeof *th) : NULL;
     size_t started = 0;
@@ -96,6 +121,8 @@ void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
         pthread_join(th[k], NULL);
     free(th);
     free(order);
+    free(bytes);
+    progress_end(cli->prog);
 }
 
 /* A junction is made only when both sheets take its curve. Faults are
@@ -106,7 +133,7 @@ void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
  * again without such curves, until no curve a mesh took was dropped by
  * another (the set of dropped curves only grows, so this ends). */
 void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
-                          size_t njobs)
+                   size_t njobs)
 {
     size_t nc = fm_connect_plan_get_stats(plan)->curves;
     unsigned char *excluded = calloc(nc + 1, 1);

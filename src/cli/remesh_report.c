@@ -166,9 +166,9 @@ static void json_fault(fm_json *j, const fault_result *r, double H, const sim_at
     fm_json_end_object(j);
 }
 
-static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs, size_t count[4])
+static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
+                         const run_totals *tot)
 {
-    memset(count, 0, 4 * sizeof *count);
     fm_json_key(j, "connect");
     fm_json_begin_object(j);
     fm_json_kv_bool(j, "enabled", cli->connect && rs->plan);
@@ -188,7 +188,6 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
         const char *why;
         size_t which;
         fm_junction_type t = junction_outcome(rs, jn, &why, &which);
-        count[t]++;
         fm_json_begin_object(j);
         fm_json_key(j, "faults");
         fm_json_begin_array(j);
@@ -253,16 +252,105 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
         fm_json_end_object(j);
     }
     fm_json_end_array(j);
-    fm_json_kv_int(j, "crossing", (int64_t)count[FM_JUNCTION_CROSSING]);
-    fm_json_kv_int(j, "T", (int64_t)count[FM_JUNCTION_T]);
-    fm_json_kv_int(j, "corner", (int64_t)count[FM_JUNCTION_CORNER]);
-    fm_json_kv_int(j, "unjoined", (int64_t)count[FM_JUNCTION_UNJOINED]);
+    fm_json_kv_int(j, "crossing", (int64_t)tot->junctions[FM_JUNCTION_CROSSING]);
+    fm_json_kv_int(j, "T", (int64_t)tot->junctions[FM_JUNCTION_T]);
+    fm_json_kv_int(j, "corner", (int64_t)tot->junctions[FM_JUNCTION_CORNER]);
+    fm_json_kv_int(j, "unjoined", (int64_t)tot->junctions[FM_JUNCTION_UNJOINED]);
     json_carve(j, rs);
     fm_json_end_object(j);
 }
 
+void run_totals_of(const run_state *rs, run_totals *t)
+{
+    memset(t, 0, sizeof *t);
+    t->angle_min = INFINITY;
+    t->zmax = -INFINITY;
+    for (size_t i = 0; i < rs->nres; i++) {
+        const fault_result *r = &rs->res[i];
+        const char *st = r->status ? r->status : "error";
+        if (!strcmp(st, "dropped"))
+            t->dropped++;
+        else if (!strcmp(st, "empty"))
+            t->empty++;
+        if (strcmp(st, "ok"))
+            continue;
+        t->ok++;
+        char w[2][160];
+        t->warned += fault_warnings(r, w) > 0;
+        t->sheets += r->sheets;
+        t->triangles += r->q.triangles;
+        t->below30 += r->q.below_30;
+        t->below20 += r->q.below_20;
+        t->forced += r->q.below_20_forced;
+        t->edges += r->q.edges;
+        t->band += r->q.edges_in_band;
+        t->carved += r->carved;
+        if (r->q.triangles && r->q.angle_min < t->angle_min) {
+            t->angle_min = r->q.angle_min;
+            t->angle_min_fault = r->name;
+        }
+        if (r->fid.max > t->worst_dist) {
+            t->worst_dist = r->fid.max;
+            t->worst_dist_fault = r->name;
+        }
+        t->zmax = fmax(t->zmax, r->q.zmax);
+    }
+    for (size_t i = 0; rs->plan && i < fm_connect_plan_njunctions(rs->plan); i++) {
+        const char *why;
+        size_t which;
+        t->junctions[junction_outcome(rs, fm_connect_plan_junction(rs->plan, i), &why, &which)]++;
+    }
+    t->carved_pairs = rs->carve ? fm_carve_npairs(rs->carve) : 0;
+}
+
+/* The end-of-run table: what a user checks before opening the files. */
+void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp)
+{
+    run_totals t;
+    run_totals_of(rs, &t);
+    double T = 0;
+    for (int k = 0; k < 5; k++)
+        T += rs->time[k];
+    fprintf(fp, "\nsummary (%s)\n", cli->dir);
+    fprintf(fp, "  %-14s %zu read, %zu meshed (%zu with warnings), %ld failed, %zu near-duplicates "
+                "given up, %zu above sea level only\n",
+            "faults", rs->nres, t.ok, t.warned, rs->failed, t.dropped, t.empty);
+    fprintf(fp, "  %-14s %zu\n", "sheets", t.sheets);
+    if (rs->plan)
+        fprintf(fp, "  %-14s %zu crossing, %zu T, %zu corner, %zu unjoined (reasons in "
+                    "report.json); %zu shared nodes\n",
+                "junctions", t.junctions[FM_JUNCTION_CROSSING], t.junctions[FM_JUNCTION_T],
+                t.junctions[FM_JUNCTION_CORNER], t.junctions[FM_JUNCTION_UNJOINED],
+                fm_connect_plan_nnodes(rs->plan));
+    else
+        fprintf(fp, "  %-14s not connected\n", "junctions");
+    if (rs->carve)
+        fprintf(fp, "  %-14s %zu triangles removed where %zu fault pairs still crossed\n",
+                "last guard", t.carved, t.carved_pairs);
+    fprintf(fp, "  %-14s %zu, %.3f%% under 30 deg, %zu under 20 deg (%zu at sharp corners), "
+                "edges in [0.7, 1.4] H %.2f%%\n",
+            "triangles", t.triangles,
+            t.triangles ? 100.0 * (double)t.below30 / (double)t.triangles : 0, t.below20,
+            t.forced, t.edges ? 100.0 * (double)t.band / (double)t.edges : 0);
+    if (t.angle_min_fault)
+        fprintf(fp, "  %-14s smallest angle %.1f deg (%s)\n", "worst quality", t.angle_min,
+                t.angle_min_fault);
+    if (t.worst_dist_fault)
+        fprintf(fp, "  %-14s node %.0f m from the original (%s)\n", "worst fidelity",
+                t.worst_dist, t.worst_dist_fault);
+    fprintf(fp, "  %-14s read and fit %.1f s, connect %.1f s, mesh %.1f s, merge and check "
+                "%.1f s, write %.1f s; %.1f s in all\n",
+            "time", rs->time[0], rs->time[1], rs->time[2], rs->time[3], rs->time[4], T);
+    for (size_t i = 0; i < rs->nres; i++) {
+        const fault_result *r = &rs->res[i];
+        if (r->status && !strcmp(r->status, "error"))
+            fprintf(fp, "  %-14s %s: %s\n", "failed", r->name ? r->name : r->file,
+                    r->error ? r->error : "out of memory");
+    }
+}
+
 fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_attrs *sa,
-                              fm_error *err)
+                       fm_error *err)
 {
     size_t n = strlen(cli->dir) + 32;
     char *path = malloc(n);
@@ -293,61 +381,34 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
     fm_json_end_object(&j);
     fm_json_key(&j, "faults");
     fm_json_begin_array(&j);
-    size_t tris = 0, below30 = 0, below20 = 0, forced = 0, edges = 0, band = 0, ok = 0, warned = 0;
-    double worst_dist = 0, zmax = -INFINITY;
-    for (size_t i = 0; i < rs->nres; i++) {
-        const fault_result *r = &rs->res[i];
-        json_fault(&j, r, cli->mesh.size, sa);
-        if (!r->status || strcmp(r->status, "ok"))
-            continue;
-        ok++;
-        char w[2][160];
-        warned += fault_warnings(r, w) > 0;
-        tris += r->q.triangles;
-        below30 += r->q.below_30;
-        below20 += r->q.below_20;
-        forced += r->q.below_20_forced;
-        edges += r->q.edges;
-        band += r->q.edges_in_band;
-        worst_dist = fmax(worst_dist, r->fid.max);
-        zmax = fmax(zmax, r->q.zmax);
-    }
+    for (size_t i = 0; i < rs->nres; i++)
+        json_fault(&j, &rs->res[i], cli->mesh.size, sa);
     fm_json_end_array(&j);
-    size_t jcount[4];
-    json_connect(&j, cli, rs, jcount);
+    run_totals t;
+    run_totals_of(rs, &t);
+    json_connect(&j, cli, rs, &t);
     if (sa)
         sim_json_summary(&j, &cli->sim, sa);
     fm_json_key(&j, "summary");
     fm_json_begin_object(&j);
     fm_json_kv_int(&j, "faults", (int64_t)rs->nres);
-    fm_json_kv_int(&j, "meshed", (int64_t)ok);
+    fm_json_kv_int(&j, "meshed", (int64_t)t.ok);
     fm_json_kv_int(&j, "failed", rs->failed);
-    fm_json_kv_int(&j, "meshed_with_warnings", (int64_t)warned);
-    fm_json_kv_int(&j, "triangles", (int64_t)tris);
-    fm_json_kv_int(&j, "triangles_below_30_deg", (int64_t)below30);
-    fm_json_kv_int(&j, "triangles_below_20_deg", (int64_t)below20);
-    fm_json_kv_int(&j, "triangles_below_20_deg_at_sharp_corners", (int64_t)forced);
-    fm_json_kv_int(&j, "edges", (int64_t)edges);
-    fm_json_kv_int(&j, "edges_within_0.7_1.4", (int64_t)band);
-    fm_json_kv_number(&j, "node_to_original_max_m", worst_dist);
-    fm_json_kv_number(&j, "z_max_m", ok ? zmax : 0);
+    fm_json_kv_int(&j, "meshed_with_warnings", (int64_t)t.warned);
+    fm_json_kv_int(&j, "triangles", (int64_t)t.triangles);
+    fm_json_kv_int(&j, "triangles_below_30_deg", (int64_t)t.below30);
+    fm_json_kv_int(&j, "triangles_below_20_deg", (int64_t)t.below20);
+    fm_json_kv_int(&j, "triangles_below_20_deg_at_sharp_corners", (int64_t)t.forced);
+    fm_json_kv_int(&j, "edges", (int64_t)t.edges);
+    fm_json_kv_int(&j, "edges_within_0.7_1.4", (int64_t)t.band);
+    fm_json_kv_number(&j, "node_to_original_max_m", t.worst_dist);
+    fm_json_kv_number(&j, "z_max_m", t.ok ? t.zmax : 0);
     fm_json_kv_number(&j, "time_fit_s", rs->time[0]);
     fm_json_kv_number(&j, "time_connect_s", rs->time[1]);
     fm_json_kv_number(&j, "time_mesh_s", rs->time[2]);
+    fm_json_kv_number(&j, "time_merge_s", rs->time[3]);
+    fm_json_kv_number(&j, "time_write_s", rs->time[4]);
     fm_json_end_object(&j);
     fm_json_end_object(&j);
-    if (!cli->quiet && rs->plan)
-        printf("junctions: %zu crossing, %zu T, %zu corner, %zu unjoined; %zu near-duplicate "
-               "faults given up; %zu shared nodes\n",
-               jcount[0], jcount[1], jcount[2], jcount[3],
-               fm_connect_plan_get_stats(rs->plan)->duplicates,
-               fm_connect_plan_nnodes(rs->plan));
-    if (!cli->quiet)
-        printf("faults %zu, meshed %zu (%zu with warnings), failed %ld; triangles %zu, below 30 deg "
-               "%.3f%%, below 20 deg %zu (%zu at sharp corners), edges in [0.7, 1.4] H %.2f%%, "
-               "worst node distance %.1f m\n",
-               rs->nres, ok, warned, rs->failed, tris,
-               tris ? 100.0 * (double)below30 / (double)tris : 0,
-               below20, forced, edges ? 100.0 * (double)band / (double)edges : 0, worst_dist);
     return fm_atomic_commit(af, err);
 }

@@ -11,6 +11,7 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "progress.h"
 #include "fm_cad_write.h"
 #include "fm_carve.h"
 #include "fm_check.h"
@@ -32,6 +33,8 @@ typedef struct remesh_cli {
     fm_msh_tags msh_tags;
     const char *crs; /* --crs, or NULL: from the inputs, else EPSG:26711 */
     int quiet;
+    int verbose;  /* a line per fault */
+    progress *prog; /* stderr; NULL: none */
     int jobs;   /* threads */
     int connect;  /* join faults that meet (default 1) */
     double join;  /* D: join tolerance, m */
@@ -78,7 +81,8 @@ typedef struct run_state {
     int32_t *node_vertex; /* per plan node: its vertex in set, -1 until used */
     size_t *plan_res;     /* per plan fault index (objects in input order): its entry in res */
     size_t nplan_faults;
-    double time[3];       /* fit, connect, mesh + check (wall clock, s) */
+    double time[5];       /* read and fit, connect, mesh, merge and check, write (wall
+                             clock, s) */
     size_t *set_res;      /* per fault of the set (triangle tag): its entry in res */
     const fm_mesh **set_orig; /* and its original (valid until the jobs are released) */
     fm_carve_result *carve; /* faults that still met after meshing; NULL when not carved */
@@ -143,6 +147,16 @@ fm_junction_type junction_outcome(const run_state *rs, const fm_connect_junction
 fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa, fm_error *err);
 
 /* remesh_report.c */
+/* The run's figures over all faults and junctions. */
+typedef struct run_totals {
+    size_t ok, warned, dropped, empty, sheets;
+    size_t triangles, below30, below20, forced, edges, band, carved, carved_pairs;
+    size_t junctions[4]; /* by fm_junction_type, as meshed */
+    double angle_min, worst_dist, zmax;
+    const char *angle_min_fault, *worst_dist_fault;
+} run_totals;
+void run_totals_of(const run_state *rs, run_totals *t);
+void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp);
 void print_fault(const fault_result *r, double H);
 fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_attrs *sa,
                        fm_error *err);

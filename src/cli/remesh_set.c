@@ -126,7 +126,7 @@ void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
             fprintf(stderr, "faultmesh: %s\n", r->error ? r->error : "out of memory");
             rs->failed++;
         }
-        if (!cli->quiet)
+        if (cli->verbose)
             print_fault(r, cli->mesh.size);
         fm_mesh_destroy(fault);
     }
@@ -343,7 +343,7 @@ static int junction_sets_make(const run_state *rs, junction_sets *js)
  * (the bytes do not depend on how many); the simulator files after them.
  * *sa gets the element attributes (cleared when there are no faults). */
 fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa,
-                           fm_error *err)
+                    fm_error *err)
 {
     memset(sa, 0, sizeof *sa);
     if (!rs->nfaults)

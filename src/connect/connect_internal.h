@@ -101,5 +101,10 @@ int cn_edge_crosses_triangle(const double *p, const double *q, int64_t ip, int64
  * caller's among them), in no fixed order: fn stores its results by k. */
 typedef void (*cn_task_fn)(void *user, size_t k);
 void cn_parallel_for(size_t n, int nthreads, cn_task_fn fn, void *user);
+/* The same, telling progress(progress_user, base + items done, total)
+ * after each item (progress may be NULL); calls to it are serialised. */
+void cn_parallel_for_told(size_t n, int nthreads, cn_task_fn fn, void *user,
+                          fm_connect_progress_fn progress, void *progress_user, size_t base,
+                          size_t total);
 
 #endif

@@ -278,6 +278,10 @@ fm_status fm_connect_find_duplicates(const fm_model *const *models, size_t n,
  * (fm_connect_find_duplicates) are given up first and join nothing.
  * Deterministic for any thread count. */
 
+/* Told how far the plan's curves are: done of total sheet outlines and
+ * pairs measured. Called from worker threads, one call at a time. */
+typedef void (*fm_connect_progress_fn)(void *user, size_t done, size_t total);
+
 typedef struct fm_connect_plan_options {
     double distance;   /* D: join tolerance (m); default 1000 */
     double size;       /* H: node spacing along junction curves (m); default 1000 */
@@ -287,6 +291,8 @@ typedef struct fm_connect_plan_options {
                           on this many threads (it overrides duplicates.nthreads);
                           default 1 */
     fm_connect_duplicate_options duplicates;
+    fm_connect_progress_fn progress; /* NULL (default): not told */
+    void *progress_user;
 } fm_connect_plan_options;
 
 void fm_connect_plan_options_default(fm_connect_plan_options *opt);

@@ -9,7 +9,10 @@
 typedef struct pool {
     cn_task_fn fn;
     void *user;
-    size_t n, next;
+    size_t n, next, done;
+    fm_connect_progress_fn told;
+    void *told_user;
+    size_t base, total;
     pthread_mutex_t lock;
 } pool;
 
@@ -23,16 +26,30 @@ static void *worker(void *arg)
         if (k >= p->n)
             return NULL;
         p->fn(p->user, k);
+        if (p->told) {
+            pthread_mutex_lock(&p->lock);
+            p->done++;
+            p->told(p->told_user, p->base + p->done, p->total);
+            pthread_mutex_unlock(&p->lock);
+        }
     }
 }
 
 void cn_parallel_for(size_t n, int nthreads, cn_task_fn fn, void *user)
 {
+    cn_parallel_for_told(n, nthreads, fn, user, NULL, NULL, 0, 0);
+}
+
+void cn_parallel_for_told(size_t n, int nthreads, cn_task_fn fn, void *user,
+                          fm_connect_progress_fn progress, void *progress_user, size_t base,
+                          size_t total)
+{
     if (nthreads < 1)
         nthreads = 1;
     if ((size_t)nthreads > n)
         nthreads = n ? (int)n : 1;
-    pool p = {fn, user, n, 0, PTHREAD_MUTEX_INITIALIZER};
+    pool p = {fn,   user,          n,    0,     0,
+              progress, progress_user, base, total, PTHREAD_MUTEX_INITIALIZER};
     pthread_t *th = nthreads > 1 ? malloc((size_t)(nthreads - 1) * sizeof *th) : NULL;
     int started = 0;
     for (int t = 0; th && t < nthreads - 1; t++) {

@@ -456,8 +456,9 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
         }
     }
     outline_work ow = {models, (const size_t(*)[2])ref, slot, psh};
-    cn_parallel_for(nol, o.nthreads, do_outline, &ow);
-    cn_parallel_for(np, o.nthreads, do_pair, &w);
+    cn_parallel_for_told(nol, o.nthreads, do_outline, &ow, o.progress, o.progress_user, 0,
+                         nol + np);
+    cn_parallel_for_told(np, o.nthreads, do_pair, &w, o.progress, o.progress_user, nol, nol + np);
     for (size_t g = 0; g < ns; g++)
         pl_outline_free(&psh[g].ol);
     free(psh);

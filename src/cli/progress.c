@@ -1,0 +1,182 @@
+/* faultmesh CLI: progress of a long run on stderr (progress.h). */
+#include "progress.h"
+
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "fm_clock.h"
+
+#define BAR_WIDTH 28
+/* Redrawing more often only costs a terminal time. */
+#define REDRAW_S 0.1
+
+struct progress {
+    FILE *fp;
+    progress_level level;
+    int tty;
+    pthread_mutex_t mu;
+    char stage[40];
+    const char *unit;
+    size_t count, done;
+    double weight, done_weight;
+    double t0, last_draw;
+    int quarter; /* plain mode: the last quarter logged */
+};
+
+progress *progress_create(FILE *fp, progress_level level, int force_plain)
+{
+    progress *p = calloc(1, sizeof *p);
+    if (!p)
+        return NULL;
+    p->fp = fp;
+    p->level = level;
+    p->tty = !force_plain && isatty(fileno(fp));
+    pthread_mutex_init(&p->mu, NULL);
+    return p;
+}
+
+void progress_destroy(progress *p)
+{
+    if (!p)
+        return;
+    pthread_mutex_destroy(&p->mu);
+    free(p);
+}
+
+static void clock_text(double s, char *buf, size_t n)
+{
+    long t = (long)(s + 0.5);
+    if (t >= 3600)
+        snprintf(buf, n, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
+    else
+        snprintf(buf, n, "%ld:%02ld", t / 60, t % 60);
+}
+
+/* The share done: by weight when there is one, else by count. */
+static double share(const progress *p)
+{
+    if (p->weight > 0)
+        return p->done_weight / p->weight < 1 ? p->done_weight / p->weight : 1;
+    return p->count ? (double)p->done / (double)p->count : 0;
+}
+
+/* Caller holds the lock. */
+static void draw(progress *p, double now)
+{
+    double f = share(p), el = now - p->t0;
+    char eta[32] = "--:--", elapsed[32];
+    clock_text(el, elapsed, sizeof elapsed);
+    /* the first few percent say little about the rest */
+    if (f >= 0.03 && f < 1)
+        clock_text(el * (1 - f) / f, eta, sizeof eta);
+    if (p->count == 0) {
+        fprintf(p->fp, "\r%-16s %s\033[K", p->stage, elapsed);
+    } else {
+        char bar[BAR_WIDTH + 1];
+        int full = (int)(f * BAR_WIDTH + 0.5);
+        for (int i = 0; i < BAR_WIDTH; i++)
+            bar[i] = i < full ? '#' : '.';
+        bar[BAR_WIDTH] = 0;
+        fprintf(p->fp, "\r%-16s [%s] %zu/%zu %s %3.0f%%  %s  ETA %s\033[K", p->stage, bar,
+                p->done, p->count, p->unit, 100 * f, elapsed, f < 1 ? eta : "0:00");
+    }
+    fflush(p->fp);
+    p->last_draw = now;
+}
+
+void progress_begin(progress *p, const char *stage, size_t count, const char *unit,
+                    double weight)
+{
+    if (!p)
+        return;
+    pthread_mutex_lock(&p->mu);
+    snprintf(p->stage, sizeof p->stage, "%s", stage);
+    p->unit = unit ? unit : "";
+    p->count = count;
+    p->done = 0;
+    p->weight = weight;
+    p->done_weight = 0;
+    p->quarter = 0;
+    p->t0 = fm_clock_seconds();
+    if (p->level != PROGRESS_QUIET) {
+        if (p->tty)
+            draw(p, p->t0);
+        else if (count)
+            fprintf(p->fp, "faultmesh: %s: %zu %s\n", p->stage, count, p->unit);
+    }
+    pthread_mutex_unlock(&p->mu);
+}
+
+void progress_step(progress *p, double weight)
+{
+    if (!p)
+        return;
+    pthread_mutex_lock(&p->mu);
+    p->done++;
+    p->done_weight += weight;
+    if (p->level != PROGRESS_QUIET) {
+        double now = fm_clock_seconds();
+        if (p->tty) {
+            if (now - p->last_draw >= REDRAW_S || p->done == p->count)
+                draw(p, now);
+        } else if (p->count) {
+            /* a log line at each quarter, with its ETA */
+            int q = (int)(4 * share(p));
+            /* short stages need no interim lines */
+            if (q > p->quarter && q < 4 && now - p->t0 >= 1.0) {
+                p->quarter = q;
+                double f = share(p), el = now - p->t0;
+                char eta[32];
+                clock_text(el * (1 - f) / f, eta, sizeof eta);
+                fprintf(p->fp, "faultmesh: %s: %zu/%zu %s, %.0f%%, ETA %s\n", p->stage, p->done,
+                        p->count, p->unit, 100 * f, eta);
+            }
+        }
+    }
+    pthread_mutex_unlock(&p->mu);
+}
+
+void progress_set(progress *p, size_t done, size_t count, const char *unit)
+{
+    if (!p)
+        return;
+    pthread_mutex_lock(&p->mu);
+    double now = fm_clock_seconds();
+    if (p->count == 0 && count > 0) {
+        /* the ETA runs from when the count is known */
+        p->t0 = now;
+        p->unit = unit ? unit : "";
+        p->weight = 0;
+    }
+    p->count = count;
+    p->done = done;
+    if (p->level != PROGRESS_QUIET && p->tty && (now - p->last_draw >= REDRAW_S || done == count))
+        draw(p, now);
+    pthread_mutex_unlock(&p->mu);
+}
+
+double progress_end(progress *p)
+{
+    if (!p)
+        return 0;
+    pthread_mutex_lock(&p->mu);
+    double now = fm_clock_seconds(), el = now - p->t0;
+    if (p->level != PROGRESS_QUIET) {
+        if (p->tty) {
+            fprintf(p->fp, "\r%-16s done in %.1f s", p->stage, el);
+            if (p->count)
+                fprintf(p->fp, " (%zu %s)", p->done, p->unit);
+            fputs("\033[K\n", p->fp);
+        } else {
+            fprintf(p->fp, "faultmesh: %s: done in %.1f s", p->stage, el);
+            if (p->count)
+                fprintf(p->fp, " (%zu %s)", p->done, p->unit);
+            fputc('\n', p->fp);
+        }
+        fflush(p->fp);
+    }
+    pthread_mutex_unlock(&p->mu);
+    return el;
+}
