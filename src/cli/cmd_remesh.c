@@ -18,6 +18,50 @@ static void told(void *user, size_t done, size_t total)
     progress_set(user, done, total, "outlines and pairs");
 }
 
+/* The settings file's per-fault sizes, join distances, tops and joins as
+ * the plan takes them. */
+typedef struct per_fault {
+    double *distance, *size;
+    unsigned char *cut, *joins;
+} per_fault;
+
+static void per_fault_free(per_fault *pf)
+{
+    free(pf->distance);
+    free(pf->size);
+    free(pf->cut);
+    free(pf->joins);
+}
+
+static int per_fault_make(per_fault *pf, fault_result *const *res, size_t n,
+                          fm_connect_plan_options *po)
+{
+    pf->distance = malloc((n + 1) * sizeof *pf->distance);
+    pf->size = malloc((n + 1) * sizeof *pf->size);
+    pf->cut = malloc(n + 1);
+    pf->joins = malloc(n + 1);
+    if (!pf->distance || !pf->size || !pf->cut || !pf->joins) {
+        per_fault_free(pf);
+        return -1;
+    }
+    for (size_t f = 0; f < n; f++) {
+        const fault_result *r = res[f];
+        pf->distance[f] = r->join;
+        pf->size[f] = r->mesh.size;
+        pf->cut[f] = r->mesh.top != FM_TOP_KEEP;
+        pf->joins[f] = (unsigned char)r->connect;
+        /* the search reaches the farthest any pair joins; triple points
+         * merge at the finest size */
+        po->distance = fmax(po->distance, r->join);
+        po->size = fmin(po->size, r->mesh.size);
+    }
+    po->fault_distance = pf->distance;
+    po->fault_size = pf->size;
+    po->fault_cut = pf->cut;
+    po->fault_joins = pf->joins;
+    return 0;
+}
+
 /* The junction plan over every fitted fault (objects in input order);
  * faults it gives up as near-duplicates are marked "dropped". NULL when
  * there is nothing to join or the plan failed (reported; the faults are
@@ -54,17 +98,25 @@ static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t 
     po.duplicates.keep = cli->keep;
     po.progress = told;
     po.progress_user = cli->prog;
+    per_fault pf = {0};
+    if (cli->cfg && cli->cfg->nfault && per_fault_make(&pf, res, n, &po)) {
+        free(models);
+        free(res);
+        fprintf(stderr, "faultmesh: out of memory: meshing faults unconnected\n");
+        return NULL;
+    }
     fm_connect_plan *plan = NULL;
     fm_error err;
     fm_error_clear(&err);
-    if (fm_connect_plan_build(models, n, &po, &plan, &err) != FM_OK) {
+    fm_status st = fm_connect_plan_build(models, n, &po, &plan, &err);
+    per_fault_free(&pf);
+    free(models);
+    if (st != FM_OK) {
         fprintf(stderr, "faultmesh: connecting faults failed, meshing them unconnected: %s\n",
                 err.message);
-        free(models);
         free(res);
         return NULL;
     }
-    free(models);
     for (size_t f = 0; f < n; f++) {
         const fm_connect_duplicate *d;
         if (!fm_connect_plan_dropped(plan, f, &d))
@@ -225,11 +277,11 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     return rs.failed ? FM_EXIT_FAILURES : FM_EXIT_OK;
 }
 
-int fm_cmd_remesh(int argc, char **argv)
+static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **cinputs,
+                       size_t ncinputs)
 {
-    remesh_cli cli;
-    cli_defaults(&cli);
-    char **paths = calloc((size_t)argc, sizeof *paths);
+    remesh_cli cli = *cli_in;
+    char **paths = calloc((size_t)argc + ncinputs, sizeof *paths);
     size_t npaths = 0;
     if (!paths)
         return FM_EXIT_FAILURES;
@@ -252,6 +304,11 @@ int fm_cmd_remesh(int argc, char **argv)
         if (c == 0)
             paths[npaths++] = argv[i];
     }
+    /* inputs on the command line replace the settings file's */
+    for (size_t k = 0; npaths == 0 && k < ncinputs; k++)
+        paths[k] = (char *)cinputs[k];
+    if (npaths == 0)
+        npaths = ncinputs;
     extend_fit(&cli);
     if (settle_msh(&cli)) {
         free(paths);
@@ -285,16 +342,50 @@ int fm_cmd_remesh(int argc, char **argv)
     return rc;
 }
 
-int fm_cmd_demo(int argc, char **argv)
+/* --config FILE, wherever it stands on the command line, is read first:
+ * the options given beside it override it. 0 (*cfg NULL when there is
+ * none), or -1 after saying why. */
+static int load_config(int argc, char **argv, remesh_cli *cli, config **cfg,
+                       const char ***inputs, size_t *ninputs)
+{
+    *cfg = NULL;
+    *inputs = NULL;
+    *ninputs = 0;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--config"))
+            continue;
+        if (*cfg || i + 1 >= argc) {
+            fprintf(stderr, "faultmesh: --config takes one settings file\n");
+            return -1;
+        }
+        if (!(*cfg = config_read(argv[i + 1])) || remesh_config(cli, *cfg, inputs, ninputs))
+            return -1;
+        i++;
+    }
+    return 0;
+}
+
+int fm_cmd_remesh(int argc, char **argv)
 {
     remesh_cli cli;
     cli_defaults(&cli);
-    /* The synthetic faults are 20 to 60 km long: 1 km triangles show
-     * their shapes and mesh in a second. Local metres, no real CRS. */
-    cli.crs = "local metres (synthetic)";
-    /* No real CRS to convert from: EQSim in the mesh's metres unless
-     * --crs and --eqsim-coords spherical say otherwise. */
-    cli.sim.eqsim = FM_EQSIM_RECTANGULAR;
+    config *cfg = NULL;
+    const char **cinputs = NULL;
+    size_t ncinputs = 0;
+    if (load_config(argc, argv, &cli, &cfg, &cinputs, &ncinputs)) {
+        free(cinputs);
+        config_free(cfg);
+        return FM_EXIT_USAGE;
+    }
+    int rc = remesh_main(&cli, argc, argv, cinputs, ncinputs);
+    free(cinputs);
+    config_free(cfg);
+    return rc;
+}
+
+static int demo_main(remesh_cli *cli_in, int argc, char **argv)
+{
+    remesh_cli cli = *cli_in;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -353,5 +444,30 @@ int fm_cmd_demo(int argc, char **argv)
         fm_input_list_free(files, nfiles);
     free(in);
     sim_cli_free(&cli.sim);
+    return rc;
+}
+
+int fm_cmd_demo(int argc, char **argv)
+{
+    remesh_cli cli;
+    cli_defaults(&cli);
+    /* The synthetic faults are 20 to 60 km long: 1 km triangles show
+     * their shapes and mesh in a second. Local metres, no real CRS. */
+    cli.crs = "local metres (synthetic)";
+    /* No real CRS to convert from: EQSim in the mesh's metres unless
+     * --crs and --eqsim-coords spherical say otherwise. */
+    cli.sim.eqsim = FM_EQSIM_RECTANGULAR;
+    config *cfg = NULL;
+    const char **cinputs = NULL;
+    size_t ncinputs = 0;
+    int rc = FM_EXIT_USAGE;
+    if (load_config(argc, argv, &cli, &cfg, &cinputs, &ncinputs) == 0) {
+        if (ncinputs)
+            fprintf(stderr, "faultmesh demo: %s: the demo makes its own inputs\n", cfg->path);
+        else
+            rc = demo_main(&cli, argc, argv);
+    }
+    free(cinputs);
+    config_free(cfg);
     return rc;
 }

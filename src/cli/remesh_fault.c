@@ -121,15 +121,37 @@ static double fitted_area(const fm_model *m, int cut, double level)
     return area;
 }
 
-/* Repairs and fits one fault (one TSurf object). */
+/* A fault's own options: the run's, with what the settings file says of
+ * it by name. */
+static void fault_options(const remesh_cli *cli, fault_result *r)
+{
+    config_fault_lookup(cli->cfg, r->name, &r->fc);
+    r->mesh = cli->mesh;
+    if (r->fc.has_size)
+        r->mesh.size = r->fc.size;
+    if (r->fc.has_top) {
+        r->mesh.top = r->fc.top;
+        r->mesh.top_extend = r->fc.top_extend;
+    }
+    r->join = r->fc.has_join ? r->fc.join : cli->join;
+    r->connect = cli->connect && !(r->fc.has_connect && !r->fc.connect);
+}
+
+/* Repairs and fits one fault (one TSurf object). Its surface reaches as
+ * far past its outline as its top and its joins need (extend_fit). */
 static fm_status fit_object(const remesh_cli *cli, const char *path, const fm_mesh *orig,
                             fault_result *r, fm_model **model, fm_error *err)
 {
     fm_surface *surf = NULL;
     double t0 = fm_clock_seconds();
+    fm_model_options mopt = cli->model;
+    if (r->mesh.top == FM_TOP_EXTEND)
+        mopt.fit.extend = fmax(mopt.fit.extend, 1.5 * r->mesh.top_extend + r->mesh.size);
+    if (r->connect)
+        mopt.fit.extend = fmax(mopt.fit.extend, 2 * r->join);
     fm_status st = fm_repair(orig, &cli->repair, &surf, err);
     if (st == FM_OK)
-        st = fm_model_build(path, surf, &cli->model, model, err);
+        st = fm_model_build(path, surf, &mopt, model, err);
     fm_surface_destroy(surf);
     r->t_fit = fm_clock_seconds() - t0;
     return st;
@@ -194,14 +216,14 @@ static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f
 }
 
 /* Meshes a fitted fault into fault (tags = sheet; ids: shared node per
- * vertex) and checks it against the original. */
-static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_mesh *orig,
+ * vertex) with its options (r->mesh) and checks it against the original. */
+static fm_status mesh_object(const char *path, const fm_mesh *orig,
                              const fm_model *model, const fm_connect_plan *plan,
                              const unsigned char *excluded, size_t f, fault_result *r,
                              fm_mesh **fault, int64_t **ids, fm_error *err)
 {
     double t1 = fm_clock_seconds();
-    fm_remesh_options mo = cli->mesh;
+    fm_remesh_options mo = r->mesh;
     mo.name = path;
     fm_remesh_curve *store = NULL;
     unsigned char *dropped = NULL;
@@ -225,7 +247,7 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
                 meshed[tag[t]] = 1;
         size_t skipped = 0;
         st = meshed ? fm_cli_cad_faces(model, bounds, meshed, r->name,
-                                       cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level, &r->cad,
+                                       r->mesh.top != FM_TOP_KEEP, r->mesh.sea_level, &r->cad,
                                        &r->ncad, &skipped, err)
                     : fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
         free(meshed);
@@ -263,7 +285,7 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
     free(curve_of);
     free(per);
     free(store);
-    r->fitted_area = fitted_area(model, cli->mesh.top != FM_TOP_KEEP, cli->mesh.sea_level);
+    r->fitted_area = fitted_area(model, r->mesh.top != FM_TOP_KEEP, r->mesh.sea_level);
     /* Shared nodes take the plan's position (on both surfaces), as in the
      * fault set, so that the check measures what is written. */
     if (st == FM_OK && plan && *ids) {
@@ -282,7 +304,7 @@ static fm_status mesh_object(const remesh_cli *cli, const char *path, const fm_m
     r->t_mesh = t2 - t1;
     if (st == FM_OK && fm_mesh_ntriangles(*fault) > 0) {
         fm_closest_tree *tree = fm_closest_tree_create(orig, err);
-        st = tree ? fm_check_quality(*fault, -1, cli->mesh.size, &r->q) : FM_ERR_NOMEM;
+        st = tree ? fm_check_quality(*fault, -1, r->mesh.size, &r->q) : FM_ERR_NOMEM;
         if (st == FM_OK)
             st = fm_check_fidelity(*fault, -1, orig, tree, &r->fid);
         if (st != FM_OK && tree)
@@ -333,6 +355,18 @@ void fit_file(const remesh_cli *cli, file_job *job)
         const char *name = fm_tsurf_name(job->objs[o]);
         r->file = strdup(path);
         r->name = strdup(name[0] ? name : path);
+        if (!r->file || !r->name) {
+            r->status = "error";
+            continue;
+        }
+        fault_options(cli, r);
+        if (r->fc.has_exclude && r->fc.exclude) {
+            char msg[256];
+            snprintf(msg, sizeof msg, "excluded by %s:%ld", cli->cfg->path, r->fc.line);
+            r->status = "excluded";
+            r->error = strdup(msg);
+            continue;
+        }
         fm_error_clear(&err);
         if (fit_object(cli, path, fm_tsurf_mesh(job->objs[o]), r, &job->model[o], &err) != FM_OK) {
             r->status = "error";
@@ -364,8 +398,8 @@ static void reset_result(fault_result *r)
 /* Meshes the job's faults; again: only those marked in job->redo, with
  * the curves in excluded left out. Models stay for another round
  * (release_job frees them). */
-void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan,
-               const unsigned char *excluded, file_job *job, int again)
+void mesh_file(const fm_connect_plan *plan, const unsigned char *excluded, file_job *job,
+               int again)
 {
     if (!job->res || !job->model)
         return;
@@ -390,7 +424,7 @@ void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan,
         }
         fm_mesh *fault = NULL;
         fm_error_clear(&err);
-        fm_status st = mesh_object(cli, job->path, fm_tsurf_mesh(job->objs[o]), model, plan,
+        fm_status st = mesh_object(job->path, fm_tsurf_mesh(job->objs[o]), model, plan,
                                    excluded, job->first + o, r, &fault, &job->ids[o], &err);
         /* the time of every meshing counts */
         r->t_mesh += t_mesh;

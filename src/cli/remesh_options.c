@@ -102,6 +102,9 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
             fprintf(stderr, "faultmesh: --msh-tags takes default, tandem, seissol or pylith\n");
             return -1;
         }
+    } else if (!strcmp(a, "--config")) {
+        if (!val)
+            return -1; /* read before the other options (load_config) */
     } else if (!strcmp(a, "--crs")) {
         if (!val)
             return -1;
@@ -188,4 +191,95 @@ void cli_defaults(remesh_cli *cli)
     cli->keep = FM_CONNECT_KEEP_SMALLER;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     cli->jobs = ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;
+}
+
+/* Flags whose default is on: `key = false` in a settings file is their
+ * --no- option, `key = true` the default. */
+static const char *const on_by_default[] = {"connect", "split"};
+
+static int is_on_by_default(const char *key)
+{
+    for (size_t i = 0; i < sizeof on_by_default / sizeof *on_by_default; i++)
+        if (!strcmp(key, on_by_default[i]))
+            return 1;
+    return 0;
+}
+
+/* Paths the file names, taken from its folder. */
+static int path_key(const char *key)
+{
+    return !strcmp(key, "output") || !strcmp(key, "slip") || !strcmp(key, "metadata");
+}
+
+int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninputs)
+{
+    *inputs = NULL;
+    *ninputs = 0;
+    const cfg_section *s = &c->top;
+    const cfg_entry *extend = NULL;
+    for (size_t i = 0; i < s->n; i++)
+        if (!strcmp(s->e[i].key, "top_extend"))
+            extend = &s->e[i];
+    for (size_t i = 0; i < s->n; i++) {
+        const cfg_entry *e = &s->e[i];
+        char opt[96];
+        const char *argv[4] = {opt, NULL, NULL, NULL};
+        int argc = 1;
+        snprintf(opt, sizeof opt, "--%s", e->key);
+        for (char *q = opt + 2; *q; q++)
+            if (*q == '_')
+                *q = '-';
+        if (!strcmp(e->key, "inputs") || !strcmp(e->key, "input")) {
+            size_t n = e->type == CFG_ARRAY ? e->nitems : e->type == CFG_STRING ? 1 : 0;
+            const char **g = n ? realloc(*inputs, (*ninputs + n) * sizeof *g) : NULL;
+            if (!g) {
+                fprintf(stderr, "%s:%ld: %s takes a path or a list of paths\n", c->path, e->line,
+                        e->key);
+                return -1;
+            }
+            *inputs = g;
+            for (size_t k = 0; k < n; k++)
+                if (!(g[(*ninputs)++] = config_path(c, e->type == CFG_ARRAY ? e->items[k] : e->text)))
+                    return -1;
+            continue;
+        }
+        if (!strcmp(e->key, "top_extend")) {
+            continue; /* with top = "extend" */
+        } else if (e->type == CFG_BOOL) {
+            int on = e->text[0] == 't';
+            if (is_on_by_default(e->key) && !on)
+                snprintf(opt, sizeof opt, "--no-%s", e->key);
+            else if (is_on_by_default(e->key) || !on)
+                continue; /* the default */
+        } else if (e->type == CFG_ARRAY) {
+            fprintf(stderr, "%s:%ld: %s takes one value, not a list\n", c->path, e->line, e->key);
+            return -1;
+        } else {
+            argv[argc++] = path_key(e->key) ? config_path(c, e->text) : e->text;
+            if (!argv[1])
+                return -1;
+            if (!strcmp(e->key, "top") && !strcmp(e->text, "extend")) {
+                if (!extend || extend->type != CFG_NUMBER) {
+                    fprintf(stderr, "%s:%ld: top = \"extend\" needs top_extend = D (metres)\n",
+                            c->path, e->line);
+                    return -1;
+                }
+                argv[argc++] = extend->text;
+            }
+        }
+        int k = 0;
+        int rc = mesh_option(argc, (char **)argv, &k, cli);
+        if (rc == 0 || (rc > 0 && k + 1 != argc)) {
+            fprintf(stderr, "%s:%ld: unknown setting '%s'%s\n", c->path, e->line, e->key,
+                    rc > 0 ? " (it takes no value here)" : "");
+            return -1;
+        }
+        if (rc < 0) {
+            fprintf(stderr, "%s:%ld: bad value for '%s'\n", c->path, e->line, e->key);
+            return -1;
+        }
+    }
+    cli->cfg = c;
+    cli->sim.cfg = c;
+    return 0;
 }

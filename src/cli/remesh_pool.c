@@ -45,7 +45,7 @@ static void *worker(void *arg)
         if (p->phase == 0)
             fit_file(p->cli, job);
         else
-            mesh_file(p->cli, p->plan, p->excluded, job, p->phase == 2);
+            mesh_file(p->plan, p->excluded, job, p->phase == 2);
         if (p->phase != 2 || marked(job))
             progress_step(p->cli->prog, p->bytes ? p->bytes[at] : 1);
     }

@@ -109,6 +109,31 @@ static void json_fault(fm_json *j, const fault_result *r, double H, const sim_at
     fm_json_kv_string(j, "status", r->status ? r->status : "error");
     if (r->error)
         fm_json_kv_string(j, "error", r->error);
+    if (r->fc.line) {
+        /* what the settings file changed for it, and where */
+        fm_json_key(j, "settings");
+        fm_json_begin_object(j);
+        fm_json_kv_int(j, "last_section_line", r->fc.line);
+        if (r->fc.has_size)
+            fm_json_kv_number(j, "size_m", r->fc.size);
+        if (r->fc.has_top)
+            fm_json_kv_string(j, "top", r->fc.top == FM_TOP_CUT    ? "cut"
+                                        : r->fc.top == FM_TOP_KEEP ? "keep"
+                                                                   : "extend");
+        if (r->fc.has_top && r->fc.top == FM_TOP_EXTEND)
+            fm_json_kv_number(j, "top_extend_m", r->fc.top_extend);
+        if (r->fc.has_join)
+            fm_json_kv_number(j, "join_distance_m", r->fc.join);
+        if (r->fc.has_connect)
+            fm_json_kv_bool(j, "connect", r->fc.connect);
+        if (r->fc.has_exclude)
+            fm_json_kv_bool(j, "exclude", r->fc.exclude);
+        if (r->fc.has_rake)
+            fm_json_kv_number(j, "rake_deg", r->fc.rake);
+        if (r->fc.has_rate)
+            fm_json_kv_number(j, "slip_rate_mm_yr", r->fc.slip_rate_mm_yr);
+        fm_json_end_object(j);
+    }
     if (r->status && !strcmp(r->status, "ok")) {
         fm_json_kv_int(j, "sheets", (int64_t)r->sheets);
         fm_json_kv_int(j, "triangles", (int64_t)r->q.triangles);
@@ -272,6 +297,8 @@ void run_totals_of(const run_state *rs, run_totals *t)
             t->dropped++;
         else if (!strcmp(st, "empty"))
             t->empty++;
+        else if (!strcmp(st, "excluded"))
+            t->excluded++;
         if (strcmp(st, "ok"))
             continue;
         t->ok++;
@@ -313,8 +340,8 @@ void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp)
         T += rs->time[k];
     fprintf(fp, "\nsummary (%s)\n", cli->dir);
     fprintf(fp, "  %-14s %zu read, %zu meshed (%zu with warnings), %ld failed, %zu near-duplicates "
-                "given up, %zu above sea level only\n",
-            "faults", rs->nres, t.ok, t.warned, rs->failed, t.dropped, t.empty);
+                "given up, %zu wholly above sea level, %zu excluded\n",
+            "faults", rs->nres, t.ok, t.warned, rs->failed, t.dropped, t.empty, t.excluded);
     fprintf(fp, "  %-14s %zu\n", "sheets", t.sheets);
     if (rs->plan)
         fprintf(fp, "  %-14s %zu crossing, %zu T, %zu corner, %zu unjoined (reasons in "
@@ -382,7 +409,7 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
     fm_json_key(&j, "faults");
     fm_json_begin_array(&j);
     for (size_t i = 0; i < rs->nres; i++)
-        json_fault(&j, &rs->res[i], cli->mesh.size, sa);
+        json_fault(&j, &rs->res[i], rs->res[i].mesh.size, sa);
     fm_json_end_array(&j);
     run_totals t;
     run_totals_of(rs, &t);

@@ -11,6 +11,7 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "config.h"
 #include "progress.h"
 #include "fm_cad_write.h"
 #include "fm_carve.h"
@@ -35,6 +36,7 @@ typedef struct remesh_cli {
     int quiet;
     int verbose;  /* a line per fault */
     progress *prog; /* stderr; NULL: none */
+    const config *cfg; /* --config: per-fault settings; NULL: none */
     int jobs;   /* threads */
     int connect;  /* join faults that meet (default 1) */
     double join;  /* D: join tolerance, m */
@@ -46,7 +48,12 @@ typedef struct remesh_cli {
 /* What one fault came to, for report.json. */
 typedef struct fault_result {
     char *file, *name, *error;
-    const char *status; /* "ok", "empty" (nothing below sea level), "error" */
+    const char *status; /* "ok", "empty" (nothing below sea level), "error", "dropped"
+                           (a near-duplicate), "excluded" (by the settings file) */
+    fault_config fc;       /* what the settings file's [[fault]] sections say of it */
+    fm_remesh_options mesh; /* its mesh options: the run's, with fc's size and top */
+    double join;           /* its join distance, m */
+    int connect;           /* whether it joins other faults */
     size_t sheets;
     fm_quality q;
     fm_fidelity fid;
@@ -119,14 +126,20 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli);
 int settle_msh(remesh_cli *cli);
 void extend_fit(remesh_cli *cli);
 void cli_defaults(remesh_cli *cli);
+/* The settings file's top-level keys, applied as the options they name
+ * (command-line options given after override them); its inputs, if it
+ * lists any, in *inputs (free the array, not the strings). 0, or -1
+ * after printing FILE:LINE: why. */
+int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninputs);
 
 /* remesh_fault.c */
 int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets, const fm_keyed *edge,
                  size_t ne, fault_result *r);
 int share_piece(const fault_result *a, const fault_result *b, size_t c);
 void fit_file(const remesh_cli *cli, file_job *job);
-void mesh_file(const remesh_cli *cli, const fm_connect_plan *plan, const unsigned char *excluded,
-               file_job *job, int again);
+/* Each fault with its own options (fault_result.mesh). */
+void mesh_file(const fm_connect_plan *plan, const unsigned char *excluded, file_job *job,
+               int again);
 void release_job(file_job *job);
 void abandon_job(file_job *job);
 
@@ -149,7 +162,7 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa, f
 /* remesh_report.c */
 /* The run's figures over all faults and junctions. */
 typedef struct run_totals {
-    size_t ok, warned, dropped, empty, sheets;
+    size_t ok, warned, dropped, empty, excluded, sheets;
     size_t triangles, below30, below20, forced, edges, band, carved, carved_pairs;
     size_t junctions[4]; /* by fm_junction_type, as meshed */
     double angle_min, worst_dist, zmax;

@@ -127,7 +127,7 @@ void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
             rs->failed++;
         }
         if (cli->verbose)
-            print_fault(r, cli->mesh.size);
+            print_fault(r, r->mesh.size);
         fm_mesh_destroy(fault);
     }
     free(job->res);
@@ -169,7 +169,11 @@ void carve_set(const remesh_cli *cli, run_state *rs)
 {
     fm_error err;
     fm_error_clear(&err);
-    if (fm_carve_crossings(rs->set, 2 * cli->mesh.size, rs->sheet, &rs->carve, &err) != FM_OK) {
+    /* the grid's cells hold a few of the largest triangles */
+    double H = cli->mesh.size;
+    for (size_t f = 0; f < rs->nfaults; f++)
+        H = fmax(H, rs->res[rs->set_res[f]].mesh.size);
+    if (fm_carve_crossings(rs->set, 2 * H, rs->sheet, &rs->carve, &err) != FM_OK) {
         fprintf(stderr, "faultmesh: faults that cross each other are left so: %s\n",
                 err.message);
         return;
@@ -183,7 +187,7 @@ void carve_set(const remesh_cli *cli, run_state *rs)
         size_t before = r->q.triangles;
         double area = r->q.area;
         fm_closest_tree *tree = fm_closest_tree_create(rs->set_orig[tag], &err);
-        if (!tree || fm_check_quality(rs->set, tag, cli->mesh.size, &r->q) != FM_OK ||
+        if (!tree || fm_check_quality(rs->set, tag, r->mesh.size, &r->q) != FM_OK ||
             fm_check_fidelity(rs->set, tag, rs->set_orig[tag], tree, &r->fid) != FM_OK)
             fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
         fm_closest_tree_destroy(tree);

@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "config.h"
 #include "sim_attrs.h"
 
 #define DEG2RAD (3.14159265358979323846 / 180.0)
@@ -165,6 +166,12 @@ int sim_attrs_make(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a)
         return -1;
     }
     fm_slip_assign(fs->names, nf, sc->md, sc->slip, a->slip);
+    for (size_t f = 0; sc->cfg && f < nf; f++) {
+        fault_config fc;
+        config_fault_lookup(sc->cfg, fs->names[f], &fc);
+        fm_slip_override(&a->slip[f], fc.has_rake ? &fc.rake : NULL,
+                         fc.has_rate ? &fc.slip_rate_mm_yr : NULL, FM_SLIP_FROM_SETTINGS);
+    }
     for (size_t f = 0; f < nf; f++) {
         a->rake_f[f] = a->slip[f].rake;
         a->rate_f[f] = a->slip[f].slip_rate_mm_yr * FM_MM_PER_YEAR_TO_M_PER_S;
@@ -274,12 +281,15 @@ void sim_json_fault(fm_json *j, const sim_attrs *a, size_t f)
 void sim_json_summary(fm_json *j, const sim_cli *sc, const sim_attrs *a)
 {
     size_t rake_default = 0, rate_default = 0, rake_md = 0, rake_csv = 0, rate_csv = 0;
+    size_t rake_set = 0, rate_set = 0;
     for (size_t f = 0; f < a->nfaults; f++) {
         rake_default += a->slip[f].rake_from == FM_SLIP_FROM_DEFAULT;
         rake_md += a->slip[f].rake_from == FM_SLIP_FROM_METADATA;
         rake_csv += a->slip[f].rake_from == FM_SLIP_FROM_CSV;
         rate_default += a->slip[f].rate_from == FM_SLIP_FROM_DEFAULT;
         rate_csv += a->slip[f].rate_from == FM_SLIP_FROM_CSV;
+        rake_set += a->slip[f].rake_from == FM_SLIP_FROM_SETTINGS;
+        rate_set += a->slip[f].rate_from == FM_SLIP_FROM_SETTINGS;
     }
     fm_json_key(j, "simulator");
     fm_json_begin_object(j);
@@ -297,5 +307,7 @@ void sim_json_summary(fm_json *j, const sim_cli *sc, const sim_attrs *a)
     fm_json_kv_int(j, "rake_default", (int64_t)rake_default);
     fm_json_kv_int(j, "slip_rate_from_csv", (int64_t)rate_csv);
     fm_json_kv_int(j, "slip_rate_default", (int64_t)rate_default);
+    fm_json_kv_int(j, "rake_from_settings", (int64_t)rake_set);
+    fm_json_kv_int(j, "slip_rate_from_settings", (int64_t)rate_set);
     fm_json_end_object(j);
 }

@@ -293,6 +293,17 @@ typedef struct fm_connect_plan_options {
     fm_connect_duplicate_options duplicates;
     fm_connect_progress_fn progress; /* NULL (default): not told */
     void *progress_user;
+    /* Per fault (indices of the models array), where faults differ; NULL
+     * (default): every fault takes the values above. A pair is joined
+     * within the larger of its faults' distances (distance above must be
+     * the largest: it bounds the neighbour search), its curve sampled at
+     * the smaller of their sizes (size above should be the smallest:
+     * triple points are merged at it), and cut at sea level unless
+     * neither fault is cut. A fault whose joins[f] is 0 joins nobody. */
+    const double *fault_distance;
+    const double *fault_size;
+    const unsigned char *fault_cut;
+    const unsigned char *fault_joins;
 } fm_connect_plan_options;
 
 void fm_connect_plan_options_default(fm_connect_plan_options *opt);

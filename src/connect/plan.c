@@ -163,9 +163,26 @@ static void do_pair(void *user, size_t k)
         push_unjoined(w, k, p, "one of the pair was given up as a near-duplicate");
         return;
     }
-    w->st[k] = pl_decide_pair(&w->sheet[w->base[p->fault_a] + p->sheet_a], p->fault_a, p->sheet_a,
-                              &w->sheet[w->base[p->fault_b] + p->sheet_b], p->fault_b, p->sheet_b,
-                              w->opt, &w->res[k], &w->err[k]);
+    const fm_connect_plan_options *o = w->opt;
+    size_t a = p->fault_a, b = p->fault_b;
+    if (o->fault_joins && (!o->fault_joins[a] || !o->fault_joins[b])) {
+        push_unjoined(w, k, p, "one of the pair is set not to join other faults");
+        return;
+    }
+    fm_connect_plan_options po = *o;
+    if (o->fault_distance)
+        po.distance = fmax(o->fault_distance[a], o->fault_distance[b]);
+    if (o->fault_size)
+        po.size = fmin(o->fault_size[a], o->fault_size[b]);
+    if (o->fault_cut)
+        po.cut = o->fault_cut[a] || o->fault_cut[b];
+    if (p->distance > po.distance) {
+        push_unjoined(w, k, p, "farther apart than the join distance of either fault");
+        return;
+    }
+    w->st[k] = pl_decide_pair(&w->sheet[w->base[a] + p->sheet_a], a, p->sheet_a,
+                              &w->sheet[w->base[b] + p->sheet_b], b, p->sheet_b, &po, &w->res[k],
+                              &w->err[k]);
     /* a pair within the join distance whose surfaces, even extended, never
      * meet is listed too, so that every near pair has its line in the report */
     if (w->st[k] == FM_OK && w->res[k].n == 0)

@@ -69,10 +69,12 @@ void fm_slip_table_destroy(fm_slip_table *t);
 typedef enum fm_slip_source {
     FM_SLIP_FROM_CSV = 0,  /* a --slip rule */
     FM_SLIP_FROM_METADATA, /* the metadata's slip sense */
-    FM_SLIP_FROM_DEFAULT   /* FM_SLIP_DEFAULT_* */
+    FM_SLIP_FROM_DEFAULT,  /* FM_SLIP_DEFAULT_* */
+    FM_SLIP_FROM_SETTINGS  /* a project's settings file, over all of the above */
 } fm_slip_source;
 
-const char *fm_slip_source_name(fm_slip_source s); /* "csv", "metadata", "default" */
+/* "csv", "metadata", "default", "settings" */
+const char *fm_slip_source_name(fm_slip_source s);
 
 typedef struct fm_fault_slip {
     double rake;            /* degrees, in (-180, 180] */
@@ -87,6 +89,10 @@ typedef struct fm_fault_slip {
  * then the defaults; rakes are normalised into (-180, 180]. */
 void fm_slip_assign(const char *const *names, size_t n, const fm_metadata *md,
                     const fm_slip_table *t, fm_fault_slip *out);
+/* Sets what a higher authority gives (rake when rake != NULL, slip rate
+ * when rate != NULL), normalised as above, and records where from. */
+void fm_slip_override(fm_fault_slip *s, const double *rake, const double *rate_mm_yr,
+                      fm_slip_source from);
 
 #ifdef __cplusplus
 }

@@ -516,7 +516,10 @@ static const slip_rule *find_rule(const fm_slip_table *t, const char *name)
 
 const char *fm_slip_source_name(fm_slip_source s)
 {
-    return s == FM_SLIP_FROM_CSV ? "csv" : s == FM_SLIP_FROM_METADATA ? "metadata" : "default";
+    return s == FM_SLIP_FROM_CSV        ? "csv"
+           : s == FM_SLIP_FROM_METADATA ? "metadata"
+           : s == FM_SLIP_FROM_SETTINGS ? "settings"
+                                        : "default";
 }
 
 /* Into (-180, 180]. */
@@ -558,5 +561,18 @@ void fm_slip_assign(const char *const *names, size_t n, const fm_metadata *md,
             }
         }
         s->rake = normalise_rake(s->rake);
+    }
+}
+
+void fm_slip_override(fm_fault_slip *s, const double *rake, const double *rate_mm_yr,
+                      fm_slip_source from)
+{
+    if (rake) {
+        s->rake = normalise_rake(*rake);
+        s->rake_from = from;
+    }
+    if (rate_mm_yr) {
+        s->slip_rate_mm_yr = *rate_mm_yr;
+        s->rate_from = from;
     }
 }

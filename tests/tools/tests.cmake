@@ -97,6 +97,9 @@ add_test(NAME remesh_cli
 add_test(NAME remesh_progress
   COMMAND bash ${FM_TOOLS}/remesh_progress_check.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_progress)
+add_test(NAME remesh_config
+  COMMAND bash ${FM_TOOLS}/remesh_config_check.sh $<TARGET_FILE:faultmesh_cli>
+          $<TARGET_FILE:check_connect> /usr/bin/python3 ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_config)
 add_test(NAME cfm_remesh_jobs_identical
   COMMAND bash ${FM_TOOLS}/remesh_jobs_check.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_remesh_jobs ${FM_CFM_DIR}/CFM5.3/500m 12)
