@@ -108,6 +108,11 @@ PY
 "$check" --criteria "$tmp/proj/out-f/mesh.obj" >"$tmp/cc.out" 2>&1 && ok ||
     bad "check_connect --criteria on mixed sizes: $(tail -5 "$tmp/cc.out")"
 
+# The example in the repository is a valid settings file (its inputs
+# replaced by the command line's).
+expect_rc 0 "examples/cfm.toml" "$exe" remesh --quiet --config "$(dirname "$0")/../../examples/cfm.toml" \
+    -o "$tmp/ex" "$tmp/proj/syn"
+
 # 3. Mistakes, each named with its file and line.
 try() { # line-expected message-part file-text
     printf '%b' "$3" >"$tmp/bad.toml"
