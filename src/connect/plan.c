@@ -176,10 +176,8 @@ static void do_pair(void *user, size_t k)
         po.size = fmin(o->fault_size[a], o->fault_size[b]);
     if (o->fault_cut)
         po.cut = o->fault_cut[a] || o->fault_cut[b];
-    if (p->distance > po.distance) {
-        push_unjoined(w, k, p, "farther apart than the join distance of either fault");
-        return;
-    }
+    if (p->distance > po.distance)
+        return; /* found only because other faults join farther: not a near pair */
     w->st[k] = pl_decide_pair(&w->sheet[w->base[a] + p->sheet_a], a, p->sheet_a,
                               &w->sheet[w->base[b] + p->sheet_b], b, p->sheet_b, &po, &w->res[k],
                               &w->err[k]);
