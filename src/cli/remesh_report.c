@@ -13,16 +13,26 @@
  * of the check that the mesh issue bounds, when this fault breaks them.
  * Writes up to two messages into w (each up to 160 bytes); returns the
  * count. Nodes of an extended top lie off the original by design. */
-static int fault_warnings(const fault_result *r, char w[2][160])
+static int fault_warnings(const fault_result *r, char w[3][160])
 {
     int n = 0;
-    if (r->fid.max > 100.0 && r->ms.extended == 0)
+    /* A node past the original's edge is expected where the fault closes
+     * a gap to a curve it shares, and at an extended top; over the
+     * original's inside, or past its edge on a fault joined to nothing,
+     * it means the fit departs from the original. */
+    if (r->fid.inside_max > 100.0 && r->ms.extended == 0)
         snprintf(w[n++], 160,
                  "nodes up to %.0f m from the original surface (the fitted surface departs from it)",
-                 r->fid.max);
+                 r->fid.inside_max);
+    if (r->fid.beyond_max > 100.0 && r->ms.extended == 0 && r->nused == 0)
+        snprintf(w[n++], 160,
+                 "nodes up to %.0f m past the original's edge (the fitted outline bulges out)",
+                 r->fid.beyond_max);
     size_t loose = r->q.below_20 - r->q.below_20_forced;
     if (loose > 0)
-        snprintf(w[n++], 160, "%zu triangles under 20 degrees away from sharp outline corners",
+        snprintf(w[n++], 160,
+                 "%zu triangles under 20 degrees away from sharp outline corners (junction "
+                 "nodes among them)",
                  loose);
     return n;
 }
@@ -40,7 +50,7 @@ void print_fault(const fault_result *r, double H)
            100.0 * (double)r->q.below_30 / (double)(r->q.triangles ? r->q.triangles : 1),
            100.0 * (double)r->q.edges_in_band / (double)(r->q.edges ? r->q.edges : 1), r->fid.rms,
            r->fid.max, r->ms.cut ? "  cut" : "");
-    char w[2][160];
+    char w[3][160];
     int nw = fault_warnings(r, w);
     for (int k = 0; k < nw; k++)
         printf("    warning: %s\n", w[k]);
@@ -142,7 +152,7 @@ static void json_fault(fm_json *j, const fault_result *r, double H, const sim_at
             fm_json_kv_int(j, "carved_triangles", (int64_t)r->carved);
             fm_json_kv_number(j, "carved_area_m2", r->carved_area);
         }
-        char w[2][160];
+        char w[3][160];
         int nw = fault_warnings(r, w);
         fm_json_key(j, "warnings");
         fm_json_begin_array(j);
@@ -302,7 +312,7 @@ void run_totals_of(const run_state *rs, run_totals *t)
         if (strcmp(st, "ok"))
             continue;
         t->ok++;
-        char w[2][160];
+        char w[3][160];
         t->warned += fault_warnings(r, w) > 0;
         t->sheets += r->sheets;
         t->triangles += r->q.triangles;
