@@ -4,6 +4,7 @@
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "fm_clock.h"
@@ -23,6 +24,10 @@ struct progress {
     double weight, done_weight;
     double t0, last_draw;
     int quarter; /* plain mode: the last quarter logged */
+    /* tty: a thread that keeps the clock of a stage without steps moving */
+    pthread_t ticker;
+    pthread_cond_t wake;
+    int ticking, stop;
 };
 
 progress *progress_create(FILE *fp, progress_level level, int force_plain)
@@ -34,6 +39,7 @@ progress *progress_create(FILE *fp, progress_level level, int force_plain)
     p->level = level;
     p->tty = !force_plain && isatty(fileno(fp));
     pthread_mutex_init(&p->mu, NULL);
+    pthread_cond_init(&p->wake, NULL);
     return p;
 }
 
@@ -41,6 +47,7 @@ void progress_destroy(progress *p)
 {
     if (!p)
         return;
+    pthread_cond_destroy(&p->wake);
     pthread_mutex_destroy(&p->mu);
     free(p);
 }
@@ -86,6 +93,27 @@ static void draw(progress *p, double now)
     p->last_draw = now;
 }
 
+static void *tick(void *arg)
+{
+    progress *p = arg;
+    pthread_mutex_lock(&p->mu);
+    while (!p->stop) {
+        struct timespec ts;
+        clock_gettime(CLOCK_REALTIME, &ts);
+        ts.tv_nsec += 500000000L;
+        if (ts.tv_nsec >= 1000000000L) {
+            ts.tv_sec++;
+            ts.tv_nsec -= 1000000000L;
+        }
+        pthread_cond_timedwait(&p->wake, &p->mu, &ts);
+        /* stages with a count redraw as they step */
+        if (!p->stop && p->count == 0)
+            draw(p, fm_clock_seconds());
+    }
+    pthread_mutex_unlock(&p->mu);
+    return NULL;
+}
+
 void progress_begin(progress *p, const char *stage, size_t count, const char *unit,
                     double weight)
 {
@@ -106,7 +134,11 @@ void progress_begin(progress *p, const char *stage, size_t count, const char *un
         else if (count)
             fprintf(p->fp, "faultmesh: %s: %zu %s\n", p->stage, count, p->unit);
     }
+    p->stop = 0;
+    int start = p->tty && p->level != PROGRESS_QUIET && !p->ticking;
     pthread_mutex_unlock(&p->mu);
+    if (start && pthread_create(&p->ticker, NULL, tick, p) == 0)
+        p->ticking = 1;
 }
 
 void progress_step(progress *p, double weight)
@@ -161,6 +193,14 @@ double progress_end(progress *p)
 {
     if (!p)
         return 0;
+    if (p->ticking) {
+        pthread_mutex_lock(&p->mu);
+        p->stop = 1;
+        pthread_cond_signal(&p->wake);
+        pthread_mutex_unlock(&p->mu);
+        pthread_join(p->ticker, NULL);
+        p->ticking = 0;
+    }
     pthread_mutex_lock(&p->mu);
     double now = fm_clock_seconds(), el = now - p->t0;
     if (p->level != PROGRESS_QUIET) {
