@@ -459,12 +459,11 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
     double *lat = malloc((nv + 1) * sizeof *lat), *lon = malloc((nv + 1) * sizeof *lon);
     unsigned char *used = calloc(nv + 1, 1);
     size_t *nvsec = calloc(fs->nfaults + 1, sizeof *nvsec);
-    char **sect = calloc(fs->nfaults + 1, sizeof *sect);
+    char **sect = sim_section_names(fs);
     int bad = !lat || !lon || !used || !nvsec || !sect ||
               fs_group_by(fm_mesh_tags(fs->mesh), nt, fs->nfaults, &start, &order);
     size_t maxt = 0;
     for (size_t f = 0; !bad && f < fs->nfaults; f++) {
-        bad = !(sect[f] = fm_section_name(fs->names[f]));
         if (start[f + 1] - start[f] > maxt)
             maxt = start[f + 1] - start[f];
     }
@@ -691,9 +690,7 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
             st = fm_atomic_commit(af, err);
         }
     }
-    for (size_t f = 0; sect && f < fs->nfaults; f++)
-        free(sect[f]);
-    free(sect);
+    sim_section_names_free(sect, fs->nfaults);
     free(nvsec);
     free(used);
     free(lat);

@@ -110,6 +110,24 @@ char *fm_section_name(const char *name)
     return s;
 }
 
+char **sim_section_names(const fm_faultset *fs)
+{
+    char **sect = calloc(fs->nfaults + 1, sizeof *sect);
+    for (size_t f = 0; sect && f < fs->nfaults; f++)
+        if (!(sect[f] = fm_section_name(fs->names[f]))) {
+            sim_section_names_free(sect, f);
+            return NULL;
+        }
+    return sect;
+}
+
+void sim_section_names_free(char **sect, size_t n)
+{
+    for (size_t f = 0; sect && f < n; f++)
+        free(sect[f]);
+    free(sect);
+}
+
 int sim_corners(const fm_faultset *fs, size_t t, int32_t v[3])
 {
     const double *x = fm_mesh_vertices(fs->mesh);
@@ -151,10 +169,8 @@ fm_status fm_faultset_write_rsqsim(const char *path, const fm_faultset *fs,
         return st;
     size_t nt = fm_mesh_ntriangles(fs->mesh);
     size_t *start = NULL, *order = NULL;
-    char **sect = calloc(fs->nfaults, sizeof *sect);
+    char **sect = sim_section_names(fs);
     int bad = !sect || fs_group_by(fm_mesh_tags(fs->mesh), nt, fs->nfaults, &start, &order);
-    for (size_t f = 0; !bad && f < fs->nfaults; f++)
-        bad = !(sect[f] = fm_section_name(fs->names[f]));
     fm_atomic_file *af = NULL;
     fs_out *o = NULL;
     if (bad) {
@@ -193,9 +209,7 @@ fm_status fm_faultset_write_rsqsim(const char *path, const fm_faultset *fs,
             st = fm_atomic_commit(af, err);
         }
     }
-    for (size_t f = 0; sect && f < fs->nfaults; f++)
-        free(sect[f]);
-    free(sect);
+    sim_section_names_free(sect, fs->nfaults);
     free(start);
     free(order);
     return st;

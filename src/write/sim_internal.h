@@ -11,6 +11,10 @@
 void sim_strike_dip(const double *n, double *strike, double *dip);
 /* Corners of triangle t ordered by the element convention; 1 if swapped. */
 int sim_corners(const fm_faultset *fs, size_t t, int32_t v[3]);
+/* Every fault's section name (fm_section_name), or NULL when memory runs
+ * out; freed with sim_section_names_free. */
+char **sim_section_names(const fm_faultset *fs);
+void sim_section_names_free(char **sect, size_t n);
 /* One finite rake and slip rate >= 0 per fault. */
 fm_status sim_check_slip(const fm_faultset *fs, const fm_sim_slip *slip, const char *path,
                          fm_error *err);
