@@ -683,12 +683,7 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
             tbase += n;
         }
         fs_out_str(o, "999 End\n");
-        if (fs_out_finish(o) != 0) {
-            fm_atomic_abort(af);
-            st = fm_error_set(err, FM_ERR_IO, path, 0, "write failed");
-        } else {
-            st = fm_atomic_commit(af, err);
-        }
+        st = fs_out_commit(o, af, path, err);
     }
     sim_section_names_free(sect, fs->nfaults);
     free(nvsec);

@@ -218,12 +218,7 @@ fm_status fm_faultset_write_msh(const char *path, const fm_faultset *fs, fm_msh_
             put_41(o, fs, vstart, vorder, tstart, torder);
         else
             put_22(o, fs, owner);
-        if (fs_out_finish(o) != 0) {
-            fm_atomic_abort(f);
-            st = fm_error_set(err, FM_ERR_IO, path, 0, "write failed");
-        } else {
-            st = fm_atomic_commit(f, err);
-        }
+        st = fs_out_commit(o, f, path, err);
     }
     free(owner);
     free(vstart);

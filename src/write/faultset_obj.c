@@ -68,12 +68,7 @@ fm_status fm_faultset_write_obj(const char *path, const fm_faultset *fs, fm_erro
     }
     if (st == FM_OK) {
         put_body(o, fs, tstart, torder);
-        if (fs_out_finish(o) != 0) {
-            fm_atomic_abort(f);
-            st = fm_error_set(err, FM_ERR_IO, path, 0, "write failed");
-        } else {
-            st = fm_atomic_commit(f, err);
-        }
+        st = fs_out_commit(o, f, path, err);
     }
     free(tstart);
     free(torder);

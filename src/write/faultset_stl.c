@@ -83,9 +83,5 @@ fm_status fm_faultset_write_stl(const char *path, const fm_faultset *fs, fm_erro
         unsigned char attr[2] = {(unsigned char)tag[t], (unsigned char)(tag[t] >> 8)};
         fs_out_bytes(o, attr, 2);
     }
-    if (fs_out_finish(o) != 0) {
-        fm_atomic_abort(f);
-        return fm_error_set(err, FM_ERR_IO, path, 0, "write failed");
-    }
-    return fm_atomic_commit(f, err);
+    return fs_out_commit(o, f, path, err);
 }

@@ -31,6 +31,15 @@ int fs_out_finish(fs_out *o)
     return bad ? -1 : 0;
 }
 
+fm_status fs_out_commit(fs_out *o, fm_atomic_file *af, const char *path, fm_error *err)
+{
+    if (fs_out_finish(o) != 0) {
+        fm_atomic_abort(af);
+        return fm_error_set(err, FM_ERR_IO, path, 0, "write failed");
+    }
+    return fm_atomic_commit(af, err);
+}
+
 void fs_out_bytes(fs_out *o, const void *p, size_t n)
 {
     if (n > FS_OUT_BLOCK / 2) { /* large blocks go straight through */

@@ -12,6 +12,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "fm_atomic.h"
+
 #define FS_OUT_BLOCK (1 << 16)
 
 typedef struct fs_out {
@@ -25,6 +27,9 @@ typedef struct fs_out {
 fs_out *fs_out_open(FILE *fp);
 /* Flushes and frees o; 0, or -1 if any write failed. */
 int fs_out_finish(fs_out *o);
+/* The end of every writer: finishes o, then renames af into place, or
+ * removes it if any write failed ("write failed", naming path). */
+fm_status fs_out_commit(fs_out *o, fm_atomic_file *af, const char *path, fm_error *err);
 void fs_out_flush(fs_out *o);
 void fs_out_bytes(fs_out *o, const void *p, size_t n);
 /* For the rare formatted line (headers); at most 512 bytes. */

@@ -196,9 +196,5 @@ fm_status fm_vtu_write(const char *path, const fm_vtu_content *c, fm_error *err)
         return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
     }
     write_body(o, c);
-    if (fs_out_finish(o) != 0) {
-        fm_atomic_abort(f);
-        return fm_error_set(err, FM_ERR_IO, path, 0, "write failed");
-    }
-    return fm_atomic_commit(f, err);
+    return fs_out_commit(o, f, path, err);
 }
