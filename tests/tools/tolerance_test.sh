@@ -1,8 +1,9 @@
 #!/bin/bash
 # Fault tolerance of `faultmesh remesh` (issue 7, item 5):
 #  - a broken fault among the synthetic system's (garbage in a VRTX line;
-#    a file cut off mid-triangle): exit 1, stderr and report.json name the
-#    file and line, every other fault is meshed and written, and no
+#    a file cut off mid-triangle; every triangle degenerate, so that it
+#    fails after reading): exit 1, stderr and report.json name the file
+#    (and line), every other fault is meshed and written, and no
 #    junction of the good faults is made with the broken one; its
 #    neighbours come out as they do when it is left out of the run;
 #  - interrupted runs: SIGTERM, SIGINT and SIGHUP at moments from start-up
@@ -81,6 +82,12 @@ mkdir -p "$tmp/cut" && cp "$tmp/in"/*.ts "$tmp/cut/"
 line=$(grep -n '^TRGL' "$tmp/in/$main.ts" | sed -n 100p | cut -d: -f1)
 { head -n $((line - 1)) "$tmp/in/$main.ts"; printf 'TRGL 1500 15'; } >"$tmp/cut/$main.ts"
 broken_case cut "$tmp/cut" "$main.ts:$line: "
+
+# read, but nothing left of it to fit: every triangle degenerate (its
+# vertices on one line)
+mkdir -p "$tmp/flat" && cp "$tmp/in"/*.ts "$tmp/flat/"
+awk '$1 == "VRTX" { $4 = 3750000; $5 = -1000 } { print }' "$tmp/in/$main.ts" >"$tmp/flat/$main.ts"
+broken_case flat "$tmp/flat" "$main.ts: $main: nothing left after repair"
 
 # Interrupted runs. The outputs of a run are deterministic, so a file under
 # a real name is complete exactly when it equals the uninterrupted run's.
