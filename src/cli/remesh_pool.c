@@ -124,11 +124,12 @@ static size_t exclude_failed(const fm_connect_plan *plan, const file_job *job, s
 
 /* A junction is made only when both sheets take its curve. Faults are
  * meshed each on its own, so a curve one sheet could not fit (or one of a
- * fault that failed) is still in the other's mesh: that sheet trimmed its flap or filled its gap to a
- * curve it shares with nobody (San Pedro Escarpment YngB: filled 1 km past
- * its edge towards a curve F could not take). Those faults are meshed
- * again without such curves, until no curve a mesh took was dropped by
- * another (the set of dropped curves only grows, so this ends). */
+ * fault that failed) is still in the other's mesh: that sheet trimmed its
+ * flap or filled its gap to a curve it shares with nobody (San Pedro
+ * Escarpment YngB: filled 1 km past its edge towards a curve F could not
+ * take). Those faults are meshed again without such curves, until no
+ * curve a mesh took was dropped by another (the set of dropped curves
+ * only grows, so this ends). */
 void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
                           size_t njobs)
 {
