@@ -19,6 +19,10 @@ int fm_cmd_fit(int argc, char **argv);
 int fm_cmd_remesh(int argc, char **argv);
 int fm_cmd_demo(int argc, char **argv);
 
+/* SIGINT, SIGTERM and SIGHUP remove the temporary files of the writes in
+ * progress (fm_atomic.h) before they end the process. */
+void fm_cli_catch_signals(void);
+
 /* Consumes argv[*i] (and its value, advancing *i) if it is a repair
  * option: returns 1 if consumed, 0 if not a repair option, -1 on a bad
  * value (already reported). */

@@ -32,6 +32,7 @@ int main(int argc, char **argv)
         usage(stderr);
         return FM_EXIT_USAGE;
     }
+    fm_cli_catch_signals();
     const char *cmd = argv[1];
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);

@@ -150,6 +150,12 @@ static fm_status fit_object(const remesh_cli *cli, const char *path, const fm_me
     if (r->connect)
         mopt.fit.extend = fmax(mopt.fit.extend, 2 * r->join);
     fm_status st = fm_repair(orig, &cli->repair, &surf, err);
+    /* else it would pass for a fault wholly above sea level ("empty") */
+    if (st == FM_OK && fm_surface_nsheets(surf) == 0)
+        st = fm_error_set(err, FM_ERR_INVALID, path, 0,
+                          "%s: nothing left after repair (every triangle degenerate, duplicate or "
+                          "in a fragment dropped)",
+                          r->name);
     if (st == FM_OK)
         st = fm_model_build(path, surf, &mopt, model, err);
     fm_surface_destroy(surf);

@@ -125,13 +125,38 @@ void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
     progress_end(cli->prog);
 }
 
+/* A fault that failed in meshing or came out empty took none of the plan
+ * curves it was given: they count as dropped, so that its neighbours are
+ * meshed again without them rather than end at (or fill a gap to) a curve
+ * nobody shares. The number newly excluded. */
+static size_t exclude_failed(const fm_connect_plan *plan, const file_job *job, size_t o,
+                             unsigned char *excluded, size_t nc)
+{
+    const fault_result *r = &job->res[o];
+    if (!job->model || !job->model[o] || !r->status ||
+        (strcmp(r->status, "error") && strcmp(r->status, "empty")))
+        return 0;
+    size_t added = 0;
+    for (size_t s = 0; s < fm_model_nsheets(job->model[o]); s++) {
+        const fm_connect_shared *sh;
+        size_t n = fm_connect_plan_sheet(plan, job->first + o, s, &sh);
+        for (size_t c = 0; c < n; c++)
+            if (sh[c].curve < nc && !excluded[sh[c].curve]) {
+                excluded[sh[c].curve] = 1;
+                added++;
+            }
+    }
+    return added;
+}
+
 /* A junction is made only when both sheets take its curve. Faults are
- * meshed each on its own, so a curve one sheet could not fit is still in
- * the other's mesh: that sheet trimmed its flap or filled its gap to a
- * curve it shares with nobody (San Pedro Escarpment YngB: filled 1 km past
- * its edge towards a curve F could not take). Those faults are meshed
- * again without such curves, until no curve a mesh took was dropped by
- * another (the set of dropped curves only grows, so this ends). */
+ * meshed each on its own, so a curve one sheet could not fit (or one of a
+ * fault that failed) is still in the other's mesh: that sheet trimmed its
+ * flap or filled its gap to a curve it shares with nobody (San Pedro
+ * Escarpment YngB: filled 1 km past its edge towards a curve F could not
+ * take). Those faults are meshed again without such curves, until no
+ * curve a mesh took was dropped by another (the set of dropped curves
+ * only grows, so this ends). */
 void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
                    size_t njobs)
 {
@@ -144,6 +169,7 @@ void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job 
         for (size_t i = 0; i < njobs; i++)
             for (size_t o = 0; jobs[i].res && o < jobs[i].n; o++) {
                 const fault_result *r = &jobs[i].res[o];
+                added += exclude_failed(plan, &jobs[i], o, excluded, nc);
                 for (size_t k = 0; k < r->ndropped; k++)
                     if (r->dropped_curves[k] < nc && !excluded[r->dropped_curves[k]]) {
                         excluded[r->dropped_curves[k]] = 1;

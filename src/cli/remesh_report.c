@@ -280,8 +280,12 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
         }
         if (why) {
             char msg[600];
-            if (which != SIZE_MAX)
-                snprintf(msg, sizeof msg, "%s (%s)", why, rs->res[rs->plan_res[which]].name);
+            const fault_result *wr = which != SIZE_MAX ? &rs->res[rs->plan_res[which]] : NULL;
+            if (wr && why == wr->error)
+                snprintf(msg, sizeof msg, "%s %s: %s", wr->name,
+                         strcmp(wr->status, "empty") ? "failed" : "has no mesh", why);
+            else if (wr)
+                snprintf(msg, sizeof msg, "%s (%s)", why, wr->name);
             fm_json_kv_string(j, "reason", which != SIZE_MAX ? msg : why);
         }
         fm_json_end_object(j);

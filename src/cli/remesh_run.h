@@ -152,9 +152,11 @@ void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job 
 /* remesh_set.c */
 void merge_job(const remesh_cli *cli, file_job *job, run_state *rs);
 void carve_set(const remesh_cli *cli, run_state *rs);
-/* Junction jn as meshed: the plan's type, unless the mesher could not fit
- * its curve into one of its sheets or the last guard took it away (*why
- * then says so and *which names the fault; else *which is SIZE_MAX). */
+/* Junction jn as meshed: the plan's type, unless one of its faults failed
+ * or came out empty (*why is then that fault's error, *which the fault),
+ * or the mesher could not fit its curve into one of its sheets or the
+ * last guard took it away (*why then says so and *which names the fault;
+ * else *which is SIZE_MAX). */
 fm_junction_type junction_outcome(const run_state *rs, const fm_connect_junction *jn,
                                   const char **why, size_t *which);
 fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa, fm_error *err);

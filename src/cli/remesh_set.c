@@ -198,9 +198,11 @@ void carve_set(const remesh_cli *cli, run_state *rs)
     }
 }
 
-/* Junction i as meshed: the plan's type, unless the mesher could not fit
- * its curve into one of its sheets (*why then says so and *which names
- * the fault; else *which is SIZE_MAX). */
+/* Junction i as meshed: the plan's type, unless one of its faults failed
+ * or came out empty (*why is then that fault's error and *which the
+ * fault) or the mesher could not fit its curve into one of its sheets
+ * (*why then says so and *which names the fault; else *which is
+ * SIZE_MAX). */
 fm_junction_type junction_outcome(const run_state *rs, const fm_connect_junction *jn,
                                   const char **why, size_t *which)
 {
@@ -208,6 +210,14 @@ fm_junction_type junction_outcome(const run_state *rs, const fm_connect_junction
     *which = SIZE_MAX;
     if (jn->curve < 0)
         return jn->type;
+    for (int s = 0; s < 2; s++) {
+        const fault_result *r = &rs->res[rs->plan_res[jn->fault[s]]];
+        if (r->status && (!strcmp(r->status, "error") || !strcmp(r->status, "empty"))) {
+            *why = r->error ? r->error : "failed";
+            *which = jn->fault[s];
+            return FM_JUNCTION_UNJOINED;
+        }
+    }
     for (int s = 0; s < 2; s++) {
         const fault_result *r = &rs->res[rs->plan_res[jn->fault[s]]];
         int left_out = 0;

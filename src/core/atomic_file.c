@@ -1,69 +1,192 @@
 #include "fm_atomic.h"
 
 #include <errno.h>
-#include <pthread.h>
+#include <fcntl.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-struct fm_atomic_file {
-    FILE *fp;
+/* The temporary names of writes in progress, for fm_atomic_remove_pending,
+ * which runs in a signal handler while other threads go on: it may take no
+ * lock and touch no memory another thread frees or rewrites. So the names
+ * live in preallocated slots owned through one atomic state each, changed
+ * only by compare-and-swap: a slot's name is written while the slot is
+ * CLAIMED (invisible to the handler), read by the handler only once it
+ * has moved the slot from ARMED to REMOVING, and a writer gives back only
+ * a slot still ARMED (one the handler took stays taken: the process is
+ * ending). A write whose name finds no slot (all busy, or a path longer
+ * than a slot) is still atomic, only not removed on a signal. */
+enum { SLOT_FREE, SLOT_CLAIMED, SLOT_ARMED, SLOT_REMOVING };
+#define NSLOTS 128
+#define SLOT_BYTES 4096
+
+_Static_assert(ATOMIC_INT_LOCK_FREE == 2, "a signal handler may only use lock-free atomics");
+
+static atomic_int slot_state[NSLOTS];
+static char slot_name[NSLOTS][SLOT_BYTES];
+static atomic_int removing;   /* set once fm_atomic_remove_pending ran */
+static atomic_uint name_count; /* makes each temporary name of the process new */
+
+struct fm_atomic_name {
     char *path;
     char *tmp;
+    int slot; /* -1: not registered */
 };
 
-/* umask can only be read by setting it, which would race with a thread
- * creating a file at that moment: it is read once, and every later call
- * (from any thread) uses the copy. */
-static mode_t process_umask;
-static pthread_once_t umask_once = PTHREAD_ONCE_INIT;
+struct fm_atomic_file {
+    FILE *fp;
+    fm_atomic_name *name;
+};
 
-static void read_umask(void)
+static int slot_take(const char *tmp)
 {
-    process_umask = umask(0);
-    umask(process_umask);
+    size_t n = strlen(tmp);
+    if (n >= SLOT_BYTES)
+        return -1;
+    for (int i = 0; i < NSLOTS; i++) {
+        int expect = SLOT_FREE;
+        if (!atomic_compare_exchange_strong(&slot_state[i], &expect, SLOT_CLAIMED))
+            continue;
+        memcpy(slot_name[i], tmp, n + 1);
+        atomic_store(&slot_state[i], SLOT_ARMED);
+        return i;
+    }
+    return -1;
+}
+
+static void slot_give_back(int i)
+{
+    if (i < 0)
+        return;
+    int expect = SLOT_ARMED;
+    atomic_compare_exchange_strong(&slot_state[i], &expect, SLOT_FREE);
+}
+
+void fm_atomic_remove_pending(void)
+{
+    atomic_store(&removing, 1);
+    for (int i = 0; i < NSLOTS; i++) {
+        int expect = SLOT_ARMED;
+        if (atomic_compare_exchange_strong(&slot_state[i], &expect, SLOT_REMOVING))
+            unlink(slot_name[i]);
+    }
+}
+
+static void name_free(fm_atomic_name *n)
+{
+    if (!n)
+        return;
+    slot_give_back(n->slot);
+    free(n->path);
+    free(n->tmp);
+    free(n);
+}
+
+fm_atomic_name *fm_atomic_name_create(const char *path, fm_error *err)
+{
+    fm_atomic_name *n = calloc(1, sizeof *n);
+    size_t len = strlen(path);
+    if (n) {
+        n->slot = -1;
+        n->path = malloc(len + 1);
+        n->tmp = malloc(len + 48);
+    }
+    if (!n || !n->path || !n->tmp) {
+        name_free(n);
+        fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        return NULL;
+    }
+    memcpy(n->path, path, len + 1);
+    /* Same folder as the target so that rename() is atomic; a hidden name
+     * that says what it was to become, should a killed run leave it. */
+    const char *slash = strrchr(path, '/');
+    size_t dir = slash ? (size_t)(slash - path) + 1 : 0;
+    snprintf(n->tmp, len + 48, "%.*s.%s.tmp.%ld.%u", (int)dir, path, path + dir, (long)getpid(),
+             atomic_fetch_add(&name_count, 1u));
+    /* registered before anything exists under the name: a handler that
+     * removes it early only misses a file not yet there */
+    n->slot = slot_take(n->tmp);
+    return n;
+}
+
+const char *fm_atomic_name_tmp(const fm_atomic_name *n) { return n->tmp; }
+
+int fm_atomic_interrupted(void) { return atomic_load(&removing); }
+
+fm_status fm_atomic_name_commit(fm_atomic_name *n, int synced, fm_error *err)
+{
+    int bad = 0, saved = 0;
+    if (!synced) {
+        int fd = open(n->tmp, O_RDONLY);
+        bad = fd < 0 || (fsync(fd) != 0 && errno != EINVAL);
+        saved = errno;
+        if (fd >= 0)
+            close(fd);
+    }
+    if (!bad && rename(n->tmp, n->path) != 0) {
+        bad = 1;
+        saved = errno;
+    }
+    if (bad) {
+        unlink(n->tmp);
+        fm_error_set(err, FM_ERR_IO, n->path, 0, "cannot write file: %s", strerror(saved));
+    }
+    name_free(n);
+    return bad ? FM_ERR_IO : FM_OK;
+}
+
+void fm_atomic_name_abort(fm_atomic_name *n)
+{
+    if (!n)
+        return;
+    unlink(n->tmp);
+    name_free(n);
 }
 
 fm_atomic_file *fm_atomic_open(const char *path, fm_error *err)
 {
-    pthread_once(&umask_once, read_umask);
     fm_atomic_file *f = calloc(1, sizeof *f);
-    size_t n = strlen(path);
-    if (f) {
-        f->path = malloc(n + 1);
-        f->tmp = malloc(n + 16);
-    }
-    if (!f || !f->path || !f->tmp) {
-        if (f) {
-            free(f->path);
-            free(f->tmp);
-        }
-        free(f);
+    if (!f) {
         fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
         return NULL;
     }
-    memcpy(f->path, path, n + 1);
-    /* Same directory as the target so that rename() is atomic; the name
-     * is hidden-ish and clearly temporary. */
-    snprintf(f->tmp, n + 16, "%s.tmp.XXXXXX", path);
-    int fd = mkstemp(f->tmp);
+    int fd = -1;
+    /* a name left by an earlier run of a process with the same id is
+     * skipped, never overwritten */
+    for (int attempt = 0; fd < 0 && attempt < 100; attempt++) {
+        name_free(f->name);
+        f->name = NULL;
+        if (!(f->name = fm_atomic_name_create(path, err))) {
+            free(f);
+            return NULL;
+        }
+        /* open() applies the umask: outputs are ordinary files for the user */
+        fd = open(f->name->tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd < 0 && errno != EEXIST)
+            break;
+    }
     if (fd < 0) {
         fm_error_set(err, FM_ERR_IO, path, 0, "cannot create file: %s", strerror(errno));
-        free(f->path);
-        free(f->tmp);
+        name_free(f->name);
         free(f);
         return NULL;
     }
-    /* mkstemp creates 0600; outputs are ordinary files for the user. */
-    (void)fchmod(fd, 0666 & ~process_umask);
+    /* a handler that ran between registering and creating it has removed
+     * nothing yet: the file is removed here, and the write fails */
+    if (fm_atomic_interrupted()) {
+        close(fd);
+        fm_error_set(err, FM_ERR_IO, path, 0, "interrupted");
+        fm_atomic_name_abort(f->name);
+        free(f);
+        return NULL;
+    }
     f->fp = fdopen(fd, "wb");
     if (!f->fp) {
         fm_error_set(err, FM_ERR_IO, path, 0, "cannot open stream: %s", strerror(errno));
         close(fd);
-        unlink(f->tmp);
-        free(f->path);
-        free(f->tmp);
+        fm_atomic_name_abort(f->name);
         free(f);
         return NULL;
     }
@@ -71,13 +194,6 @@ fm_atomic_file *fm_atomic_open(const char *path, fm_error *err)
 }
 
 FILE *fm_atomic_stream(fm_atomic_file *f) { return f->fp; }
-
-static void release(fm_atomic_file *f)
-{
-    free(f->path);
-    free(f->tmp);
-    free(f);
-}
 
 fm_status fm_atomic_commit(fm_atomic_file *f, fm_error *err)
 {
@@ -90,18 +206,14 @@ fm_status fm_atomic_commit(fm_atomic_file *f, fm_error *err)
         saved = errno;
     }
     f->fp = NULL;
-    if (!bad && rename(f->tmp, f->path) != 0) {
-        bad = 1;
-        saved = errno;
-    }
+    fm_atomic_name *n = f->name;
+    free(f);
     if (bad) {
-        unlink(f->tmp);
-        fm_error_set(err, FM_ERR_IO, f->path, 0, "cannot write file: %s", strerror(saved));
-        release(f);
+        fm_error_set(err, FM_ERR_IO, n->path, 0, "cannot write file: %s", strerror(saved));
+        fm_atomic_name_abort(n);
         return FM_ERR_IO;
     }
-    release(f);
-    return FM_OK;
+    return fm_atomic_name_commit(n, 1, err);
 }
 
 void fm_atomic_abort(fm_atomic_file *f)
@@ -110,8 +222,8 @@ void fm_atomic_abort(fm_atomic_file *f)
         return;
     if (f->fp)
         fclose(f->fp);
-    unlink(f->tmp);
-    release(f);
+    fm_atomic_name_abort(f->name);
+    free(f);
 }
 
 fm_status fm_mkdir_p(const char *path, fm_error *err)

@@ -4,16 +4,15 @@
  * atomic write is done here: created under a temporary name in the same
  * folder, renamed once closed. */
 #include <errno.h>
-#include <fcntl.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include <exodusII.h>
 
 #include "faultset_internal.h"
+#include "fm_atomic.h"
 
 /* Exodus keeps names of at most this many bytes (NC_MAX_NAME - 1). */
 #define EXO_NAME_MAX 255
@@ -290,16 +289,6 @@ static int put_all(int exo, const exo_job *j)
     return rc;
 }
 
-static int sync_file(const char *p)
-{
-    int fd = open(p, O_RDONLY);
-    if (fd < 0)
-        return -1;
-    int rc = fsync(fd);
-    close(fd);
-    return rc;
-}
-
 fm_status fm_faultset_write_exodus(const char *path, const fm_faultset *fs, fm_error *err)
 {
     fm_status st = fm_faultset_validate(fs, path, err);
@@ -319,27 +308,16 @@ fm_status fm_faultset_write_exodus(const char *path, const fm_faultset *fs, fm_e
                 release(&j);
                 return st;
             }
-    size_t n = strlen(path);
-    char *tmp = malloc(n + 16);
+    /* A registered temporary name (fm_atomic.h), which netCDF refuses to
+     * create if anything took it in between (EX_NOCLOBBER). */
+    fm_atomic_name *tmp = fm_atomic_name_create(path, err);
     if (!tmp) {
         release(&j);
-        return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        return FM_ERR_NOMEM;
     }
-    /* A unique name from mkstemp, then given to netCDF, which refuses to
-     * create it if anything took the name in between (EX_NOCLOBBER). */
-    snprintf(tmp, n + 16, "%s.tmp.XXXXXX", path);
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        st = fm_error_set(err, FM_ERR_IO, path, 0, "cannot create file: %s", strerror(errno));
-        free(tmp);
-        release(&j);
-        return st;
-    }
-    close(fd);
-    unlink(tmp);
     pthread_once(&opts_once, quiet_exodus);
     int cws = 8, iows = 8;
-    int exo = ex_create(tmp, EX_NOCLOBBER, &cws, &iows);
+    int exo = ex_create(fm_atomic_name_tmp(tmp), EX_NOCLOBBER, &cws, &iows);
     if (exo < 0) {
         st = fm_error_set(err, FM_ERR_IO, path, 0, "cannot create Exodus II file (error %d)",
                           exo);
@@ -351,13 +329,12 @@ fm_status fm_faultset_write_exodus(const char *path, const fm_faultset *fs, fm_e
         else if (rc < 0 || rc_close < 0)
             st = fm_error_set(err, FM_ERR_IO, path, 0, "Exodus II write failed (error %d)",
                               rc < 0 ? rc : rc_close);
-        else if (sync_file(tmp) != 0 || rename(tmp, path) != 0)
-            st = fm_error_set(err, FM_ERR_IO, path, 0, "cannot rename into place: %s",
-                              strerror(errno));
-        if (st != FM_OK)
-            unlink(tmp);
+        else {
+            st = fm_atomic_name_commit(tmp, 0, err);
+            tmp = NULL; /* freed, and removed on failure */
+        }
     }
-    free(tmp);
+    fm_atomic_name_abort(tmp);
     release(&j);
     return st;
 }
