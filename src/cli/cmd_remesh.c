@@ -238,11 +238,17 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     progress_begin(cli->prog, "write", 0, NULL, 0);
     fm_status st = write_set(cli, &rs, &sa, &err);
     rs.time[4] = fm_clock_seconds() - t4;
-    if (st == FM_OK)
-        st = write_report(cli, &rs, rs.nfaults ? &sa : NULL, &err);
+    if (st != FM_OK) {
+        fprintf(stderr, "faultmesh: %s\n", err.message);
+        rs.failed++;
+    }
+    /* report.json even when the meshes could not be written: it says what
+     * each fault came to (without the element attributes then) */
+    fm_error_clear(&err);
+    fm_status rst = write_report(cli, &rs, st == FM_OK && rs.nfaults ? &sa : NULL, &err);
     sim_attrs_free(&sa);
     progress_end(cli->prog);
-    if (st != FM_OK) {
+    if (rst != FM_OK) {
         fprintf(stderr, "faultmesh: %s\n", err.message);
         rs.failed++;
     }
