@@ -130,6 +130,12 @@ static int fit_file(const fit_cli *cli, const char *path, fm_json *j, double **r
         fm_surface *surf = NULL;
         fm_model *model = NULL;
         fm_status st = fm_repair(fm_tsurf_mesh(objs[o]), &cli->repair, &surf, &err);
+        /* as remesh: no sheet is nothing fitted, not a fit of nothing */
+        if (st == FM_OK && fm_surface_nsheets(surf) == 0)
+            st = fm_error_set(&err, FM_ERR_INVALID, path, 0,
+                              "%s: nothing left after repair (every triangle degenerate, "
+                              "duplicate or in a fragment dropped)",
+                              name[0] ? name : base);
         if (st == FM_OK)
             st = fm_model_build(path, surf, &cli->model, &model, &err);
         if (st == FM_OK)
