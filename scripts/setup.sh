@@ -15,6 +15,7 @@ packages=(
   libexodusii-dev libnetcdf-dev  # Exodus II writer (mesh.exo), on netCDF
   python3-netcdf4            # meshio's Exodus II reader in the tests
   python3-pyproj             # independent lat/lon conversion in the EQSim test (check_sim.py)
+  libcairo2-dev              # cairo: the pictures of report.html, drawn to PNG
   python3-scipy              # k-d trees of the CAD model check (check_cad.py); without it
                              # cad_demo and cfm_cad_500m_1000 skip
 )

@@ -225,6 +225,11 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         merge_job(cli, &jobs[i], &rs);
     if (plan && cli->carve)
         carve_set(cli, &rs);
+    /* before the originals go with the jobs */
+    if (cli->html && write_report_html(cli, &rs, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: %s\n", err.message);
+        rs.failed++;
+    }
     for (long i = 0; i < nfiles; i++)
         release_job(&jobs[i]);
     free(jobs);

@@ -4,6 +4,7 @@
 
 #include "cli.h"
 #include "fm_core.h"
+#include "fm_report.h"
 
 static const struct {
     const char *name;
@@ -43,8 +44,11 @@ int main(int argc, char **argv)
         return FM_EXIT_OK;
     }
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (!strcmp(cmd, commands[i].name))
-            return commands[i].run(argc - 1, argv + 1);
+        if (!strcmp(cmd, commands[i].name)) {
+            int rc = commands[i].run(argc - 1, argv + 1);
+            fm_report_cleanup(); /* the font caches of report.html's pictures */
+            return rc;
+        }
     fprintf(stderr, "faultmesh: unknown command '%s'\n", cmd);
     usage(stderr);
     return FM_EXIT_USAGE;

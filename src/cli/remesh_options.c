@@ -14,7 +14,8 @@ void remesh_usage(FILE *fp)
             "Meshes every fault at edge length H with well-shaped triangles on its\n"
             "fitted surface, cut at sea level by default, and writes DIR/mesh.vtu,\n"
             "DIR/mesh.msh, DIR/mesh.stl, DIR/mesh.obj, DIR/mesh.exo (Exodus II),\n"
-            "DIR/NAME.ts per fault and DIR/report.json.\n\n"
+            "DIR/NAME.ts per fault, DIR/report.json and DIR/report.html (the report\n"
+            "with pictures).\n\n"
             "options:\n"
             "  -o, --output DIR      output folder (created if missing)\n"
             "  --size H              target edge length in metres (default 1000)\n"
@@ -49,6 +50,7 @@ void remesh_usage(FILE *fp)
             "                        [[fault]] sections with per-fault size, top, join,\n"
             "                        connect, exclude, rake, slip_rate by name pattern\n"
             "                        (options beside it override it; see the README)\n"
+            "  --no-report-html      skip DIR/report.html\n"
             "  -q, --quiet           errors only (no progress, no summary)\n"
             "  -v, --verbose         a line per fault and per stage as well\n"
             "                        (default: a progress bar on a terminal, log lines\n"
@@ -129,6 +131,9 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     } else if (!strcmp(a, "--no-connect")) {
         cli->connect = 0;
         return 1;
+    } else if (!strcmp(a, "--no-report-html")) {
+        cli->html = 0;
+        return 1;
     } else if (!strcmp(a, "--keep-crossings")) {
         cli->carve = 0;
         return 1;
@@ -191,6 +196,7 @@ void cli_defaults(remesh_cli *cli)
     cli->crs = NULL;
     cli->connect = 1;
     cli->carve = 1;
+    cli->html = 1;
     cli->join = 1000;
     cli->keep = FM_CONNECT_KEEP_SMALLER;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);

@@ -11,9 +11,9 @@
 
 /* What a user should look at before trusting a meshed fault: the figures
  * of the check that the mesh issue bounds, when this fault breaks them.
- * Writes up to two messages into w (each up to 160 bytes); returns the
+ * Writes up to three messages into w (each up to 160 bytes); returns the
  * count. Nodes of an extended top lie off the original by design. */
-static int fault_warnings(const fault_result *r, char w[3][160])
+int fault_warnings(const fault_result *r, char w[3][160])
 {
     int n = 0;
     /* A node past the original's edge is expected where the fault closes

@@ -43,6 +43,7 @@ typedef struct remesh_cli {
     fm_connect_keep keep; /* which of two near-duplicate faults is kept */
     int carve;    /* remove what still crosses between faults (default 1 when connecting) */
     sim_cli sim;          /* --slip, --metadata, --eqsim-coords */
+    int html;             /* write report.html (default 1) */
 } remesh_cli;
 
 /* What one fault came to, for report.json. */
@@ -75,6 +76,7 @@ typedef struct fault_result {
     size_t carved;              /* triangles removed where it met another fault */
     double carved_area;         /* their area, m^2 */
     size_t set_index;           /* its fault index in the set written, SIZE_MAX if none */
+    const fm_mesh *orig;        /* as read, NULL if not (valid until the jobs are released) */
     fm_cad_face **cad;          /* its faces in model.igs */
     size_t ncad;
 } fault_result;
@@ -175,5 +177,13 @@ void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp);
 void print_fault(const fault_result *r, double H);
 fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_attrs *sa,
                        fm_error *err);
+/* What a user should look at before trusting meshed fault r: up to three
+ * messages in w; their count. */
+int fault_warnings(const fault_result *r, char w[3][160]);
+
+/* remesh_html.c */
+/* DIR/report.html: called while the originals are still there (before
+ * the jobs are released). */
+fm_status write_report_html(const remesh_cli *cli, const run_state *rs, fm_error *err);
 
 #endif

@@ -91,6 +91,7 @@ void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
             continue;
         }
         *r = job->res[o];
+        r->orig = job->objs && o < job->nobj ? fm_tsurf_mesh(job->objs[o]) : NULL;
         r->set_index = SIZE_MAX;
         if (rs->plan_res && job->model && job->first + o < rs->nplan_faults)
             rs->plan_res[job->first + o] = rs->nres - 1;

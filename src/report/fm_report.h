@@ -1,0 +1,89 @@
+/* faultmesh report: DIR/report.html, one self-contained page a person
+ * reads to judge a remeshed fault set, with pictures drawn here (cairo, to
+ * PNG, embedded as data: URIs) so that no browser or Python is needed to
+ * make them.
+ *
+ * The caller fills it with plain data: the fault set written (its
+ * triangles tagged with the fault's index in the set), then every fault
+ * of the run in the order of report.json with its status, figures and
+ * original, the junctions, and summary facts. Nothing is drawn until
+ * fm_report_write_html, so the meshes handed in are borrowed and must
+ * stay alive until then. The page holds no times: the same run gives the
+ * same bytes whatever the thread count. */
+#ifndef FM_REPORT_H
+#define FM_REPORT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fm_check.h"
+#include "fm_core.h"
+#include "fm_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fm_report fm_report;
+
+typedef struct fm_report_info {
+    const char *title;   /* page heading */
+    const char *crs;     /* coordinate reference system of the set (x east, y north, metres) */
+    double size;         /* target edge length H, m */
+} fm_report_info;
+
+/* set: the fault set written, tag = the fault's index in it; borrowed.
+ * NULL on allocation failure (err set). */
+fm_report *fm_report_create(const fm_mesh *set, const fm_report_info *info, fm_error *err);
+void fm_report_destroy(fm_report *r);
+
+/* One fault of the run. Strings are copied; meshes are borrowed. */
+typedef struct fm_report_fault {
+    const char *name;
+    const char *file;
+    const char *status;        /* "ok", "empty", "error", "dropped" or "excluded" */
+    const char *reason;        /* why it is not ok; NULL when ok */
+    const char *const *warnings; /* what to look at before trusting it */
+    size_t nwarnings;
+    const char *join_error;    /* why some shared curves were left out, or NULL */
+    int32_t tag;               /* its triangles in the set, -1 when it has none */
+    const fm_mesh *original;   /* as read; NULL when the file could not be read */
+    size_t sheets;
+    fm_quality quality;        /* ok faults: of its triangles in the set */
+    fm_fidelity fidelity;
+    double fitted_area;        /* m^2, of the trimmed fitted surface */
+    size_t carved;             /* triangles it gave up where it ran through another */
+    double carved_area;        /* m^2 */
+} fm_report_fault;
+
+fm_status fm_report_add_fault(fm_report *r, const fm_report_fault *f, fm_error *err);
+
+/* One junction of the plan as meshed. */
+typedef struct fm_report_junction {
+    const char *fault[2];
+    const char *type;          /* "crossing", "T", "corner" or "unjoined" */
+    double gap_closed;         /* m */
+    double overshoot_trimmed;  /* m */
+    double length;             /* of the curve, m */
+    double min_angle;          /* smallest crossing angle, degrees */
+    const char *reason;        /* why it is as it is (NULL when there is nothing to say) */
+} fm_report_junction;
+
+fm_status fm_report_add_junction(fm_report *r, const fm_report_junction *j, fm_error *err);
+
+/* A line of the summary table (label, value), in the order added. */
+fm_status fm_report_add_fact(fm_report *r, const char *label, const char *value, fm_error *err);
+
+/* Draws the pictures and writes the page atomically to path. */
+fm_status fm_report_write_html(fm_report *r, const char *path, fm_error *err);
+
+/* Frees what cairo and fontconfig keep for the life of the process
+ * (their font caches), which leak checkers would report: call once
+ * before exit, after every report is written, when no thread uses cairo
+ * any more. */
+void fm_report_cleanup(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
