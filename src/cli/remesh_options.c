@@ -205,7 +205,7 @@ void cli_defaults(remesh_cli *cli)
 
 /* Flags whose default is on: `key = false` in a settings file is their
  * --no- option, `key = true` the default. */
-static const char *const on_by_default[] = {"connect", "split"};
+static const char *const on_by_default[] = {"connect", "split", "report_html"};
 
 static int is_on_by_default(const char *key)
 {
@@ -257,8 +257,12 @@ int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninp
             continue; /* with top = "extend" */
         } else if (e->type == CFG_BOOL) {
             int on = e->text[0] == 't';
-            if (is_on_by_default(e->key) && !on)
+            if (is_on_by_default(e->key) && !on) {
                 snprintf(opt, sizeof opt, "--no-%s", e->key);
+                for (char *q = opt + 5; *q; q++)
+                    if (*q == '_')
+                        *q = '-';
+            }
             else if (is_on_by_default(e->key) || !on)
                 continue; /* the default */
         } else if (e->type == CFG_ARRAY) {
