@@ -24,13 +24,15 @@ top_extend = 400
 msh_tags = "seissol"
 keep_crossings = true
 connect = true
+report_html = false
 jobs = 1
 quiet = true
 TOML
 expect_rc 0 "remesh --config" "$exe" remesh --config "$tmp/proj/a.toml"
 [ -f "$tmp/proj/out-a/mesh.vtu" ] && ok || bad "output not taken from the file's folder"
+[ ! -e "$tmp/proj/out-a/report.html" ] && ok || bad "report_html = false wrote report.html"
 expect_rc 0 "the same by options" "$exe" remesh --size 2000 --top extend 400 --msh-tags seissol \
-    --keep-crossings -j 1 --quiet -o "$tmp/b" "$tmp/proj/syn"
+    --keep-crossings --no-report-html -j 1 --quiet -o "$tmp/b" "$tmp/proj/syn"
 for f in mesh.vtu mesh.msh mesh.exo mesh.rsqsim; do
     cmp -s "$tmp/proj/out-a/$f" "$tmp/b/$f" && ok || bad "$f differs between --config and options"
 done
