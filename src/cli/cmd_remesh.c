@@ -225,16 +225,21 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         merge_job(cli, &jobs[i], &rs);
     if (plan && cli->carve)
         carve_set(cli, &rs);
-    /* before the originals go with the jobs */
-    if (cli->html && write_report_html(cli, &rs, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", err.message);
-        rs.failed++;
+    progress_end(cli->prog);
+    double t4 = fm_clock_seconds();
+    /* an output, timed with the writes; before the originals go with the
+     * jobs */
+    if (cli->html) {
+        progress_begin(cli->prog, "report.html", 0, NULL, 0);
+        if (write_report_html(cli, &rs, &err) != FM_OK) {
+            fprintf(stderr, "faultmesh: %s\n", err.message);
+            rs.failed++;
+        }
+        progress_end(cli->prog);
     }
     for (long i = 0; i < nfiles; i++)
         release_job(&jobs[i]);
     free(jobs);
-    progress_end(cli->prog);
-    double t4 = fm_clock_seconds();
     rs.time[0] = t1 - t0;
     rs.time[1] = t2 - t1;
     rs.time[2] = t3 - t2;
