@@ -6,7 +6,7 @@ import random
 
 rng = random.Random(7)
 out = "fit_mesh"
-tail = bytes([0, 5, 0, 0, 0, 6, 0, 0])  # repair flags, size, top, extend, sea, passes
+tail = bytes([0, 5, 0, 0, 0, 6, 0, 0])  # repair flags, fit refinements, size, top, extend, sea level, passes
 
 
 def grid(nx, ny, length, width, strike, dip, top, jitter, bump, far, drop, cells_rng):
