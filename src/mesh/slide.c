@@ -75,8 +75,8 @@ static int crosses_constraint(const double *uv, const int32_t *cons, size_t ncon
         if (c == p || c == q || d == p || d == q)
             continue;
         const double *x = uv + 2 * c, *y = uv + 2 * d;
-        if (fmax(x[0], y[0]) < lo0 || fmin(x[0], y[0]) > hi0 || fmax(x[1], y[1]) < lo1 ||
-            fmin(x[1], y[1]) > hi1)
+        if ((x[0] < lo0 && y[0] < lo0) || (x[0] > hi0 && y[0] > hi0) ||
+            (x[1] < lo1 && y[1] < lo1) || (x[1] > hi1 && y[1] > hi1))
             continue;
         if (segments_cross(a, b, x, y))
             return 1;
