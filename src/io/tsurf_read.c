@@ -423,7 +423,10 @@ static fm_status header_entry(reader *r, const char *s, const char *e)
     return FM_OK;
 }
 
-/* Text after "HEADER": "{", "{name:x}", "{ name:x", or nothing. */
+/* Text after "HEADER": "{", "{name:x}", "{ name:x", or nothing. The
+ * writer puts every entry on a line of its own, so an entry here must be
+ * one that such a line would give back: not a comment, and not starting
+ * with a keyword that ends the block. */
 static fm_status do_header_open(reader *r, const char *p, const char *e)
 {
     r->block_line = r->L.line;
@@ -437,6 +440,10 @@ static fm_status do_header_open(reader *r, const char *p, const char *e)
         e = c;
     }
     trim(&p, &e);
+    if (p < e && *p == '#')
+        return FM_OK;
+    if (is_structural(p, fm_lex_token_end(p, e)))
+        return fail(r, r->L.line, FM_ERR_PARSE, "HEADER entry starts with a TSurf keyword");
     return header_entry(r, p, e);
 }
 
@@ -446,7 +453,9 @@ static fm_status do_header_line(reader *r, const char *s, const char *e, const c
         return fail(r, r->block_line, FM_ERR_PARSE, "HEADER block is never closed");
     if (e - s == 1 && *s == '{')
         return FM_OK;
-    if (e[-1] == '}') {
+    /* every closing brace goes: a value ending in one would close the
+     * block early when written back */
+    while (e > s && e[-1] == '}') {
         r->st = S_HEAD;
         e--;
         fm_lex_rtrim(s, &e);

@@ -226,13 +226,22 @@ int segments_cross(const double *a, const double *b, const double *c, const doub
     return 1;
 }
 
-/* 1 if the chord (a, b) crosses a segment of d not ending at a or b. */
+/* 1 if the chord (a, b) crosses a segment of d not ending at a or b.
+ * Merging asks this of every node's chord, so a segment whose bounding box
+ * misses the chord's (it cannot touch it) is passed over before the exact
+ * tests: on a loop of thousands of nodes (fuzz_fit_mesh found a fit whose
+ * outline strayed 400 km) these took seconds. */
 static int chord_crosses(const remesh_domain *d, const double *a, const double *b)
 {
+    double lo0 = fmin(a[0], b[0]), hi0 = fmax(a[0], b[0]);
+    double lo1 = fmin(a[1], b[1]), hi1 = fmax(a[1], b[1]);
     for (size_t l = 0; l < d->n; l++) {
         const dom_loop *lp = &d->loops[l];
         for (size_t i = 0; i < lp->n; i++) {
             const double *c = lp->uv + 2 * i, *e = lp->uv + 2 * ((i + 1) % lp->n);
+            if ((c[0] < lo0 && e[0] < lo0) || (c[0] > hi0 && e[0] > hi0) ||
+                (c[1] < lo1 && e[1] < lo1) || (c[1] > hi1 && e[1] > hi1))
+                continue;
             if (pt_same(a, c) || pt_same(a, e) || pt_same(b, c) || pt_same(b, e))
                 continue;
             if (segments_cross(a, b, c, e))

@@ -1,0 +1,13 @@
+GOCAD TSurf 1
+HEADER {
+name:pinch
+}
+TFACE
+VRTX 1 0 0 0
+VRTX 2 1 0 0
+VRTX 3 0 1 0
+VRTX 4 -1 0 0
+VRTX 5 0 -1 0
+TRGL 1 2 3
+TRGL 1 4 5
+END
