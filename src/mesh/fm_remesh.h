@@ -44,6 +44,10 @@
 extern "C" {
 #endif
 
+/* Most boundary nodes a sheet's domain may have (all its loops); more is
+ * refused with FM_ERR_INVALID. */
+#define FM_REMESH_MAX_OUTLINE_NODES 100000
+
 typedef enum fm_top_mode {
     FM_TOP_CUT = 0,   /* clip at sea level (default) */
     FM_TOP_KEEP = 1,  /* keep the fitted (topographic) top */

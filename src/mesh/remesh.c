@@ -37,6 +37,20 @@ static fm_status build_domain(const fm_fit_surface *s, const fm_trim_loop *const
     fm_status rc = domain_sample(s, loops, nloops, opt->size, &d0, err, opt->name);
     if (rc != FM_OK)
         return rc;
+    /* The outline's clean-up below is quadratic in its nodes; a fitted
+     * outline that strays far from its fault (fuzz_fit_mesh found one
+     * 400 km long on a 10 km sheet: 818,581 nodes) would run for hours.
+     * The CFM's longest outline at 100 m is some 10,000 nodes. */
+    size_t nodes = 0;
+    for (size_t l = 0; l < d0.n; l++)
+        nodes += d0.loops[l].n;
+    if (nodes > FM_REMESH_MAX_OUTLINE_NODES) {
+        domain_free(&d0);
+        return fm_error_set(err, FM_ERR_INVALID, opt->name, 0,
+                            "the outline needs %zu nodes at size %g m (at most %d): the fitted "
+                            "outline strays from the fault, or the size is far too small for it",
+                            nodes, opt->size, FM_REMESH_MAX_OUTLINE_NODES);
+    }
     if (domain_split_sags(s, loops, &d0, opt->size)) {
         domain_free(&d0);
         return fm_error_set(err, FM_ERR_NOMEM, opt->name, 0, "out of memory");
