@@ -9,6 +9,12 @@
 #include "fm_json.h"
 #include "remesh_run.h"
 
+/* The name --top and the settings file give a top mode. */
+static const char *top_name(fm_top_mode t)
+{
+    return t == FM_TOP_CUT ? "cut" : t == FM_TOP_KEEP ? "keep" : "extend";
+}
+
 /* What a user should look at before trusting a meshed fault: the figures
  * of the check that the mesh issue bounds, when this fault breaks them.
  * Writes up to three messages into w (each up to 160 bytes); returns the
@@ -127,9 +133,7 @@ static void json_fault(fm_json *j, const fault_result *r, double H, const sim_at
         if (r->fc.has_size)
             fm_json_kv_number(j, "size_m", r->fc.size);
         if (r->fc.has_top)
-            fm_json_kv_string(j, "top", r->fc.top == FM_TOP_CUT    ? "cut"
-                                        : r->fc.top == FM_TOP_KEEP ? "keep"
-                                                                   : "extend");
+            fm_json_kv_string(j, "top", top_name(r->fc.top));
         if (r->fc.has_top && r->fc.top == FM_TOP_EXTEND)
             fm_json_kv_number(j, "top_extend_m", r->fc.top_extend);
         if (r->fc.has_join)
@@ -409,9 +413,7 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
     fm_json_key(&j, "options");
     fm_json_begin_object(&j);
     fm_json_kv_number(&j, "size_m", cli->mesh.size);
-    fm_json_kv_string(&j, "top", cli->mesh.top == FM_TOP_CUT    ? "cut"
-                                 : cli->mesh.top == FM_TOP_KEEP ? "keep"
-                                                                : "extend");
+    fm_json_kv_string(&j, "top", top_name(cli->mesh.top));
     if (cli->mesh.top == FM_TOP_EXTEND)
         fm_json_kv_number(&j, "top_extend_m", cli->mesh.top_extend);
     fm_json_kv_string(&j, "crs", rs->crs);
