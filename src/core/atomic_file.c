@@ -2,6 +2,8 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,9 +18,19 @@
  * CLAIMED (invisible to the handler), read by the handler only once it
  * has moved the slot from ARMED to REMOVING, and a writer gives back only
  * a slot still ARMED (one the handler took stays taken: the process is
- * ending). A write whose name finds no slot (all busy, or a path longer
- * than a slot) is still atomic, only not removed on a signal. */
-enum { SLOT_FREE, SLOT_CLAIMED, SLOT_ARMED, SLOT_REMOVING };
+ * ending).
+ *
+ * The file itself is created while its slot is CREATING, with every signal
+ * blocked in the creating thread, and the handler (in another thread, then)
+ * waits for such a slot to be ARMED again before removing it: otherwise a
+ * file created just after the handler passed would outlive the process,
+ * which a thread on another core can still do between the handler's return
+ * and the end of the process. A writer that sees the handler has run does
+ * not create its file at all.
+ *
+ * A write whose name finds no slot (all busy, or a path longer than a
+ * slot) is still atomic, only not removed on a signal. */
+enum { SLOT_FREE, SLOT_CLAIMED, SLOT_ARMED, SLOT_CREATING, SLOT_REMOVING };
 #define NSLOTS 128
 #define SLOT_BYTES 4096
 
@@ -33,6 +45,7 @@ struct fm_atomic_name {
     char *path;
     char *tmp;
     int slot; /* -1: not registered */
+    sigset_t held; /* the creating thread's signal mask, while it creates */
 };
 
 struct fm_atomic_file {
@@ -69,9 +82,43 @@ void fm_atomic_remove_pending(void)
     atomic_store(&removing, 1);
     for (int i = 0; i < NSLOTS; i++) {
         int expect = SLOT_ARMED;
-        if (atomic_compare_exchange_strong(&slot_state[i], &expect, SLOT_REMOVING))
+        /* a CREATING slot belongs to a thread with signals blocked, so not
+         * this one: it is running, and hands the slot back shortly */
+        while (!atomic_compare_exchange_strong(&slot_state[i], &expect, SLOT_REMOVING)) {
+            if (expect != SLOT_CREATING)
+                break;
+            expect = SLOT_ARMED;
+        }
+        if (expect == SLOT_ARMED)
             unlink(slot_name[i]);
     }
+}
+
+fm_status fm_atomic_name_creating(fm_atomic_name *n, fm_error *err)
+{
+    sigset_t all;
+    sigfillset(&all);
+    pthread_sigmask(SIG_BLOCK, &all, &n->held);
+    int expect = SLOT_ARMED;
+    if (n->slot >= 0 &&
+        !atomic_compare_exchange_strong(&slot_state[n->slot], &expect, SLOT_CREATING))
+        expect = -1; /* the handler took the slot */
+    /* read after the slot became CREATING: a handler that has not yet set
+     * the flag will find the slot, and wait for it */
+    if (expect == -1 || atomic_load(&removing)) {
+        fm_atomic_name_created(n);
+        return fm_error_set(err, FM_ERR_IO, n->path, 0, "interrupted");
+    }
+    return FM_OK;
+}
+
+void fm_atomic_name_created(fm_atomic_name *n)
+{
+    if (n->slot >= 0) {
+        int expect = SLOT_CREATING;
+        atomic_compare_exchange_strong(&slot_state[n->slot], &expect, SLOT_ARMED);
+    }
+    pthread_sigmask(SIG_SETMASK, &n->held, NULL);
 }
 
 static void name_free(fm_atomic_name *n)
@@ -105,8 +152,8 @@ fm_atomic_name *fm_atomic_name_create(const char *path, fm_error *err)
     size_t dir = slash ? (size_t)(slash - path) + 1 : 0;
     snprintf(n->tmp, len + 48, "%.*s.%s.tmp.%ld.%u", (int)dir, path, path + dir, (long)getpid(),
              atomic_fetch_add(&name_count, 1u));
-    /* registered before anything exists under the name: a handler that
-     * removes it early only misses a file not yet there */
+    /* registered before anything exists under the name; the file is made
+     * between fm_atomic_name_creating and _created */
     n->slot = slot_take(n->tmp);
     return n;
 }
@@ -162,23 +209,22 @@ fm_atomic_file *fm_atomic_open(const char *path, fm_error *err)
             free(f);
             return NULL;
         }
+        if (fm_atomic_name_creating(f->name, err) != FM_OK) {
+            name_free(f->name);
+            free(f);
+            return NULL;
+        }
         /* open() applies the umask: outputs are ordinary files for the user */
         fd = open(f->name->tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        int saved = errno;
+        fm_atomic_name_created(f->name);
+        errno = saved;
         if (fd < 0 && errno != EEXIST)
             break;
     }
     if (fd < 0) {
         fm_error_set(err, FM_ERR_IO, path, 0, "cannot create file: %s", strerror(errno));
         name_free(f->name);
-        free(f);
-        return NULL;
-    }
-    /* a handler that ran between registering and creating it has removed
-     * nothing yet: the file is removed here, and the write fails */
-    if (fm_atomic_interrupted()) {
-        close(fd);
-        fm_error_set(err, FM_ERR_IO, path, 0, "interrupted");
-        fm_atomic_name_abort(f->name);
         free(f);
         return NULL;
     }

@@ -40,6 +40,14 @@ void fm_atomic_abort(fm_atomic_file *f);
 typedef struct fm_atomic_name fm_atomic_name;
 fm_atomic_name *fm_atomic_name_create(const char *path, fm_error *err);
 const char *fm_atomic_name_tmp(const fm_atomic_name *n);
+/* Bracket the call that creates the file under the temporary name, so that
+ * a signal handler running meanwhile in another thread waits for it and
+ * removes it: signals are blocked in this thread in between, which should
+ * therefore be short. creating fails (err set, "interrupted") when
+ * fm_atomic_remove_pending has run: then create nothing, and do not call
+ * created. */
+fm_status fm_atomic_name_creating(fm_atomic_name *n, fm_error *err);
+void fm_atomic_name_created(fm_atomic_name *n);
 /* Syncs the file written under the temporary name (unless synced says it
  * is already) and renames it to path; frees n. On failure the temporary is
  * removed. */

@@ -316,8 +316,14 @@ fm_status fm_faultset_write_exodus(const char *path, const fm_faultset *fs, fm_e
         return FM_ERR_NOMEM;
     }
     pthread_once(&opts_once, quiet_exodus);
+    if ((st = fm_atomic_name_creating(tmp, err)) != FM_OK) {
+        fm_atomic_name_abort(tmp);
+        release(&j);
+        return st;
+    }
     int cws = 8, iows = 8;
     int exo = ex_create(fm_atomic_name_tmp(tmp), EX_NOCLOBBER, &cws, &iows);
+    fm_atomic_name_created(tmp);
     if (exo < 0) {
         st = fm_error_set(err, FM_ERR_IO, path, 0, "cannot create Exodus II file (error %d)",
                           exo);

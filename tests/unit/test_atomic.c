@@ -5,6 +5,9 @@
  * nothing. The cases that call it run last (it cannot be undone) or in a
  * child process. */
 #include <dirent.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <time.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -246,6 +249,54 @@ static void test_signal_in_child(void)
     free(text);
 }
 
+static void *churn(void *arg)
+{
+    int k = (int)(intptr_t)arg;
+    fm_error err;
+    fm_error_clear(&err);
+    char p[1024], name[64];
+    for (unsigned i = 0;; i++) {
+        snprintf(name, sizeof name, "t%d_%u.txt", k, i % 8);
+        path_of(p, sizeof p, name);
+        fm_atomic_file *f = fm_atomic_open(p, &err);
+        if (!f)
+            return NULL; /* interrupted */
+        fputs(name, fm_atomic_stream(f));
+        fm_atomic_commit(f, &err);
+    }
+}
+
+/* Threads create, write and commit files without pause while the process
+ * is killed by a caught signal at moments spread over a few milliseconds:
+ * no temporary may outlive it, including one a thread on another core
+ * creates while the handler runs or after it returned. */
+static void test_signal_while_creating(void)
+{
+    int rounds = 150, left = 0;
+    for (int r = 0; r < rounds; r++) {
+        clear_dir();
+        fflush(NULL);
+        pid_t pid = fork();
+        CHECK(pid >= 0);
+        if (pid == 0) {
+            signal(SIGTERM, on_term);
+            pthread_t t[4];
+            for (int k = 0; k < 4; k++)
+                pthread_create(&t[k], NULL, churn, (void *)(intptr_t)k);
+            for (;;)
+                pause();
+        }
+        struct timespec ts = {0, 200000L + (long)(r % 30) * 100000L};
+        nanosleep(&ts, NULL);
+        kill(pid, SIGTERM);
+        int status = 0;
+        CHECK(waitpid(pid, &status, 0) == pid);
+        CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+        left += count_entries(".tmp.", NULL) > 0;
+    }
+    CHECK_EQ(left, 0);
+}
+
 /* Last: in this process, writes in progress lose their temporaries and
  * new ones fail. */
 static void test_remove_pending(void)
@@ -288,7 +339,8 @@ int main(void)
     }
     static const fm_test_case cases[] = {
         FM_CASE(test_commit),      FM_CASE(test_replace_and_abort), FM_CASE(test_many_open),
-        FM_CASE(test_name),        FM_CASE(test_signal_in_child),   FM_CASE(test_remove_pending),
+        FM_CASE(test_name),        FM_CASE(test_signal_in_child),   FM_CASE(test_signal_while_creating),
+        FM_CASE(test_remove_pending),
     };
     return fm_test_run(cases, sizeof cases / sizeof cases[0]);
 }
