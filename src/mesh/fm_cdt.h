@@ -174,6 +174,12 @@ typedef struct fm_cdt_refine_options {
      * triangles counted: a metric the refiner cannot satisfy costs quality,
      * never the result. */
     size_t max_points;
+    /* When the points the metric area and boundary length call for
+     * (stats.expected_points, taken before any split) exceed this,
+     * refinement does not start: stats.capped is set and the mesh is the
+     * triangulation as it was. For a caller with a cheaper metric to fall
+     * back on. 0: no limit. */
+    size_t expected_limit;
     /* Largest ratio of the metric's principal stretches (square root of
      * the ratio of its eigenvalues) that refinement takes as it is; a
      * metric more anisotropic than this, or positive semi-definite only
@@ -195,7 +201,7 @@ typedef struct fm_cdt_refine_options {
 } fm_cdt_refine_options;
 
 /* size 0 (must be set), min_angle 30, no metric, no callback, nothing
- * frozen, automatic max_points, no anisotropy clamp, automatic
+ * frozen, automatic max_points, no expected_limit, no anisotropy clamp, automatic
  * min_length. */
 void fm_cdt_refine_options_default(fm_cdt_refine_options *o);
 

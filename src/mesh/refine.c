@@ -28,6 +28,7 @@ void fm_cdt_refine_options_default(fm_cdt_refine_options *o)
     o->frozen_ids = NULL;
     o->nfrozen = 0;
     o->max_points = 0;
+    o->expected_limit = 0;
     o->max_anisotropy = 0;
     o->min_length = 0;
 }
@@ -451,6 +452,8 @@ fm_status fm_cdt_refine(fm_cdt *t, const fm_cdt_refine_options *opt, fm_error *e
     if (r.st == FM_OK) {
         size_t cap = auto_max_points(&r); /* also the stats' expected points */
         r.max_points = opt->max_points ? opt->max_points : cap;
+        if (opt->expected_limit && t->stats.expected_points > opt->expected_limit)
+            t->stats.capped = 1;
     }
     t->touch = touch;
     t->touch_user = &r;

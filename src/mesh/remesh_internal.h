@@ -180,6 +180,17 @@ size_t slide_boundary(const fm_fit_surface *s, const opt_curves *cv, double *uv,
                       const int32_t *prev, const int32_t *next, const int32_t *cons,
                       size_t ncons);
 
+/* The constrained edges (pairs of node indices into uv) an edge may cross,
+ * looked up through a grid (cons_grid.c): cons_grid_crosses says whether
+ * edge (p, q) crosses one not ending at p or q, exactly as a scan of all
+ * would; after node v moves, cons_grid_moved(v) before the next query.
+ * cons and uv must outlive the grid. NULL only when out of memory. */
+typedef struct cons_grid cons_grid;
+cons_grid *cons_grid_create(const double *uv, size_t np, const int32_t *cons, size_t ncons);
+void cons_grid_destroy(cons_grid *g);
+int cons_grid_crosses(cons_grid *g, const double *uv, int32_t p, int32_t q);
+void cons_grid_moved(cons_grid *g, const double *uv, int32_t v);
+
 /* One round of collapses of edges shorter than 0.7 size into a free end
  * (collapse.c); tri is compacted and *nt updated. Returns the count;
  * *nomem set when memory ran out (nothing changed then). */

@@ -59,37 +59,13 @@ static int curve_point(const fm_fit_surface *s, const opt_curves *cv, int32_t k,
     return hypot(out[0] - straight[0], out[1] - straight[1]) <= 0.25 * hypot(b[0] - a[0], b[1] - a[1]);
 }
 
-/* 1 if edge (p, q) crosses a constrained edge that does not end at p or q.
- * Every node tests every constraint, so a constraint whose bounding box
- * misses the edge's (it cannot touch it) is passed over before the exact
- * orient2d tests: with thousands of boundary nodes (fuzz_fit_mesh found a
- * sheet with 3568) these tests took seconds. */
-static int crosses_constraint(const double *uv, const int32_t *cons, size_t ncons, int32_t p,
-                              int32_t q)
-{
-    const double *a = uv + 2 * p, *b = uv + 2 * q;
-    double lo0 = fmin(a[0], b[0]), hi0 = fmax(a[0], b[0]);
-    double lo1 = fmin(a[1], b[1]), hi1 = fmax(a[1], b[1]);
-    for (size_t k = 0; k < ncons; k++) {
-        int32_t c = cons[2 * k], d = cons[2 * k + 1];
-        if (c == p || c == q || d == p || d == q)
-            continue;
-        const double *x = uv + 2 * c, *y = uv + 2 * d;
-        if ((x[0] < lo0 && y[0] < lo0) || (x[0] > hi0 && y[0] > hi0) ||
-            (x[1] < lo1 && y[1] < lo1) || (x[1] > hi1 && y[1] > hi1))
-            continue;
-        if (segments_cross(a, b, x, y))
-            return 1;
-    }
-    return 0;
-}
-
 size_t slide_boundary(const fm_fit_surface *s, const opt_curves *cv, double *uv, double *xyz,
                       size_t np, const int32_t *tri, const size_t *start, const int32_t *list,
                       const int32_t *prev, const int32_t *next, const int32_t *cons,
                       size_t ncons)
 {
     size_t moved = 0;
+    cons_grid *grid = NULL;
     for (size_t v = cv->ninput; v < np; v++) {
         int32_t k = cv->pseg[v], a = prev[v], b = next[v];
         if (k < 0 || a < 0 || b < 0 || start[v + 1] == start[v])
@@ -119,8 +95,18 @@ size_t slide_boundary(const fm_fit_surface *s, const opt_curves *cv, double *uv,
         }
         uv[2 * v] = best_uv[0];
         uv[2 * v + 1] = best_uv[1];
-        if (best > before && !crosses_constraint(uv, cons, ncons, a, (int32_t)v) &&
-            !crosses_constraint(uv, cons, ncons, (int32_t)v, b)) {
+        int ok = 0;
+        if (best > before) {
+            /* built at the first move tried (most rounds try none), else
+             * told where v's constraints now reach */
+            if (!grid)
+                grid = cons_grid_create(uv, np, cons, ncons);
+            else
+                cons_grid_moved(grid, uv, (int32_t)v);
+            ok = grid && !cons_grid_crosses(grid, uv, a, (int32_t)v) &&
+                 !cons_grid_crosses(grid, uv, (int32_t)v, b);
+        }
+        if (ok) {
             fm_fit_surface_eval(s, uv[2 * v], uv[2 * v + 1], xyz + 3 * v, NULL, NULL);
             moved++;
         } else {
@@ -129,7 +115,10 @@ size_t slide_boundary(const fm_fit_surface *s, const opt_curves *cv, double *uv,
             xyz[3 * v] = old_xyz[0];
             xyz[3 * v + 1] = old_xyz[1];
             xyz[3 * v + 2] = old_xyz[2];
+            if (grid)
+                cons_grid_moved(grid, uv, (int32_t)v);
         }
     }
+    cons_grid_destroy(grid);
     return moved;
 }
