@@ -80,12 +80,21 @@ static void json_carve(fm_json *j, const run_state *rs)
             fm_json_string(j, rs->res[rs->set_res[p->fault[s]]].name);
         fm_json_end_array(j);
         fm_json_kv_int(j, "triangle_pairs_met", (int64_t)p->contacts);
-        fm_json_kv_string(j, "removed_from", rs->res[rs->set_res[p->fault[p->yielded]]].name);
+        if (p->kept) {
+            fm_json_key(j, "removed_from");
+            fm_json_null(j);
+        } else {
+            fm_json_kv_string(j, "removed_from", rs->res[rs->set_res[p->fault[p->yielded]]].name);
+        }
         fm_json_kv_int(j, "triangles_removed", (int64_t)p->removed);
         fm_json_kv_number(j, "area_removed_m2", p->area);
         fm_json_kv_string(j, "reason",
-                          "the two meshes ran through each other away from any curve they "
-                          "share; the one losing the smaller share of its area gives way there");
+                          p->kept ? "the two meshes run through each other away from any curve "
+                                    "they share, and are kept so: either would have lost every "
+                                    "triangle it had left (the size is near their extent)"
+                                  : "the two meshes ran through each other away from any curve "
+                                    "they share; the one losing the smaller share of its area "
+                                    "gives way there");
         fm_json_end_object(j);
     }
     fm_json_end_array(j);
@@ -345,7 +354,12 @@ void run_totals_of(const run_state *rs, run_totals *t)
         size_t which;
         t->junctions[junction_outcome(rs, fm_connect_plan_junction(rs->plan, i), &why, &which)]++;
     }
-    t->carved_pairs = rs->carve ? fm_carve_npairs(rs->carve) : 0;
+    for (size_t k = 0; k < fm_carve_npairs(rs->carve); k++) {
+        if (fm_carve_pair_at(rs->carve, k)->kept)
+            t->crossings_kept++;
+        else
+            t->carved_pairs++;
+    }
 }
 
 /* The end-of-run table: what a user checks before opening the files. */
@@ -369,9 +383,14 @@ void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp)
                 fm_connect_plan_nnodes(rs->plan));
     else
         fprintf(fp, "  %-14s not connected\n", "junctions");
-    if (rs->carve)
-        fprintf(fp, "  %-14s %zu triangles removed where %zu fault pairs still crossed\n",
+    if (rs->carve) {
+        fprintf(fp, "  %-14s %zu triangles removed where %zu fault pairs still crossed",
                 "last guard", t.carved, t.carved_pairs);
+        if (t.crossings_kept)
+            fprintf(fp, "; %zu pairs left crossing, as either would have lost all it had",
+                    t.crossings_kept);
+        fputc('\n', fp);
+    }
     fprintf(fp, "  %-14s %zu, %.3f%% under 30 deg, %zu under 20 deg (%zu at sharp corners), "
                 "edges in [0.7, 1.4] H %.2f%%\n",
             "triangles", t.triangles,

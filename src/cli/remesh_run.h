@@ -168,6 +168,7 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa, f
 typedef struct run_totals {
     size_t ok, warned, dropped, empty, excluded, sheets;
     size_t triangles, below30, below20, forced, edges, band, carved, carved_pairs;
+    size_t crossings_kept; /* fault pairs the last guard left crossing (fm_carve_pair.kept) */
     size_t junctions[4]; /* by fm_junction_type, as meshed */
     double angle_min, worst_dist, zmax;
     const char *angle_min_fault, *worst_dist_fault;

@@ -182,7 +182,7 @@ void carve_set(const remesh_cli *cli, run_state *rs)
     for (size_t k = 0; k < fm_carve_npairs(rs->carve); k++) {
         const fm_carve_pair *p = fm_carve_pair_at(rs->carve, k);
         fault_result *r = &rs->res[rs->set_res[p->fault[p->yielded]]];
-        if (r->carved)
+        if (r->carved || p->kept)
             continue; /* measured already */
         int32_t tag = p->fault[p->yielded];
         size_t before = r->q.triangles;

@@ -202,14 +202,22 @@ static double area_of(const fm_mesh *m, const int32_t *t, size_t n)
 }
 
 /* Area of every fault (by tag); NULL when out of memory. */
+/* One more than the largest tag. */
+static size_t fault_count(const fm_mesh *m)
+{
+    size_t nt = fm_mesh_ntriangles(m), nf = 0;
+    const int32_t *tag = fm_mesh_tags(m);
+    for (size_t t = 0; t < nt; t++)
+        if (tag[t] >= 0 && (size_t)tag[t] + 1 > nf)
+            nf = (size_t)tag[t] + 1;
+    return nf;
+}
+
 static double *fault_areas(const fm_mesh *m, size_t *nf)
 {
     size_t nt = fm_mesh_ntriangles(m);
     const int32_t *tag = fm_mesh_tags(m);
-    *nf = 0;
-    for (size_t t = 0; t < nt; t++)
-        if (tag[t] >= 0 && (size_t)tag[t] + 1 > *nf)
-            *nf = (size_t)tag[t] + 1;
+    *nf = fault_count(m);
     double *a = calloc(*nf + 1, sizeof *a);
     for (size_t t = 0; a && t < nt; t++) {
         int32_t one = (int32_t)t;
@@ -250,14 +258,26 @@ static int any_on(const unsigned char *on, const int32_t *t, size_t n)
     return 0;
 }
 
+/* Of the n triangles in t, those not yet gone (t is distinct). */
+static size_t still_there(const unsigned char *gone, const int32_t *t, size_t n)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        k += !gone[t[i]];
+    return k;
+}
+
 /* Decides each pair of faults in the sorted contacts and marks the
  * triangles to remove; fills r->pairs. The fault that gives way is the one
  * whose triangles there hold no piece of a curve it shares with a fault,
  * when only one of them is so, else the one losing the smaller share of
  * its area, so that a small fault is not eaten by a large one it touches.
- * -1 when out of memory. */
+ * Neither is emptied: when the one chosen would lose its last triangles
+ * the other gives way, and when both would, the pair is kept (at sizes
+ * near a fault's own extent, a fault of one triangle meets another's).
+ * left: triangles per fault not (yet) gone. -1 when out of memory. */
 static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *gone,
-                  fm_carve_result *r)
+                  size_t *left, fm_carve_result *r)
 {
     size_t nf;
     double *total = fault_areas(m, &nf);
@@ -288,11 +308,22 @@ static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *g
         int ja = any_on(junction, ta, na), jb = any_on(junction, tb, nb);
         /* the later fault on a tie */
         p->yielded = ja != jb ? ja : lost_b * total[c[s].fa] <= lost_a * total[c[s].fb];
+        int empties[2] = {still_there(gone, ta, na) >= left[c[s].fa],
+                          still_there(gone, tb, nb) >= left[c[s].fb]};
+        if (empties[p->yielded])
+            p->yielded = !p->yielded;
+        if (empties[p->yielded]) {
+            p->kept = 1;
+            continue;
+        }
         const int32_t *lose = p->yielded ? tb : ta;
         p->removed = p->yielded ? nb : na;
         p->area = p->yielded ? lost_b : lost_a;
         for (size_t k = 0; k < p->removed; k++)
-            gone[lose[k]] = 1;
+            if (!gone[lose[k]]) {
+                gone[lose[k]] = 1;
+                left[p->fault[p->yielded]]--;
+            }
     }
     free(total);
     free(junction);
@@ -302,8 +333,9 @@ static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *g
 }
 
 /* Marks as gone the slivers of a fault that share a corner with one of its
- * own triangles already gone; their count. -1 when out of memory. */
-static long tidy_notches(const fm_mesh *m, unsigned char *gone)
+ * own triangles already gone, short of a fault's last triangle; their
+ * count. -1 when out of memory. */
+static long tidy_notches(const fm_mesh *m, unsigned char *gone, size_t *left)
 {
     size_t nt = fm_mesh_ntriangles(m), ngone = 0;
     const int32_t *T = fm_mesh_triangles(m), *tag = fm_mesh_tags(m);
@@ -326,7 +358,7 @@ static long tidy_notches(const fm_mesh *m, unsigned char *gone)
     long more = 0;
     for (size_t t = 0; t < nt; t++) {
         const int32_t *v = T + 3 * t;
-        if (gone[t] ||
+        if (gone[t] || tag[t] < 0 || left[tag[t]] < 2 ||
             fm_triangle_min_angle(X + 3 * v[0], X + 3 * v[1], X + 3 * v[2]) >= NOTCH_SLIVER_DEG)
             continue;
         for (int k = 0; k < 3; k++) {
@@ -334,6 +366,7 @@ static long tidy_notches(const fm_mesh *m, unsigned char *gone)
             size_t i = fm_keyed_lower_bound(corner, q, key);
             if (i < q && corner[i].key == key) {
                 gone[t] = 2; /* not a corner of the notch itself: no chain */
+                left[tag[t]]--;
                 more++;
                 break;
             }
@@ -343,6 +376,18 @@ static long tidy_notches(const fm_mesh *m, unsigned char *gone)
     return more;
 }
 
+/* Triangles per fault (tag), an entry for every tag up to the largest. */
+static size_t *faults_sizes(const fm_mesh *m)
+{
+    size_t nt = fm_mesh_ntriangles(m);
+    const int32_t *tag = fm_mesh_tags(m);
+    size_t *n = calloc(fault_count(m) + 1, sizeof *n);
+    for (size_t t = 0; n && t < nt; t++)
+        if (tag[t] >= 0)
+            n[tag[t]]++;
+    return n;
+}
+
 fm_status fm_carve_crossings(fm_mesh *set, double cell, int32_t *beside, fm_carve_result **out,
                              fm_error *err)
 {
@@ -350,12 +395,14 @@ fm_status fm_carve_crossings(fm_mesh *set, double cell, int32_t *beside, fm_carv
     fm_carve_result *r = calloc(1, sizeof *r);
     size_t nt = fm_mesh_ntriangles(set);
     unsigned char *gone = calloc(nt + 1, 1);
+    size_t *left = faults_sizes(set);
     contact *c = NULL;
     size_t n = 0;
     long slivers = -1;
-    if (!r || !gone || find_contacts(set, cell, &c, &n) || decide(set, c, n, gone, r) ||
-        (slivers = tidy_notches(set, gone)) < 0) {
+    if (!r || !gone || !left || find_contacts(set, cell, &c, &n) ||
+        decide(set, c, n, gone, left, r) || (slivers = tidy_notches(set, gone, left)) < 0) {
         free(gone);
+        free(left);
         free(c);
         fm_carve_result_destroy(r);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
@@ -376,6 +423,7 @@ fm_status fm_carve_crossings(fm_mesh *set, double cell, int32_t *beside, fm_carv
     }
     fm_mesh_truncate(set, fm_mesh_nvertices(set), kept);
     free(gone);
+    free(left);
     *out = r;
     return FM_OK;
 }

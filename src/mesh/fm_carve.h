@@ -13,9 +13,12 @@
  * one whose triangles there hold no piece of a curve it shares with some
  * fault, when only one is so (a junction is not undone to clear another);
  * else the one that loses the smaller share of its area (on a tie, the
- * later fault), which spares a small fault touching a large one.
- * Removing triangles never makes a new contact, so afterwards no two
- * triangles of different faults meet except at shared nodes and edges.
+ * later fault), which spares a small fault touching a large one. No
+ * fault is emptied: when the one chosen would lose its last triangles the
+ * other gives way, and when both would (at sizes near the faults' own
+ * extents) the two are left as they are (kept). Removing triangles never
+ * makes a new contact, so afterwards no two triangles of different faults
+ * meet except at shared nodes and edges, kept pairs aside.
  * Triangles of the same fault (its sheets) are not compared. A triangle
  * under 20 degrees with a corner on a notch goes with it (it was a sliver
  * at the other fault's curve, and would be one on an open edge now). */
@@ -37,6 +40,8 @@ typedef struct fm_carve_pair {
     int32_t fault[2];  /* tags, fault[0] < fault[1] */
     size_t contacts;   /* pairs of their triangles that met */
     int yielded;       /* 0 or 1: the fault whose triangles were removed */
+    int kept;          /* 1: neither gave way, as either would have lost every
+                          triangle it has left (removed and area are 0) */
     size_t removed;    /* its triangles that met the other, all removed */
     double area;       /* their area, m^2 */
 } fm_carve_pair;

@@ -100,6 +100,15 @@ n=$(ls "$tmp/a"/*.ts 2>/dev/null | wc -l)
 expect_rc 0 "remesh a fault above sea level, --top keep" "$exe" remesh --top keep --size 2000 -o "$tmp/k" "$tmp/above.ts"
 [ "$(json "$tmp/k/report.json" "r['faults'][0]['status']")" = ok ] && ok || bad "--top keep did not mesh it"
 
+# A size near the faults' own extents: each is a triangle or two, and the
+# last guard would have emptied one where two still cross; it keeps both
+# instead, and every file is written.
+expect_rc 0 "remesh at 10,000 km" "$exe" remesh --size 1e7 --quiet -o "$tmp/huge" "$tmp/s"
+[ -s "$tmp/huge/mesh.vtu" ] && [ "$(ls "$tmp/huge"/*.ts | wc -l)" = 9 ] && ok ||
+    bad "at 10,000 km: $(ls "$tmp/huge")"
+[ "$(json "$tmp/huge/report.json" "all(f['triangles'] > 0 for f in r['faults']) and any(c['removed_from'] is None and c['triangles_removed'] == 0 for c in r['connect']['carved'])")" = True ] && ok ||
+    bad "at 10,000 km: $(json "$tmp/huge/report.json" "r['connect'].get('carved')")"
+
 # A blocked output name: exit 1, no temporary left, no partial file.
 mkdir -p "$tmp/b/mesh.vtu"
 expect_rc 1 "remesh onto a blocked name" "$exe" remesh --size 2000 -o "$tmp/b" "$g1"

@@ -190,6 +190,60 @@ static void test_carve_conforming(void)
     fm_mesh_destroy(m);
 }
 
+/* No fault is emptied: a fault of two triangles that both cross a large
+ * one keeps them, although the large one holds a junction there (which
+ * would spare it), and two faults of one triangle each that cross are
+ * kept as they are. */
+static void test_carve_never_empties(void)
+{
+    fm_mesh *m = fm_mesh_create();
+    grid(m, (double[]){0, 0, -10}, (double[]){1, 0, 0.05}, (double[]){0, 1, 0.1}, 20, 0);
+    /* a third fault hanging from the grid line y = 8, sharing its sides
+     * (a junction) with the triangles the small one crosses */
+    for (int i = 4; i < 10; i++) {
+        const double *x = fm_mesh_vertices(m) + 3 * (8 * 21 + i);
+        int32_t apex = fm_mesh_add_vertex(m, x[0] + 0.5, 8, x[2] - 3);
+        fm_mesh_add_triangle(m, 8 * 21 + i, 8 * 21 + i + 1, apex, 2);
+    }
+    /* one cell, standing through the large fault: all it has meets it */
+    grid(m, (double[]){5.3, 8.2, -12}, (double[]){3, 0.9, 0}, (double[]){0, 0, 4}, 1, 1);
+    size_t before = fm_mesh_ntriangles(m);
+    fm_carve_result *r = NULL;
+    fm_error err;
+    fm_error_clear(&err);
+    CHECK_EQ(fm_carve_crossings(m, 0, NULL, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_npairs(r), 1);
+    const fm_carve_pair *p = fm_carve_pair_at(r, 0);
+    CHECK(p && p->fault[0] == 0 && p->fault[1] == 1);
+    CHECK(p && !p->kept && p->yielded == 0 && p->removed > 0);
+    size_t small = 0;
+    for (size_t t = 0; t < fm_mesh_ntriangles(m); t++)
+        small += fm_mesh_tags(m)[t] == 1;
+    CHECK_EQ(small, 2);
+    CHECK_EQ(fm_mesh_ntriangles(m), before - fm_carve_removed(r));
+    CHECK_EQ(contacts(m), 0);
+    fm_carve_result_destroy(r);
+    fm_mesh_destroy(m);
+
+    m = fm_mesh_create();
+    fm_mesh_add_vertex(m, 0, 0, 0);
+    fm_mesh_add_vertex(m, 4, 0, 0);
+    fm_mesh_add_vertex(m, 0, 4, 0);
+    fm_mesh_add_vertex(m, 1, 1, -1);
+    fm_mesh_add_vertex(m, 1, 1, 1);
+    fm_mesh_add_vertex(m, 2, 1, 1);
+    fm_mesh_add_triangle(m, 0, 1, 2, 0);
+    fm_mesh_add_triangle(m, 3, 4, 5, 1);
+    CHECK_EQ(fm_carve_crossings(m, 0, NULL, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_npairs(r), 1);
+    p = fm_carve_pair_at(r, 0);
+    CHECK(p && p->kept && p->removed == 0 && p->area == 0);
+    CHECK_EQ(fm_carve_removed(r), 0);
+    CHECK_EQ(fm_mesh_ntriangles(m), 2);
+    fm_carve_result_destroy(r);
+    fm_mesh_destroy(m);
+}
+
 FM_TEST_MAIN(FM_CASE(test_contact_cases), FM_CASE(test_contact_shared),
              FM_CASE(test_contact_invariance), FM_CASE(test_carve_crossing),
-             FM_CASE(test_carve_conforming))
+             FM_CASE(test_carve_conforming), FM_CASE(test_carve_never_empties))
