@@ -198,17 +198,34 @@ static void on_term(int sig)
     raise(sig);
 }
 
-/* A child writing three files (one still unflushed, one through a name)
- * gets SIGTERM: it ends by the signal and leaves no temporary; the file it
- * committed before stays. */
-static void test_signal_in_child(void)
+/* A child process in a clean folder that removes its temporaries on
+ * SIGTERM (0 in the child, as fork). */
+static pid_t child_catching_term(void)
 {
     clear_dir();
     fflush(NULL);
     pid_t pid = fork();
     CHECK(pid >= 0);
-    if (pid == 0) {
+    if (pid == 0)
         signal(SIGTERM, on_term);
+    return pid;
+}
+
+/* The child ended by SIGTERM. */
+static void reap_term(pid_t pid)
+{
+    int status = 0;
+    CHECK(waitpid(pid, &status, 0) == pid);
+    CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+}
+
+/* A child writing three files (one still unflushed, one through a name)
+ * gets SIGTERM: it ends by the signal and leaves no temporary; the file it
+ * committed before stays. */
+static void test_signal_in_child(void)
+{
+    pid_t pid = child_catching_term();
+    if (pid == 0) {
         fm_error err;
         fm_error_clear(&err);
         char p[1024];
@@ -236,9 +253,7 @@ static void test_signal_in_child(void)
         kill(getpid(), SIGTERM);
         _exit(4); /* not reached */
     }
-    int status = 0;
-    CHECK(waitpid(pid, &status, 0) == pid);
-    CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+    reap_term(pid);
     int all;
     CHECK_EQ(count_entries(".tmp.", &all), 0);
     CHECK_EQ(all, 1);
@@ -274,12 +289,8 @@ static void test_signal_while_creating(void)
 {
     int rounds = 150, left = 0;
     for (int r = 0; r < rounds; r++) {
-        clear_dir();
-        fflush(NULL);
-        pid_t pid = fork();
-        CHECK(pid >= 0);
+        pid_t pid = child_catching_term();
         if (pid == 0) {
-            signal(SIGTERM, on_term);
             pthread_t t[4];
             for (int k = 0; k < 4; k++)
                 pthread_create(&t[k], NULL, churn, (void *)(intptr_t)k);
@@ -289,9 +300,7 @@ static void test_signal_while_creating(void)
         struct timespec ts = {0, 200000L + (long)(r % 30) * 100000L};
         nanosleep(&ts, NULL);
         kill(pid, SIGTERM);
-        int status = 0;
-        CHECK(waitpid(pid, &status, 0) == pid);
-        CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+        reap_term(pid);
         left += count_entries(".tmp.", NULL) > 0;
     }
     CHECK_EQ(left, 0);
