@@ -1,6 +1,7 @@
 /* `faultmesh remesh`, one fault: read, repaired and fitted; meshed with
  * the shared curves the plan gives it; checked against the original. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -163,10 +164,54 @@ static fm_status fit_object(const remesh_cli *cli, const char *path, const fm_me
     return st;
 }
 
+/* Whether the filter keeps edge (a, b) of curve c. */
+static int edge_kept(const curve_filter *flt, size_t c, int64_t a, int64_t b)
+{
+    uint64_t key = fm_edge_key((uint64_t)a, (uint64_t)b);
+    for (size_t at = fm_keyed_lower_bound(flt->keep, flt->nkeep, key);
+         at < flt->nkeep && flt->keep[at].key == key; at++)
+        if (flt->keep[at].index == c)
+            return 1;
+    return 0;
+}
+
+/* The stretches of a sheet's curve the filter keeps, as (first node, nodes)
+ * pairs into runs when not NULL (room for sh->n + 1 pairs); their count. */
+static size_t kept_runs(const fm_connect_shared *sh, const curve_filter *flt, size_t *runs)
+{
+    if (flt && flt->excluded[sh->curve])
+        return 0;
+    if (!flt || !flt->clipped[sh->curve]) {
+        if (runs) {
+            runs[0] = 0;
+            runs[1] = sh->n;
+        }
+        return 1;
+    }
+    size_t n = 0, start = SIZE_MAX;
+    for (size_t i = 0; i + 1 <= sh->n; i++) {
+        int keep = i + 1 < sh->n && edge_kept(flt, sh->curve, sh->node[i], sh->node[i + 1]);
+        if (keep && start == SIZE_MAX)
+            start = i;
+        if (!keep && start != SIZE_MAX) {
+            if (runs) {
+                runs[2 * n] = start;
+                runs[2 * n + 1] = i - start + 1;
+            }
+            n++;
+            start = SIZE_MAX;
+        }
+    }
+    return n;
+}
+
 /* The shared curves the plan gives each sheet of fault f, as the mesher
- * takes them; *store (free it) holds them. NULL when there are none. */
+ * takes them, less what the filter leaves out (a clipped curve may give
+ * several); *store (free it) holds them, and per curve given its plan
+ * curve and a flag the mesher sets when it drops it. NULL when there are
+ * none. */
 static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f,
-                                           const fm_model *m, const unsigned char *excluded,
+                                           const fm_model *m, const curve_filter *flt,
                                            fm_remesh_curve **store, unsigned char **dropped,
                                            size_t **curve_of, size_t *ntotal)
 {
@@ -176,22 +221,26 @@ static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f
     *ntotal = 0;
     if (!plan)
         return NULL;
-    size_t ns = fm_model_nsheets(m), total = 0;
+    size_t ns = fm_model_nsheets(m), total = 0, longest = 0;
     for (size_t i = 0; i < ns; i++) {
         const fm_connect_shared *sh;
         size_t n = fm_connect_plan_sheet(plan, f, i, &sh);
-        for (size_t c = 0; c < n; c++)
-            total += !(excluded && excluded[sh[c].curve]);
+        for (size_t c = 0; c < n; c++) {
+            total += kept_runs(&sh[c], flt, NULL);
+            longest = sh[c].n > longest ? sh[c].n : longest;
+        }
     }
     if (total == 0)
         return NULL;
     fm_remesh_sheet_curves *per = calloc(ns, sizeof *per);
     fm_remesh_curve *cv = malloc(total * sizeof *cv);
+    size_t *runs = malloc(2 * (longest + 1) * sizeof *runs);
     *dropped = calloc(total, 1);
     *curve_of = malloc(total * sizeof **curve_of);
-    if (!per || !cv || !*dropped || !*curve_of) {
+    if (!per || !cv || !runs || !*dropped || !*curve_of) {
         free(per);
         free(cv);
+        free(runs);
         free(*dropped);
         free(*curve_of);
         *dropped = NULL;
@@ -206,17 +255,20 @@ static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f
         per[i].curves = cv + k;
         per[i].dropped = *dropped + k;
         for (size_t c = 0; c < n; c++) {
-            if (excluded && excluded[sh[c].curve])
-                continue;
-            per[i].n++;
-            (*curve_of)[k] = sh[c].curve;
-            cv[k].uv = sh[c].uv;
-            cv[k].n = sh[c].n;
-            cv[k].node = sh[c].node;
-            cv[k].end = sh[c].end;
-            k++;
+            size_t nr = kept_runs(&sh[c], flt, runs);
+            for (size_t q = 0; q < nr; q++) {
+                size_t at = runs[2 * q];
+                per[i].n++;
+                (*curve_of)[k] = sh[c].curve;
+                cv[k].uv = sh[c].uv + 2 * at;
+                cv[k].n = runs[2 * q + 1];
+                cv[k].node = sh[c].node + at;
+                cv[k].end = sh[c].end;
+                k++;
+            }
         }
     }
+    free(runs);
     *store = cv;
     return per;
 }
@@ -225,7 +277,7 @@ static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f
  * vertex) with its options (r->mesh) and checks it against the original. */
 static fm_status mesh_object(const char *path, const fm_mesh *orig,
                              const fm_model *model, const fm_connect_plan *plan,
-                             const unsigned char *excluded, size_t f, fault_result *r,
+                             const curve_filter *flt, size_t f, fault_result *r,
                              fm_mesh **fault, int64_t **ids, fm_error *err)
 {
     double t1 = fm_clock_seconds();
@@ -235,7 +287,7 @@ static fm_status mesh_object(const char *path, const fm_mesh *orig,
     unsigned char *dropped = NULL;
     size_t *curve_of = NULL, ntotal = 0;
     fm_remesh_sheet_curves *per =
-        plan_curves(plan, f, model, excluded, &store, &dropped, &curve_of, &ntotal);
+        plan_curves(plan, f, model, flt, &store, &dropped, &curve_of, &ntotal);
     r->sheets = fm_model_nsheets(model);
     r->join_failed = per ? calloc(r->sheets, 1) : NULL;
     fm_error *jerr = per ? calloc(r->sheets, sizeof *jerr) : NULL;
@@ -404,8 +456,7 @@ static void reset_result(fault_result *r)
 /* Meshes the job's faults; again: only those marked in job->redo, with
  * the curves in excluded left out. Models stay for another round
  * (release_job frees them). */
-void mesh_file(const fm_connect_plan *plan, const unsigned char *excluded, file_job *job,
-               int again)
+void mesh_file(const fm_connect_plan *plan, const curve_filter *flt, file_job *job, int again)
 {
     if (!job->res || !job->model)
         return;
@@ -431,7 +482,7 @@ void mesh_file(const fm_connect_plan *plan, const unsigned char *excluded, file_
         fm_mesh *fault = NULL;
         fm_error_clear(&err);
         fm_status st = mesh_object(job->path, fm_tsurf_mesh(job->objs[o]), model, plan,
-                                   excluded, job->first + o, r, &fault, &job->ids[o], &err);
+                                   flt, job->first + o, r, &fault, &job->ids[o], &err);
         /* the time of every meshing counts */
         r->t_mesh += t_mesh;
         r->t_check += t_check;

@@ -2,19 +2,24 @@
  * threads, and meshed again until every curve a mesh took is in its
  * partners' meshes too. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <pthread.h>
 #include <sys/stat.h>
 
+#include "fm_sort.h"
 #include "remesh_run.h"
+
+/* Rounds of meshing again at most (settle_curves). */
+#define SETTLE_ROUNDS 16
 
 typedef struct pool {
     const remesh_cli *cli;
     const fm_connect_plan *plan;
     int phase;          /* 0: fit, 1: mesh, 2: mesh again those marked */
-    const unsigned char *excluded; /* phase 2: plan curves left out */
+    const curve_filter *flt; /* phase 2: plan curves (or pieces) left out */
     file_job *jobs;
     const size_t *order; /* the order jobs are handed out in */
     const double *bytes;  /* per job: its file's size, the progress weight */
@@ -45,7 +50,7 @@ static void *worker(void *arg)
         if (p->phase == 0)
             fit_file(p->cli, job);
         else
-            mesh_file(p->plan, p->excluded, job, p->phase == 2);
+            mesh_file(p->plan, p->flt, job, p->phase == 2);
         if (p->phase != 2 || marked(job))
             progress_step(p->cli->prog, p->bytes ? p->bytes[at] : 1);
     }
@@ -94,7 +99,7 @@ static size_t *schedule(const file_job *jobs, size_t n, double *bytes)
 /* Runs one phase of the jobs on cli->jobs threads (the calling one
  * included). */
 void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
-              const unsigned char *excluded, file_job *jobs, size_t n)
+              const curve_filter *flt, file_job *jobs, size_t n)
 {
     double *bytes = malloc((n ? n : 1) * sizeof *bytes);
     size_t *order = schedule(jobs, n, bytes);
@@ -107,7 +112,7 @@ void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
         }
     static const char *stage[3] = {"read and fit", "mesh", "mesh again"};
     progress_begin(cli->prog, stage[phase], count, "files", weight);
-    pool p = {cli, plan, phase, excluded, jobs, order, bytes, n, 0, PTHREAD_MUTEX_INITIALIZER};
+    pool p = {cli, plan, phase, flt, jobs, order, bytes, n, 0, PTHREAD_MUTEX_INITIALIZER};
     size_t nt = cli->jobs > 1 ? (size_t)cli->jobs - 1 : 0;
     pthread_t *th = nt ? calloc(nt, sizeof *th) : NULL;
     size_t started = 0;
@@ -149,22 +154,177 @@ static size_t exclude_failed(const fm_connect_plan *plan, const file_job *job, s
     return added;
 }
 
+/* The edges of curve c that r's mesh holds, as sorted keys into out
+ * (room for r->npieces); their count. */
+static size_t held_edges(const fault_result *r, size_t c, uint64_t *out)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < r->npieces; i++)
+        if (r->curve_pieces[i].index == c && (n == 0 || out[n - 1] != r->curve_pieces[i].key))
+            out[n++] = r->curve_pieces[i].key;
+    return n;
+}
+
+/* The keys in both sorted lists a and b, into out (may be a or b); their
+ * count. */
+static size_t intersect(const uint64_t *a, size_t na, const uint64_t *b, size_t nb,
+                        uint64_t *out)
+{
+    size_t n = 0;
+    for (size_t i = 0, k = 0; i < na && k < nb;) {
+        if (a[i] == b[k]) {
+            out[n++] = a[i];
+            i++;
+            k++;
+        } else if (a[i] < b[k]) {
+            i++;
+        } else {
+            k++;
+        }
+    }
+    return n;
+}
+
+/* The fault result of each plan fault (NULL: none). */
+static fault_result **plan_results(file_job *jobs, size_t njobs, size_t *nf)
+{
+    *nf = 0;
+    for (size_t i = 0; i < njobs; i++)
+        if (jobs[i].res && jobs[i].model && jobs[i].first + jobs[i].n > *nf)
+            *nf = jobs[i].first + jobs[i].n;
+    fault_result **of = calloc(*nf + 1, sizeof *of);
+    for (size_t i = 0; of && i < njobs; i++)
+        for (size_t o = 0; jobs[i].res && jobs[i].model && o < jobs[i].n; o++)
+            of[jobs[i].first + o] = &jobs[i].res[o];
+    return of;
+}
+
+static int marks_redo(file_job *jobs, size_t njobs, const fault_result *r)
+{
+    for (size_t i = 0; i < njobs; i++)
+        if (jobs[i].res && r >= jobs[i].res && r < jobs[i].res + jobs[i].n) {
+            size_t o = (size_t)(r - jobs[i].res);
+            if (!jobs[i].redo)
+                jobs[i].redo = calloc(jobs[i].n, 1);
+            if (!jobs[i].redo || jobs[i].redo[o])
+                return 0;
+            jobs[i].redo[o] = 1;
+            return 1;
+        }
+    return 0;
+}
+
+/* A sheet holds only the stretch of a curve its domain and its other
+ * curves leave it, and two sheets may keep different stretches of the
+ * curve they share: where one holds a stretch the other does not, it ended
+ * at (or filled a gap to) a curve nobody else is at (Laguna Salada east
+ * branch dipping splay filled 1 km past its edge, 2 km along curves that
+ * Yuha Well west steep and Sierra Cucapah NW splay hold only a kilometre
+ * of). Each such curve is clipped to the edges both hold, or left out when
+ * they hold none in common, and the faults holding more are marked to be
+ * meshed again. The curves clipped (or left out). */
+static size_t settle_pieces(const fm_connect_plan *plan, file_job *jobs, size_t njobs,
+                            curve_filter *flt, size_t *again)
+{
+    size_t nf, changed = 0, nj = fm_connect_plan_njunctions(plan);
+    fault_result **of = plan_results(jobs, njobs, &nf);
+    size_t most = 0;
+    for (size_t f = 0; of && f < nf; f++)
+        most = of[f] && of[f]->npieces > most ? of[f]->npieces : most;
+    uint64_t *ha = malloc((most + 1) * sizeof *ha), *hb = malloc((most + 1) * sizeof *hb);
+    uint64_t *both = malloc((most + 1) * sizeof *both);
+    uint64_t *kc = malloc((flt->nkeep + most + 1) * sizeof *kc);
+    for (size_t j = 0; of && ha && hb && both && kc && j < nj; j++) {
+        const fm_connect_junction *jn = fm_connect_plan_junction(plan, j);
+        if (jn->type == FM_JUNCTION_UNJOINED || jn->curve < 0 || jn->fault[0] == jn->fault[1] ||
+            flt->excluded[jn->curve])
+            continue;
+        fault_result *ra = of[jn->fault[0]], *rb = of[jn->fault[1]];
+        if (!ra || !rb || !ra->status || !rb->status || strcmp(ra->status, "ok") ||
+            strcmp(rb->status, "ok"))
+            continue; /* a failed fault's curves are left out whole */
+        size_t c = (size_t)jn->curve;
+        size_t na = held_edges(ra, c, ha), nb = held_edges(rb, c, hb);
+        size_t n = intersect(ha, na, hb, nb, both);
+        /* Only a sheet that closed a gap to the curve fills where its
+         * partner is not; one trimmed at it or crossed by it loses nothing
+         * it should keep. One edge more (a curve node a size past the
+         * partner's last) keeps the fill within a size of the shared curve,
+         * and clipping it leaves a sliver of a pocket where curves meet at
+         * a few degrees (Sierra Cucapah at Borrego, at 500 m). */
+        int xa = na >= n + 2 && jn->role[0] == FM_CONNECT_GAP;
+        int xb = nb >= n + 2 && jn->role[1] == FM_CONNECT_GAP;
+        if (!xa && !xb)
+            continue;
+        /* what the other holds, or what both do when both filled */
+        const uint64_t *to = xa && xb ? both : xa ? hb : ha;
+        size_t nto = xa && xb ? n : xa ? nb : na;
+        /* A clip only shrinks: the edges of two neighbour nodes that other
+         * curves put in a mesh may be there without being asked for, so
+         * a clip stands until it would keep fewer. */
+        size_t nk = 0;
+        if (flt->clipped[c]) {
+            for (size_t i = 0; i < flt->nkeep; i++)
+                if (flt->keep[i].index == c)
+                    kc[nk++] = flt->keep[i].key;
+            size_t m = intersect(to, nto, kc, nk, kc);
+            if (m == nk)
+                continue;
+            to = kc;
+            nto = m;
+        }
+        size_t w = 0;
+        for (size_t i = 0; i < flt->nkeep; i++)
+            if (flt->keep[i].index != c)
+                flt->keep[w++] = flt->keep[i];
+        flt->nkeep = w;
+        fm_keyed *grown = nto ? realloc(flt->keep, (flt->nkeep + nto) * sizeof *grown) : flt->keep;
+        if (!grown)
+            break; /* out of memory: the curve stays as it is */
+        flt->keep = grown;
+        for (size_t i = 0; i < nto; i++)
+            flt->keep[flt->nkeep++] = (fm_keyed){to[i], c};
+        if (nto)
+            flt->clipped[c] = 1;
+        else
+            flt->excluded[c] = 1;
+        *again += (size_t)(xa && marks_redo(jobs, njobs, ra));
+        *again += (size_t)(xb && marks_redo(jobs, njobs, rb));
+        changed++;
+    }
+    if (changed && fm_sort_keyed(flt->keep, flt->nkeep))
+        flt->nkeep = 0; /* out of memory: no edge kept, so clipped curves are left out */
+    free(ha);
+    free(hb);
+    free(both);
+    free(kc);
+    free(of);
+    return changed;
+}
+
 /* A junction is made only when both sheets take its curve. Faults are
  * meshed each on its own, so a curve one sheet could not fit (or one of a
  * fault that failed) is still in the other's mesh: that sheet trimmed its
  * flap or filled its gap to a curve it shares with nobody (San Pedro
  * Escarpment YngB: filled 1 km past its edge towards a curve F could not
- * take). Those faults are meshed again without such curves, until no
- * curve a mesh took was dropped by another (the set of dropped curves
- * only grows, so this ends). */
+ * take). Those faults are meshed again without such curves; then a sheet
+ * that filled a gap along more of a curve than its partner holds is meshed
+ * again with the curve clipped (settle_pieces); and so on until nothing
+ * changes (what is taken only shrinks, so this ends). */
 void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
                    size_t njobs)
 {
     size_t nc = fm_connect_plan_get_stats(plan)->curves;
-    unsigned char *excluded = calloc(nc + 1, 1);
-    if (!excluded)
+    curve_filter flt = {calloc(nc + 1, 1), calloc(nc + 1, 1), NULL, 0};
+    if (!flt.excluded || !flt.clipped) {
+        free(flt.excluded);
+        free(flt.clipped);
         return;
-    for (;;) {
+    }
+    unsigned char *excluded = flt.excluded;
+    /* Each round only shrinks what is taken, so this ends; the bound keeps
+     * a chain of clips from costing more than a few meshings. */
+    for (int round = 0; round < SETTLE_ROUNDS; round++) {
         size_t added = 0, again = 0;
         for (size_t i = 0; i < njobs; i++)
             for (size_t o = 0; jobs[i].res && o < jobs[i].n; o++) {
@@ -176,7 +336,7 @@ void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job 
                         added++;
                     }
             }
-        if (!added)
+        if (!added && !settle_pieces(plan, jobs, njobs, &flt, &again))
             break;
         for (size_t i = 0; i < njobs; i++) {
             file_job *job = &jobs[i];
@@ -189,20 +349,17 @@ void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job 
                     redo = r->used_curves[k] < nc && excluded[r->used_curves[k]];
                 if (!redo || !job->model[o] || !r->status || strcmp(r->status, "ok"))
                     continue;
-                if (!job->redo)
-                    job->redo = calloc(job->n, 1);
-                if (!job->redo)
-                    continue;
-                job->redo[o] = 1;
-                again++;
+                again += (size_t)marks_redo(jobs, njobs, r);
             }
         }
         if (!again)
             break;
-        run_jobs(cli, plan, 2, excluded, jobs, njobs);
+        run_jobs(cli, plan, 2, &flt, jobs, njobs);
         for (size_t i = 0; i < njobs; i++)
             if (jobs[i].redo)
                 memset(jobs[i].redo, 0, jobs[i].n);
     }
-    free(excluded);
+    free(flt.excluded);
+    free(flt.clipped);
+    free(flt.keep);
 }

@@ -134,20 +134,29 @@ void cli_defaults(remesh_cli *cli);
  * after printing FILE:LINE: why. */
 int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninputs);
 
+/* Which plan curves, or pieces of them, a round of meshing takes
+ * (settle_curves): none of curve c when excluded[c]; when clipped[c], only
+ * its edges listed in keep (key: fm_edge_key of two consecutive nodes,
+ * index: the curve; sorted), in runs of consecutive kept edges. */
+typedef struct curve_filter {
+    unsigned char *excluded, *clipped;
+    fm_keyed *keep;
+    size_t nkeep;
+} curve_filter;
+
 /* remesh_fault.c */
 int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets, const fm_keyed *edge,
                  size_t ne, fault_result *r);
 int share_piece(const fault_result *a, const fault_result *b, size_t c);
 void fit_file(const remesh_cli *cli, file_job *job);
 /* Each fault with its own options (fault_result.mesh). */
-void mesh_file(const fm_connect_plan *plan, const unsigned char *excluded, file_job *job,
-               int again);
+void mesh_file(const fm_connect_plan *plan, const curve_filter *flt, file_job *job, int again);
 void release_job(file_job *job);
 void abandon_job(file_job *job);
 
 /* remesh_pool.c */
 void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
-              const unsigned char *excluded, file_job *jobs, size_t n);
+              const curve_filter *flt, file_job *jobs, size_t n);
 void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
                    size_t njobs);
 
