@@ -1,5 +1,5 @@
 #!/bin/bash
-# The whole CFM 500 m set connected at 1 km: every fault pair the
+# The whole CFM 500 m set connected at SIZE (default 1 km): every fault pair the
 # independent check_connect finds crossing, touching or within the join
 # distance either shares edges along a junction reported made, or has its
 # line in report.json with the reason it was left open
@@ -7,12 +7,12 @@
 # different faults that cross or touch may not exceed it: issue 5 wants
 # none, and until then the count may only go down (824 at 1 km when the
 # ceiling was set). Exit 77 without the CFM.
-# usage: connect_whole_report.sh FAULTMESH CHECK_CONNECT TMPDIR CFMDIR PYTHON [MAX_CROSSING]
+# usage: connect_whole_report.sh FAULTMESH CHECK_CONNECT TMPDIR CFMDIR PYTHON [MAX_CROSSING [SIZE]]
 set -u
-exe=$1 check=$2 tmp=$3 cfm=$4 py=$5 max=${6:-}
+exe=$1 check=$2 tmp=$3 cfm=$4 py=$5 max=${6:-} size=${7:-1000}
 [ -d "$cfm" ] || { echo "no CFM at $cfm: skipped"; exit 77; }
 rm -rf "$tmp" && mkdir -p "$tmp"
-"$exe" remesh --quiet --size 1000 -o "$tmp/out" "$cfm" >"$tmp/remesh.log" 2>&1 \
+"$exe" remesh --quiet --size "$size" -o "$tmp/out" "$cfm" >"$tmp/remesh.log" 2>&1 \
     || { echo "FAIL: remesh"; tail -20 "$tmp/remesh.log"; exit 1; }
 "$check" --json "$tmp/cc.json" "$tmp/out/mesh.obj" >"$tmp/cc.out"
 head -6 "$tmp/cc.out"
