@@ -66,19 +66,40 @@ int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets,
     return rc;
 }
 
+/* Whether b holds piece i of a (of plan curve c). */
+static int also_held(const fault_result *a, size_t i, const fault_result *b, size_t c)
+{
+    uint64_t key = a->curve_pieces[i].key;
+    for (size_t at = fm_keyed_lower_bound(b->curve_pieces, b->npieces, key);
+         at < b->npieces && b->curve_pieces[at].key == key; at++)
+        if (b->curve_pieces[at].index == c)
+            return 1;
+    return 0;
+}
+
 /* Whether faults a and b both hold some piece of plan curve c. */
 int share_piece(const fault_result *a, const fault_result *b, size_t c)
 {
+    for (size_t i = 0; i < a->npieces; i++)
+        if (a->curve_pieces[i].index == c && also_held(a, i, b, c))
+            return 1;
+    return 0;
+}
+
+double shared_length(const fault_result *a, const fault_result *b, size_t c, const double *nodes)
+{
+    double len = 0;
     for (size_t i = 0; i < a->npieces; i++) {
-        if (a->curve_pieces[i].index != c)
+        if (a->curve_pieces[i].index != c || !also_held(a, i, b, c) ||
+            (i > 0 && a->curve_pieces[i - 1].key == a->curve_pieces[i].key &&
+             a->curve_pieces[i - 1].index == c))
             continue;
         uint64_t key = a->curve_pieces[i].key;
-        for (size_t at = fm_keyed_lower_bound(b->curve_pieces, b->npieces, key);
-             at < b->npieces && b->curve_pieces[at].key == key; at++)
-            if (b->curve_pieces[at].index == c)
-                return 1;
+        const double *p = nodes + 3 * (key >> 32), *q = nodes + 3 * (key & 0xffffffffu);
+        len += sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                    (p[2] - q[2]) * (p[2] - q[2]));
     }
-    return 0;
+    return len;
 }
 
 /* Area of a triangle's part with z <= level. */

@@ -268,6 +268,13 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
                           : cleared                 ? jn->overshoot + jn->clearance
                                                     : 0);
         fm_json_kv_number(j, "curve_length_m", jn->length);
+        /* what the two meshes hold of it: less where a sheet's domain or its
+         * other curves cut it, or a fill was clipped to its partner's */
+        if (t != FM_JUNCTION_UNJOINED && jn->curve >= 0)
+            fm_json_kv_number(j, "shared_length_m",
+                              shared_length(&rs->res[rs->plan_res[jn->fault[0]]],
+                                            &rs->res[rs->plan_res[jn->fault[1]]],
+                                            (size_t)jn->curve, fm_connect_plan_nodes(rs->plan)));
         fm_json_kv_number(j, "min_crossing_angle_deg", jn->min_angle);
         if (jn->distance > 0)
             fm_json_kv_number(j, "surface_distance_m", jn->distance);

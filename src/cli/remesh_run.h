@@ -148,6 +148,9 @@ typedef struct curve_filter {
 int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets, const fm_keyed *edge,
                  size_t ne, fault_result *r);
 int share_piece(const fault_result *a, const fault_result *b, size_t c);
+/* The length (m) of the pieces of plan curve c that both a and b hold
+ * (nodes: the plan's node positions). */
+double shared_length(const fault_result *a, const fault_result *b, size_t c, const double *nodes);
 void fit_file(const remesh_cli *cli, file_job *job);
 /* Each fault with its own options (fault_result.mesh). */
 void mesh_file(const fm_connect_plan *plan, const curve_filter *flt, file_job *job, int again);
