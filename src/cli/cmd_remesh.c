@@ -309,6 +309,9 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     free(rs.set_orig);
     free(rs.sheet);
     fm_carve_result_destroy(rs.carve);
+    fm_carve_result_destroy(rs.sheet_carve);
+    free(rs.sheet_unit_fault);
+    free(rs.sheet_unit_first);
     free(rs.names);
     free(rs.node_vertex);
     free(rs.plan_res);

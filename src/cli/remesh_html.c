@@ -147,11 +147,11 @@ static fm_status add_facts(fm_report *rep, const remesh_cli *cli, const run_stat
         st = fact(rep, err, "connection",
                   "faults within %g m joined: %zu crossing, %zu T, %zu corner, %zu unjoined; "
                   "%zu near-duplicate faults given up; %zu shared nodes; %zu triangles carved "
-                  "in %zu fault pairs",
+                  "in %zu fault pairs, %zu between sheets of one fault",
                   cli->join, t.junctions[FM_JUNCTION_CROSSING], t.junctions[FM_JUNCTION_T],
                   t.junctions[FM_JUNCTION_CORNER], t.junctions[FM_JUNCTION_UNJOINED],
                   fm_connect_plan_get_stats(rs->plan)->duplicates,
-                  fm_connect_plan_nnodes(rs->plan), t.carved, t.carved_pairs);
+                  fm_connect_plan_nnodes(rs->plan), t.carved, t.carved_pairs, t.carved_sheets);
     else if (st == FM_OK)
         st = fact(rep, err, "connection", "none: every fault meshed on its own");
     return st;

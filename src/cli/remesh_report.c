@@ -98,6 +98,34 @@ static void json_carve(fm_json *j, const run_state *rs)
         fm_json_end_object(j);
     }
     fm_json_end_array(j);
+    if (!rs->sheet_carve)
+        return;
+    fm_json_kv_int(j, "carved_between_sheets_triangles", (int64_t)fm_carve_removed(rs->sheet_carve));
+    fm_json_key(j, "carved_between_sheets");
+    fm_json_begin_array(j);
+    for (size_t k = 0; k < fm_carve_npairs(rs->sheet_carve); k++) {
+        const fm_carve_pair *p = fm_carve_pair_at(rs->sheet_carve, k);
+        int32_t f = rs->sheet_unit_fault[p->fault[0]];
+        fm_json_begin_object(j);
+        fm_json_kv_string(j, "fault", rs->res[rs->set_res[f]].name);
+        fm_json_key(j, "sheets");
+        fm_json_begin_array(j);
+        for (int s2 = 0; s2 < 2; s2++)
+            fm_json_int(j, (int64_t)(p->fault[s2] - rs->sheet_unit_first[f]));
+        fm_json_end_array(j);
+        fm_json_kv_int(j, "triangle_pairs_met", (int64_t)p->contacts);
+        if (p->kept) {
+            fm_json_key(j, "removed_from_sheet");
+            fm_json_null(j);
+        } else {
+            fm_json_kv_int(j, "removed_from_sheet",
+                           (int64_t)(p->fault[p->yielded] - rs->sheet_unit_first[f]));
+        }
+        fm_json_kv_int(j, "triangles_removed", (int64_t)p->removed);
+        fm_json_kv_number(j, "area_removed_m2", p->area);
+        fm_json_end_object(j);
+    }
+    fm_json_end_array(j);
 }
 
 static void json_quality(fm_json *j, const fault_result *r, double H)
@@ -345,7 +373,6 @@ void run_totals_of(const run_state *rs, run_totals *t)
         t->forced += r->q.below_20_forced;
         t->edges += r->q.edges;
         t->band += r->q.edges_in_band;
-        t->carved += r->carved;
         if (r->q.triangles && r->q.angle_min < t->angle_min) {
             t->angle_min = r->q.angle_min;
             t->angle_min_fault = r->name;
@@ -361,6 +388,9 @@ void run_totals_of(const run_state *rs, run_totals *t)
         size_t which;
         t->junctions[junction_outcome(rs, fm_connect_plan_junction(rs->plan, i), &why, &which)]++;
     }
+    /* the sets' counts: a triangle that met two faults is removed once */
+    t->carved = fm_carve_removed(rs->carve);
+    t->carved_sheets = fm_carve_removed(rs->sheet_carve);
     for (size_t k = 0; k < fm_carve_npairs(rs->carve); k++) {
         if (fm_carve_pair_at(rs->carve, k)->kept)
             t->crossings_kept++;
@@ -396,6 +426,8 @@ void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp)
         if (t.crossings_kept)
             fprintf(fp, "; %zu pairs left crossing, as either would have lost all it had",
                     t.crossings_kept);
+        if (t.carved_sheets)
+            fprintf(fp, "; %zu more where sheets of one fault crossed", t.carved_sheets);
         fputc('\n', fp);
     }
     fprintf(fp, "  %-14s %zu, %.3f%% under 30 deg, %zu under 20 deg (%zu at sharp corners), "

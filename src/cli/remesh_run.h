@@ -95,6 +95,10 @@ typedef struct run_state {
     size_t *set_res;      /* per fault of the set (triangle tag): its entry in res */
     const fm_mesh **set_orig; /* and its original (valid until the jobs are released) */
     fm_carve_result *carve; /* faults that still met after meshing; NULL when not carved */
+    fm_carve_result *sheet_carve; /* then sheets of one fault that still met (tags: units
+                                     of sheet_unit_fault); NULL when none was searched */
+    int32_t *sheet_unit_fault;    /* per such unit: its fault */
+    int32_t *sheet_unit_first;    /* per fault: its first unit (sheet 0) */
     fault_result *res;
     size_t nres, cap;
     long failed;
@@ -181,6 +185,7 @@ typedef struct run_totals {
     size_t ok, warned, dropped, empty, excluded, sheets;
     size_t triangles, below30, below20, forced, edges, band, carved, carved_pairs;
     size_t crossings_kept; /* fault pairs the last guard left crossing (fm_carve_pair.kept) */
+    size_t carved_sheets;  /* triangles it removed where sheets of one fault crossed */
     size_t junctions[4]; /* by fm_junction_type, as meshed */
     double angle_min, worst_dist, zmax;
     const char *angle_min_fault, *worst_dist_fault;

@@ -163,9 +163,97 @@ static int set_curve_pieces(const run_state *rs, int32_t tag, fault_result *r)
     return rc;
 }
 
+/* A fault that lost triangles is measured again on what is left (the
+ * originals must still be there), and what it lost is added up. */
+static void measure_again(run_state *rs, int32_t tag)
+{
+    fm_error err;
+    fm_error_clear(&err);
+    fault_result *r = &rs->res[rs->set_res[tag]];
+    size_t before = r->q.triangles;
+    double area = r->q.area;
+    fm_closest_tree *tree = fm_closest_tree_create(rs->set_orig[tag], &err);
+    if (!tree || fm_check_quality(rs->set, tag, r->mesh.size, &r->q) != FM_OK ||
+        fm_check_fidelity(rs->set, tag, rs->set_orig[tag], tree, &r->fid) != FM_OK)
+        fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
+    fm_closest_tree_destroy(tree);
+    r->carved += before - r->q.triangles;
+    r->carved_area += area - r->q.area;
+    if (set_curve_pieces(rs, tag, r))
+        fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
+}
+
+/* Every fault that gave way in cr measured again, once (unit: the fault
+ * of each tag of cr, NULL when the tags are faults). */
+static void measure_yielded(run_state *rs, const fm_carve_result *cr, const int32_t *unit)
+{
+    for (size_t k = 0; k < fm_carve_npairs(cr); k++) {
+        const fm_carve_pair *p = fm_carve_pair_at(cr, k);
+        int32_t f = p->fault[p->yielded];
+        f = unit ? unit[f] : f;
+        int seen = p->kept;
+        for (size_t i = 0; i < k && !seen; i++) {
+            const fm_carve_pair *q = fm_carve_pair_at(cr, i);
+            seen = !q->kept && (unit ? unit[q->fault[q->yielded]] : q->fault[q->yielded]) == f;
+        }
+        if (!seen)
+            measure_again(rs, f);
+    }
+}
+
+/* The same guard between the sheets of each fault (a branching fault's
+ * sheets that cross where their junction could not be made, or was made in
+ * part): every sheet is a unit of its own for fm_carve_crossings, and the
+ * fault tags are put back after. Not when a pair of faults was left
+ * crossing: with unit tags it would be carved after all. */
+static void carve_sheets(run_state *rs, double H)
+{
+    for (size_t k = 0; k < fm_carve_npairs(rs->carve); k++)
+        if (fm_carve_pair_at(rs->carve, k)->kept)
+            return;
+    size_t nt = fm_mesh_ntriangles(rs->set), nf = rs->nfaults;
+    int32_t *tag = fm_mesh_tags_mut(rs->set);
+    int32_t *first = calloc(nf + 1, sizeof *first);
+    if (!first)
+        return;
+    for (size_t t = 0; t < nt; t++)
+        if (rs->sheet[t] + 1 > first[tag[t] + 1])
+            first[tag[t] + 1] = rs->sheet[t] + 1;
+    for (size_t f = 0; f < nf; f++)
+        first[f + 1] += first[f];
+    size_t units = (size_t)first[nf];
+    int32_t *fault = units > nf ? malloc(units * sizeof *fault) : NULL;
+    if (!fault) { /* no fault of several sheets, or out of memory */
+        free(first);
+        return;
+    }
+    for (size_t f = 0; f < nf; f++)
+        for (int32_t u = first[f]; u < first[f + 1]; u++)
+            fault[u] = (int32_t)f;
+    for (size_t t = 0; t < nt; t++)
+        tag[t] = first[tag[t]] + rs->sheet[t];
+    fm_error err;
+    fm_error_clear(&err);
+    fm_carve_result *cr = NULL;
+    fm_status st = fm_carve_crossings(rs->set, 2 * H, rs->sheet, &cr, &err);
+    nt = fm_mesh_ntriangles(rs->set);
+    for (size_t t = 0; t < nt; t++)
+        tag[t] = fault[tag[t]];
+    if (st != FM_OK) {
+        fprintf(stderr, "faultmesh: sheets of a fault that cross each other are left so: %s\n",
+                err.message);
+        free(first);
+        free(fault);
+        return;
+    }
+    rs->sheet_carve = cr;
+    rs->sheet_unit_fault = fault;
+    rs->sheet_unit_first = first;
+    measure_yielded(rs, cr, fault);
+}
+
 /* Where two faults still meet away from their shared curves (fm_carve.h),
- * one of them gives way. A fault that lost triangles is measured again on
- * what is left (the originals must still be there). */
+ * one of them gives way; then the same between the sheets of a fault. */
 void carve_set(const remesh_cli *cli, run_state *rs)
 {
     fm_error err;
@@ -179,24 +267,8 @@ void carve_set(const remesh_cli *cli, run_state *rs)
                 err.message);
         return;
     }
-    for (size_t k = 0; k < fm_carve_npairs(rs->carve); k++) {
-        const fm_carve_pair *p = fm_carve_pair_at(rs->carve, k);
-        fault_result *r = &rs->res[rs->set_res[p->fault[p->yielded]]];
-        if (r->carved || p->kept)
-            continue; /* measured already */
-        int32_t tag = p->fault[p->yielded];
-        size_t before = r->q.triangles;
-        double area = r->q.area;
-        fm_closest_tree *tree = fm_closest_tree_create(rs->set_orig[tag], &err);
-        if (!tree || fm_check_quality(rs->set, tag, r->mesh.size, &r->q) != FM_OK ||
-            fm_check_fidelity(rs->set, tag, rs->set_orig[tag], tree, &r->fid) != FM_OK)
-            fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
-        fm_closest_tree_destroy(tree);
-        r->carved = before - r->q.triangles;
-        r->carved_area = area - r->q.area;
-        if (set_curve_pieces(rs, tag, r))
-            fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
-    }
+    measure_yielded(rs, rs->carve, NULL);
+    carve_sheets(rs, H);
 }
 
 /* Junction i as meshed: the plan's type, unless one of its faults failed
