@@ -66,15 +66,19 @@ int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets,
     return rc;
 }
 
+/* Whether v (sorted by key) holds the entry (key, index). */
+static int keyed_holds(const fm_keyed *v, size_t n, uint64_t key, size_t index)
+{
+    for (size_t at = fm_keyed_lower_bound(v, n, key); at < n && v[at].key == key; at++)
+        if (v[at].index == index)
+            return 1;
+    return 0;
+}
+
 /* Whether b holds piece i of a (of plan curve c). */
 static int also_held(const fault_result *a, size_t i, const fault_result *b, size_t c)
 {
-    uint64_t key = a->curve_pieces[i].key;
-    for (size_t at = fm_keyed_lower_bound(b->curve_pieces, b->npieces, key);
-         at < b->npieces && b->curve_pieces[at].key == key; at++)
-        if (b->curve_pieces[at].index == c)
-            return 1;
-    return 0;
+    return keyed_holds(b->curve_pieces, b->npieces, a->curve_pieces[i].key, c);
 }
 
 /* Whether faults a and b both hold some piece of plan curve c. */
@@ -188,12 +192,7 @@ static fm_status fit_object(const remesh_cli *cli, const char *path, const fm_me
 /* Whether the filter keeps edge (a, b) of curve c. */
 static int edge_kept(const curve_filter *flt, size_t c, int64_t a, int64_t b)
 {
-    uint64_t key = fm_edge_key((uint64_t)a, (uint64_t)b);
-    for (size_t at = fm_keyed_lower_bound(flt->keep, flt->nkeep, key);
-         at < flt->nkeep && flt->keep[at].key == key; at++)
-        if (flt->keep[at].index == c)
-            return 1;
-    return 0;
+    return keyed_holds(flt->keep, flt->nkeep, fm_edge_key((uint64_t)a, (uint64_t)b), c);
 }
 
 /* The stretches of a sheet's curve the filter keeps, as (first node, nodes)

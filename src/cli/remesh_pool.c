@@ -154,15 +154,16 @@ static size_t exclude_failed(const fm_connect_plan *plan, const file_job *job, s
     return added;
 }
 
-/* The edges of curve c that r's mesh holds, as sorted keys into out
- * (room for r->npieces); their count. */
-static size_t held_edges(const fault_result *r, size_t c, uint64_t *out)
+/* The keys of v (sorted by key) whose index is curve c, each once, into
+ * out (room for n); their count. For the edges of c a mesh holds
+ * (curve_pieces) or a clip keeps. */
+static size_t curve_keys(const fm_keyed *v, size_t n, size_t c, uint64_t *out)
 {
-    size_t n = 0;
-    for (size_t i = 0; i < r->npieces; i++)
-        if (r->curve_pieces[i].index == c && (n == 0 || out[n - 1] != r->curve_pieces[i].key))
-            out[n++] = r->curve_pieces[i].key;
-    return n;
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        if (v[i].index == c && (k == 0 || out[k - 1] != v[i].key))
+            out[k++] = v[i].key;
+    return k;
 }
 
 /* The keys in both sorted lists a and b, into out (may be a or b); their
@@ -244,7 +245,8 @@ static size_t settle_pieces(const fm_connect_plan *plan, file_job *jobs, size_t 
             strcmp(rb->status, "ok"))
             continue; /* a failed fault's curves are left out whole */
         size_t c = (size_t)jn->curve;
-        size_t na = held_edges(ra, c, ha), nb = held_edges(rb, c, hb);
+        size_t na = curve_keys(ra->curve_pieces, ra->npieces, c, ha);
+        size_t nb = curve_keys(rb->curve_pieces, rb->npieces, c, hb);
         size_t n = intersect(ha, na, hb, nb, both);
         /* Only a sheet that closed a gap to the curve fills where its
          * partner is not; one trimmed at it or crossed by it loses nothing
@@ -262,11 +264,8 @@ static size_t settle_pieces(const fm_connect_plan *plan, file_job *jobs, size_t 
         /* A clip only shrinks: the edges of two neighbour nodes that other
          * curves put in a mesh may be there without being asked for, so
          * a clip stands until it would keep fewer. */
-        size_t nk = 0;
         if (flt->clipped[c]) {
-            for (size_t i = 0; i < flt->nkeep; i++)
-                if (flt->keep[i].index == c)
-                    kc[nk++] = flt->keep[i].key;
+            size_t nk = curve_keys(flt->keep, flt->nkeep, c, kc);
             size_t m = intersect(to, nto, kc, nk, kc);
             if (m == nk)
                 continue;

@@ -201,7 +201,6 @@ static double area_of(const fm_mesh *m, const int32_t *t, size_t n)
     return a;
 }
 
-/* Area of every fault (by tag); NULL when out of memory. */
 /* One more than the largest tag. */
 static size_t fault_count(const fm_mesh *m)
 {
@@ -213,6 +212,7 @@ static size_t fault_count(const fm_mesh *m)
     return nf;
 }
 
+/* Area of every fault (by tag); NULL when out of memory. */
 static double *fault_areas(const fm_mesh *m, size_t *nf)
 {
     size_t nt = fm_mesh_ntriangles(m);

@@ -56,7 +56,6 @@ static void metric_cb(void *user, const double uv[2], double m[3])
     m[2] = dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2];
 }
 
-/* Metres on the surface per unit of (u, v), along the domain's boundary. */
 /* The points a sheet would call for were it stretched everywhere as its
  * boundary is (scale: metres per unit of (u, v) along it): its (u, v) area
  * inside the loops (outer counter-clockwise, holes clockwise) and their
@@ -73,6 +72,7 @@ static double points_at_scale(const flat_domain *fd, double scale, double size)
     return 1.1547 * 0.5 * fabs(a) * scale * scale / (size * size) + len * scale / size;
 }
 
+/* Metres on the surface per unit of (u, v), along the domain's boundary. */
 static double boundary_scale(const fm_fit_surface *s, const flat_domain *fd)
 {
     double l3 = 0, l2 = 0;
