@@ -66,6 +66,75 @@ typedef struct fm_fidelity {
 fm_status fm_check_fidelity(const fm_mesh *m, int32_t tag, const fm_mesh *orig,
                             const fm_closest_tree *tree, fm_fidelity *f);
 
+/* What connecting faults cost: the measures of the connect issue, taken
+ * from the output set and the originals alone, so that a user's own
+ * checker finds the same. H is a fault's target size, D its join
+ * distance; "original" is the input surface below zcut (sea level when
+ * the top is cut).
+ *
+ * - Unclosed gap of fault A beside B: the length of A's outline edges
+ *   (used by one triangle of A) whose midpoint lies within
+ *   FM_LOSS_NEAR of B's output but farther than FM_LOSS_TOUCH from it,
+ *   leaving out edges within H of a node A and B share. A pair's gap is
+ *   the larger of (A, B) and (B, A).
+ * - Missing area: the original's area (sampled at about H/4 per
+ *   original triangle) farther than H/2 from the fault's own output; it
+ *   is "away" where also farther than D from every other fault's output,
+ *   a loss no junction can explain.
+ * - Interior moved: the largest distance from an output node to the
+ *   original, over the nodes whose closest point on the original lies
+ *   farther than FM_LOSS_TOUCH from the original's outline; and how many
+ *   such nodes are farther than FM_FIDELITY_TOL.
+ * - Islands: edge-connected pieces of a fault's output, each sheet on its
+ *   own, beyond one per sheet, or beyond the pieces of its original below
+ *   zcut when more (vertices within FM_LOSS_TOUCH welded; a piece counts
+ *   when it reaches H/10 below zcut): a sheet the sea level cuts in two
+ *   has no island. */
+#define FM_LOSS_NEAR 250.0
+#define FM_LOSS_TOUCH 1.0
+
+typedef struct fm_loss_input {
+    const fm_mesh *set;          /* every fault: triangle tag = fault, 0 .. nfaults-1 */
+    const int32_t *sheet;        /* per triangle: its sheet in its fault; NULL: one sheet each */
+    size_t nfaults;
+    const fm_mesh *const *orig;  /* per fault: its original, NULL when none */
+    const double *size;          /* per fault: H (m) */
+    const double *join;          /* per fault: D (m) */
+    const double *zcut;          /* per fault: the original counts below this z (INFINITY: all) */
+    int threads;                 /* results do not depend on it */
+} fm_loss_input;
+
+typedef struct fm_loss_fault {
+    double orig_area;      /* original below zcut, m^2 */
+    double missing_area;   /* of it farther than H/2 from the output, m^2 */
+    double missing_away;   /* ... and farther than D from every other fault, m^2 */
+    double moved_max;      /* interior moved, m */
+    size_t moved_over;     /* nodes moved farther than FM_FIDELITY_TOL */
+    double moved_at[3];    /* the node farthest moved (when moved_max > 0) */
+    size_t pieces, orig_pieces; /* edge-connected pieces of the output (of each sheet),
+                                   of the original */
+    size_t sheets;         /* sheets its output has */
+    size_t islands;        /* pieces beyond max(sheets, orig_pieces) */
+    size_t island_triangles; /* triangles of the smallest `islands` pieces */
+    double gap;            /* sum of its unclosed gaps beside every other fault, m */
+} fm_loss_fault;
+
+typedef struct fm_loss_pair {
+    int32_t a, b;          /* faults, a < b */
+    double gap_ab, gap_ba; /* unclosed gap of a beside b, of b beside a (m) */
+    double gap;            /* the larger */
+    size_t shared_nodes;
+} fm_loss_pair;
+
+typedef struct fm_loss fm_loss;
+
+fm_status fm_check_loss(const fm_loss_input *in, fm_loss **out, fm_error *err);
+void fm_loss_destroy(fm_loss *l);
+const fm_loss_fault *fm_loss_fault_at(const fm_loss *l, size_t f);
+/* Pairs with an unclosed gap, sorted by (a, b). */
+size_t fm_loss_npairs(const fm_loss *l);
+const fm_loss_pair *fm_loss_pair_at(const fm_loss *l, size_t k);
+
 #ifdef __cplusplus
 }
 #endif

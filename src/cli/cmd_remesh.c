@@ -241,6 +241,7 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         merge_job(cli, &jobs[i], &rs);
     if (plan && cli->carve)
         carve_set(cli, &rs);
+    measure_loss(cli, &rs);
     progress_end(cli->prog);
     double t4 = fm_clock_seconds();
     rs.time[0] = t1 - t0;
@@ -310,6 +311,7 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     free(rs.sheet);
     fm_carve_result_destroy(rs.carve);
     fm_carve_result_destroy(rs.sheet_carve);
+    fm_loss_destroy(rs.loss);
     free(rs.sheet_unit_fault);
     free(rs.sheet_unit_first);
     free(rs.names);

@@ -153,7 +153,8 @@ static void json_quality(fm_json *j, const fault_result *r, double H)
     fm_json_end_object(j);
 }
 
-static void json_fault(fm_json *j, const fault_result *r, double H, const sim_attrs *sa)
+static void json_fault(fm_json *j, const run_state *rs, const fault_result *r, double H,
+                       const sim_attrs *sa)
 {
     fm_json_begin_object(j);
     fm_json_kv_string(j, "file", r->file ? r->file : "");
@@ -236,6 +237,7 @@ static void json_fault(fm_json *j, const fault_result *r, double H, const sim_at
         fm_json_kv_number(j, "mesh", r->t_mesh);
         fm_json_kv_number(j, "check", r->t_check);
         fm_json_end_object(j);
+        json_loss_fault(j, rs, r);
     }
     if (sa && r->set_index < sa->nfaults)
         sim_json_fault(j, sa, r->set_index);
@@ -344,6 +346,7 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
     fm_json_kv_int(j, "corner", (int64_t)tot->junctions[FM_JUNCTION_CORNER]);
     fm_json_kv_int(j, "unjoined", (int64_t)tot->junctions[FM_JUNCTION_UNJOINED]);
     json_carve(j, rs);
+    json_loss(j, rs);
     fm_json_end_object(j);
 }
 
@@ -438,6 +441,7 @@ void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp)
     if (t.angle_min_fault)
         fprintf(fp, "  %-14s smallest angle %.1f deg (%s)\n", "worst quality", t.angle_min,
                 t.angle_min_fault);
+    print_loss(rs, fp);
     if (t.worst_dist_fault)
         fprintf(fp, "  %-14s node %.0f m from the original (%s)\n", "worst fidelity",
                 t.worst_dist, t.worst_dist_fault);
@@ -483,7 +487,7 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
     fm_json_key(&j, "faults");
     fm_json_begin_array(&j);
     for (size_t i = 0; i < rs->nres; i++)
-        json_fault(&j, &rs->res[i], rs->res[i].mesh.size, sa);
+        json_fault(&j, rs, &rs->res[i], rs->res[i].mesh.size, sa);
     fm_json_end_array(&j);
     run_totals t;
     run_totals_of(rs, &t);

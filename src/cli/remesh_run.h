@@ -18,6 +18,7 @@
 #include "fm_check.h"
 #include "fm_connect.h"
 #include "fm_faultset_write.h"
+#include "fm_json.h"
 #include "fm_model.h"
 #include "fm_remesh.h"
 #include "fm_sort.h"
@@ -106,6 +107,7 @@ typedef struct run_state {
     const char *crs_source; /* "option", "input" or "default" */
     const fm_cad_face **cad; /* the faces of the faults in set, in order */
     size_t ncad;
+    fm_loss *loss;          /* the connect measures of the final set; NULL if not taken */
 } run_state;
 
 /* One input file's faults, fitted and then meshed by workers; merged
@@ -198,6 +200,20 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
 /* What a user should look at before trusting meshed fault r: up to three
  * messages in w; their count. */
 int fault_warnings(const fault_result *r, char w[3][160]);
+
+/* remesh_loss.c */
+typedef struct loss_totals {
+    double gap, gap_max, orig_area, missing, missing_away, worst_share, moved_max;
+    size_t gap_pairs, gap_pairs_over_2H, gap_max_pair, worst_share_fault, moved_fault;
+    size_t moved_over, islands, island_faults;
+    size_t unjoined_curves; /* junctions with an intersection curve left unjoined */
+} loss_totals;
+/* Takes the measures of rs->set (the originals must still be there). */
+void measure_loss(const remesh_cli *cli, run_state *rs);
+void loss_totals_of(const run_state *rs, loss_totals *t);
+void json_loss_fault(fm_json *j, const run_state *rs, const fault_result *r);
+void json_loss(fm_json *j, const run_state *rs);
+void print_loss(const run_state *rs, FILE *fp);
 
 /* remesh_html.c */
 /* DIR/report.html: called while the originals are still there (before

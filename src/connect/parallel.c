@@ -1,66 +1,15 @@
-/* Work items on N threads: each index handed out once, from a shared
- * counter. Callers store results by index, so what they compute does not
- * depend on the number of threads or on which thread did what. */
-#include <pthread.h>
-#include <stdlib.h>
-
+/* The connect stage's work items on N threads, through fm_parallel_for. */
 #include "connect_internal.h"
-
-typedef struct pool {
-    cn_task_fn fn;
-    void *user;
-    size_t n, next, done;
-    fm_connect_progress_fn told;
-    void *told_user;
-    size_t base, total;
-    pthread_mutex_t lock;
-} pool;
-
-static void *worker(void *arg)
-{
-    pool *p = arg;
-    for (;;) {
-        pthread_mutex_lock(&p->lock);
-        size_t k = p->next++;
-        pthread_mutex_unlock(&p->lock);
-        if (k >= p->n)
-            return NULL;
-        p->fn(p->user, k);
-        if (p->told) {
-            pthread_mutex_lock(&p->lock);
-            p->done++;
-            p->told(p->told_user, p->base + p->done, p->total);
-            pthread_mutex_unlock(&p->lock);
-        }
-    }
-}
+#include "fm_parallel.h"
 
 void cn_parallel_for(size_t n, int nthreads, cn_task_fn fn, void *user)
 {
-    cn_parallel_for_told(n, nthreads, fn, user, NULL, NULL, 0, 0);
+    fm_parallel_for(n, nthreads, fn, user, NULL, NULL, 0, 0);
 }
 
 void cn_parallel_for_told(size_t n, int nthreads, cn_task_fn fn, void *user,
                           fm_connect_progress_fn progress, void *progress_user, size_t base,
                           size_t total)
 {
-    if (nthreads < 1)
-        nthreads = 1;
-    if ((size_t)nthreads > n)
-        nthreads = n ? (int)n : 1;
-    pool p = {fn,   user,          n,    0,     0,
-              progress, progress_user, base, total, PTHREAD_MUTEX_INITIALIZER};
-    pthread_t *th = nthreads > 1 ? malloc((size_t)(nthreads - 1) * sizeof *th) : NULL;
-    int started = 0;
-    for (int t = 0; th && t < nthreads - 1; t++) {
-        if (pthread_create(&th[t], NULL, worker, &p) != 0)
-            break;
-        started++;
-    }
-    /* the calling thread works too; with no thread started it does it all */
-    worker(&p);
-    for (int t = 0; t < started; t++)
-        pthread_join(th[t], NULL);
-    free(th);
-    pthread_mutex_destroy(&p.lock);
+    fm_parallel_for(n, nthreads, fn, user, progress, progress_user, base, total);
 }

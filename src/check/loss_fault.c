@@ -1,0 +1,279 @@
+/* One fault's connect measures (fm_check_loss): its unclosed gaps, the
+ * area of its original the output misses, and how far the output moved
+ * the original's interior. Reads only the shared set; writes only o. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check_internal.h"
+
+/* Sampling of an original triangle: at most this many steps along an edge,
+ * so a huge triangle at a tiny size stays bounded. */
+#define MAX_STEPS 64
+
+typedef struct near_fault {
+    int32_t fault;
+    double d2;
+} near_fault;
+
+typedef struct near_query {
+    const fm_mesh *set;
+    int32_t self;
+    double p[3];
+    double max2;   /* only triangles this close count */
+    int stop_at_first;
+    near_fault *near;
+    size_t n, cap;
+    int nomem;
+} near_query;
+
+static double tri_dist2(const fm_mesh *m, int32_t t, const double p[3])
+{
+    const double *X = fm_mesh_vertices(m);
+    const int32_t *T = fm_mesh_triangles(m);
+    double a[3], b[3], c[3], o[3] = {0, 0, 0};
+    for (int k = 0; k < 3; k++) {
+        a[k] = X[3 * T[3 * t] + k] - p[k];
+        b[k] = X[3 * T[3 * t + 1] + k] - p[k];
+        c[k] = X[3 * T[3 * t + 2] + k] - p[k];
+    }
+    return fm_closest_on_triangle(o, a, b, c, NULL, NULL);
+}
+
+/* Box query callback: the closest distance to every other fault. */
+static int near_cb(int32_t t, void *user)
+{
+    near_query *q = user;
+    int32_t g = fm_mesh_tags(q->set)[t];
+    if (g == q->self)
+        return 0;
+    double d2 = tri_dist2(q->set, t, q->p);
+    if (d2 > q->max2)
+        return 0;
+    if (q->stop_at_first)
+        return q->n = 1;
+    for (size_t i = 0; i < q->n; i++)
+        if (q->near[i].fault == g) {
+            q->near[i].d2 = fmin(q->near[i].d2, d2);
+            return 0;
+        }
+    if (q->n == q->cap) {
+        size_t cap = q->cap ? 2 * q->cap : 8;
+        near_fault *nf = realloc(q->near, cap * sizeof *nf);
+        if (!nf) {
+            q->nomem = 1;
+            return 1;
+        }
+        q->near = nf;
+        q->cap = cap;
+    }
+    q->near[q->n++] = (near_fault){g, d2};
+    return 0;
+}
+
+static void near_faults(const ck_set *s, near_query *q, const double p[3], double r)
+{
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        q->p[k] = p[k];
+        lo[k] = p[k] - r;
+        hi[k] = p[k] + r;
+    }
+    q->max2 = r * r;
+    q->n = 0;
+    fm_closest_tree_box_query(s->all, lo, hi, near_cb, q);
+}
+
+/* Whether faults f and g share a node within r of the segment a-b. */
+static int shared_near(const ck_set *s, int32_t f, int32_t g, const double *a, const double *b,
+                       double r)
+{
+    uint64_t lo = (uint64_t)(f < g ? f : g), hi = (uint64_t)(f < g ? g : f);
+    uint64_t key = lo << 32 | hi;
+    const double *X = fm_mesh_vertices(s->in->set);
+    for (size_t i = fm_keyed_lower_bound(s->shared, s->nshared, key);
+         i < s->nshared && s->shared[i].key == key; i++)
+        if (fm_segment_distance3(X + 3 * s->shared[i].index, a, b) <= r)
+            return 1;
+    return 0;
+}
+
+static int add_gap(ck_fault_out *o, int32_t g, double len)
+{
+    for (size_t i = 0; i < o->ngaps; i++)
+        if (o->gaps[i].other == g) {
+            o->gaps[i].length += len;
+            return 0;
+        }
+    ck_gap *ng = realloc(o->gaps, (o->ngaps + 1) * sizeof *ng);
+    if (!ng)
+        return -1;
+    o->gaps = ng;
+    o->gaps[o->ngaps++] = (ck_gap){g, len};
+    return 0;
+}
+
+static int cmp_gap(const void *a, const void *b)
+{
+    const ck_gap *x = a, *y = b;
+    return (x->other > y->other) - (x->other < y->other);
+}
+
+static fm_status gaps(const ck_set *s, int32_t f, double H, near_query *q, ck_fault_out *o)
+{
+    const double *X = fm_mesh_vertices(s->in->set);
+    for (size_t e = s->bnd_first[f]; e < s->bnd_first[f + 1]; e++) {
+        const double *a = X + 3 * (s->bnd[e] >> 32), *b = X + 3 * (s->bnd[e] & 0xffffffffu);
+        double m[3], len = 0;
+        for (int k = 0; k < 3; k++) {
+            m[k] = 0.5 * (a[k] + b[k]);
+            len += (b[k] - a[k]) * (b[k] - a[k]);
+        }
+        len = sqrt(len);
+        near_faults(s, q, m, FM_LOSS_NEAR);
+        if (q->nomem)
+            return FM_ERR_NOMEM;
+        for (size_t i = 0; i < q->n; i++) {
+            int32_t g = q->near[i].fault;
+            if (q->near[i].d2 <= FM_LOSS_TOUCH * FM_LOSS_TOUCH || shared_near(s, f, g, a, b, H))
+                continue;
+            if (add_gap(o, g, len))
+                return FM_ERR_NOMEM;
+        }
+    }
+    if (o->ngaps)
+        qsort(o->gaps, o->ngaps, sizeof *o->gaps, cmp_gap);
+    for (size_t i = 0; i < o->ngaps; i++)
+        o->m.gap += o->gaps[i].length;
+    return FM_OK;
+}
+
+/* One sample of the original: its area w counted, and whether the output
+ * misses it (farther than H/2 from its own fault), and whether it is away
+ * from every other fault too (farther than D). */
+static void sample(const ck_set *s, int32_t f, const fm_closest_tree *own, const double p[3],
+                   double w, double H, double D, int32_t *hint, near_query *q, fm_loss_fault *m)
+{
+    if (!(p[2] <= s->in->zcut[f]))
+        return;
+    m->orig_area += w;
+    if (fm_closest_within(own, p, 0.5 * H, hint))
+        return;
+    m->missing_area += w;
+    q->stop_at_first = 1;
+    near_faults(s, q, p, D);
+    q->stop_at_first = 0;
+    if (!q->n)
+        m->missing_away += w;
+}
+
+static void missing(const ck_set *s, int32_t f, const fm_closest_tree *own, near_query *q,
+                    fm_loss_fault *m)
+{
+    const fm_mesh *o = s->in->orig[f];
+    double H = s->in->size[f], D = s->in->join[f];
+    const double *X = fm_mesh_vertices(o);
+    const int32_t *T = fm_mesh_triangles(o);
+    size_t nv = fm_mesh_nvertices(o), nt = fm_mesh_ntriangles(o);
+    int32_t hint = -1;
+    for (size_t t = 0; t < nt; t++) {
+        if (T[3 * t] < 0 || T[3 * t + 1] < 0 || T[3 * t + 2] < 0 || (size_t)T[3 * t] >= nv ||
+            (size_t)T[3 * t + 1] >= nv || (size_t)T[3 * t + 2] >= nv)
+            continue;
+        const double *A = X + 3 * T[3 * t], *B = X + 3 * T[3 * t + 1], *C = X + 3 * T[3 * t + 2];
+        if (fmin(A[2], fmin(B[2], C[2])) > s->in->zcut[f])
+            continue;
+        double ab[3], ac[3], L = 0;
+        for (int k = 0; k < 3; k++) {
+            ab[k] = B[k] - A[k];
+            ac[k] = C[k] - A[k];
+        }
+        L = fmax(sqrt(ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]),
+                 sqrt(ac[0] * ac[0] + ac[1] * ac[1] + ac[2] * ac[2]));
+        L = fmax(L, fm_segment_distance3(B, C, C));
+        double steps = ceil(L / (0.25 * H));
+        int k = steps < 1 ? 1 : steps > MAX_STEPS ? MAX_STEPS : (int)steps;
+        double w = fm_triangle_area(A, B, C) / ((double)k * k);
+        /* k^2 equal sub-triangles, each sampled at its centroid */
+        for (int i = 0; i < k; i++)
+            for (int j = 0; i + j < k; j++)
+                for (int down = 0; down < 2; down++) {
+                    if (down && i + j > k - 2)
+                        continue;
+                    double u = (i + (down ? 2.0 : 1.0) / 3) / k, v = (j + (down ? 2.0 : 1.0) / 3) / k;
+                    double p[3];
+                    for (int c = 0; c < 3; c++)
+                        p[c] = A[c] + u * ab[c] + v * ac[c];
+                    sample(s, f, own, p, w, H, D, &hint, q, m);
+                }
+    }
+}
+
+static int cmp_i32(const void *a, const void *b)
+{
+    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return (x > y) - (x < y);
+}
+
+static fm_status moved(const ck_set *s, int32_t f, fm_loss_fault *m)
+{
+    const fm_mesh *o = s->in->orig[f];
+    size_t n = s->tri_first[f + 1] - s->tri_first[f];
+    const int32_t *T = fm_mesh_triangles(s->in->set);
+    const double *X = fm_mesh_vertices(s->in->set);
+    int32_t *v = malloc((3 * n + 1) * sizeof *v);
+    uint64_t *E = NULL;
+    size_t ne = 0;
+    fm_closest_tree *tree = v ? fm_closest_tree_create_quick(o, NULL) : NULL;
+    if (!tree || ck_outline_edges(o, &E, &ne) != FM_OK) {
+        free(v);
+        fm_closest_tree_destroy(tree);
+        return FM_ERR_NOMEM;
+    }
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++)
+            v[3 * i + k] = T[3 * s->tri[s->tri_first[f] + i] + k];
+    qsort(v, 3 * n, sizeof *v, cmp_i32);
+    for (size_t i = 0; i < 3 * n; i++) {
+        if (i && v[i] == v[i - 1])
+            continue;
+        const double *p = X + 3 * v[i];
+        fm_closest_hit hit;
+        if (!fm_closest_query(tree, p, INFINITY, &hit))
+            continue;
+        if (hit.dist <= fmax(m->moved_max, FM_LOSS_TOUCH) && hit.dist <= FM_FIDELITY_TOL)
+            continue;
+        if (ck_outline_distance(o, E, ne, hit.foot) <= FM_LOSS_TOUCH)
+            continue;
+        if (hit.dist > FM_FIDELITY_TOL)
+            m->moved_over++;
+        if (hit.dist > m->moved_max) {
+            m->moved_max = hit.dist;
+            memcpy(m->moved_at, p, sizeof m->moved_at);
+        }
+    }
+    free(v);
+    free(E);
+    fm_closest_tree_destroy(tree);
+    return FM_OK;
+}
+
+void ck_measure_fault(const ck_set *s, size_t fi, ck_fault_out *o)
+{
+    int32_t f = (int32_t)fi;
+    near_query q = {s->in->set, f, {0, 0, 0}, 0, 0, NULL, 0, 0, 0};
+    size_t n = s->tri_first[f + 1] - s->tri_first[f];
+    o->st = gaps(s, f, s->in->size[f], &q, o);
+    if (o->st == FM_OK && s->in->orig && s->in->orig[f]) {
+        fm_closest_tree *own =
+            fm_closest_tree_create_part(s->in->set, s->tri + s->tri_first[f], n, NULL);
+        if (!own)
+            o->st = FM_ERR_NOMEM;
+        else {
+            missing(s, f, own, &q, &o->m);
+            o->st = q.nomem ? FM_ERR_NOMEM : n ? moved(s, f, &o->m) : FM_OK;
+        }
+        fm_closest_tree_destroy(own);
+    }
+    free(q.near);
+}

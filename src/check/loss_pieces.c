@@ -1,0 +1,141 @@
+/* How many pieces an original has below a level (fm_check_loss's
+ * islands are the output's pieces beyond these). An original as read may
+ * repeat a vertex under two ids along a seam, so vertices closer than
+ * FM_LOSS_TOUCH are one. Clipping a triangle at a level leaves a convex,
+ * so connected, part; two neighbours' parts meet when their shared edge
+ * reaches below the level, so the pieces follow from the vertices'
+ * heights alone. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "check_internal.h"
+
+static int32_t find(int32_t *up, int32_t x)
+{
+    while (up[x] != x) {
+        up[x] = up[up[x]];
+        x = up[x];
+    }
+    return x;
+}
+
+static void unite(int32_t *up, int32_t a, int32_t b)
+{
+    a = find(up, a);
+    b = find(up, b);
+    if (a != b)
+        up[a < b ? b : a] = a < b ? a : b;
+}
+
+typedef struct cell_vertex {
+    int64_t c[3];
+    int32_t v;
+} cell_vertex;
+
+static int cmp_cell(const void *a, const void *b)
+{
+    const cell_vertex *x = a, *y = b;
+    for (int k = 0; k < 3; k++)
+        if (x->c[k] != y->c[k])
+            return (x->c[k] > y->c[k]) - (x->c[k] < y->c[k]);
+    return (x->v > y->v) - (x->v < y->v);
+}
+
+/* Vertices within FM_LOSS_TOUCH of each other united in up. */
+static int weld(const fm_mesh *o, int32_t *up)
+{
+    size_t nv = fm_mesh_nvertices(o);
+    const double *X = fm_mesh_vertices(o);
+    cell_vertex *cv = malloc((nv + 1) * sizeof *cv);
+    if (!cv)
+        return -1;
+    for (size_t v = 0; v < nv; v++) {
+        for (int k = 0; k < 3; k++)
+            cv[v].c[k] = (int64_t)floor(X[3 * v + k] / FM_LOSS_TOUCH);
+        cv[v].v = (int32_t)v;
+    }
+    qsort(cv, nv, sizeof *cv, cmp_cell);
+    for (size_t i = 0; i < nv; i++)
+        for (int dx = -1; dx <= 1; dx++)
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dz = -1; dz <= 1; dz++) {
+                    cell_vertex key = {{cv[i].c[0] + dx, cv[i].c[1] + dy, cv[i].c[2] + dz}, -1};
+                    size_t lo = 0, hi = nv;
+                    while (lo < hi) {
+                        size_t mid = (lo + hi) / 2;
+                        if (cmp_cell(&cv[mid], &key) < 0)
+                            lo = mid + 1;
+                        else
+                            hi = mid;
+                    }
+                    for (size_t j = lo; j < nv && cv[j].c[0] == key.c[0] && cv[j].c[1] == key.c[1] &&
+                                        cv[j].c[2] == key.c[2];
+                         j++) {
+                        const double *a = X + 3 * cv[i].v, *b = X + 3 * cv[j].v;
+                        double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                    (a[2] - b[2]) * (a[2] - b[2]);
+                        if (d2 <= FM_LOSS_TOUCH * FM_LOSS_TOUCH)
+                            unite(up, cv[i].v, cv[j].v);
+                    }
+                }
+    free(cv);
+    return 0;
+}
+
+size_t ck_orig_pieces(const fm_mesh *o, double zcut, double minz)
+{
+    size_t nv = fm_mesh_nvertices(o), nt = fm_mesh_ntriangles(o);
+    const double *X = fm_mesh_vertices(o);
+    const int32_t *T = fm_mesh_triangles(o);
+    int32_t *vup = malloc((nv + 1) * sizeof *vup), *tup = malloc((nt + 1) * sizeof *tup);
+    fm_keyed *side = malloc((3 * nt + 1) * sizeof *side);
+    double *low = malloc((nt + 1) * sizeof *low);
+    size_t pieces = SIZE_MAX;
+    if (!vup || !tup || !side || !low)
+        goto done;
+    for (size_t v = 0; v < nv; v++)
+        vup[v] = (int32_t)v;
+    if (weld(o, vup))
+        goto done;
+    size_t ns = 0;
+    for (size_t t = 0; t < nt; t++) {
+        tup[t] = (int32_t)t;
+        low[t] = INFINITY;
+        for (int k = 0; k < 3; k++) {
+            int32_t a = T[3 * t + k], b = T[3 * t + (k + 1) % 3];
+            if (a < 0 || b < 0 || (size_t)a >= nv || (size_t)b >= nv)
+                continue;
+            low[t] = fmin(low[t], X[3 * a + 2]);
+            /* an edge reaching below the level joins its triangles */
+            if (fmin(X[3 * a + 2], X[3 * b + 2]) < zcut)
+                side[ns++] = (fm_keyed){fm_edge_key((uint64_t)find(vup, a), (uint64_t)find(vup, b)), t};
+        }
+    }
+    if (fm_sort_keyed(side, ns))
+        goto done;
+    for (size_t i = 1; i < ns; i++)
+        if (side[i].key == side[i - 1].key)
+            unite(tup, (int32_t)side[i].index, (int32_t)side[i - 1].index);
+    /* a piece counts once, when some triangle of it reaches minz */
+    double *reach = malloc((nt + 1) * sizeof *reach);
+    if (!reach)
+        goto done;
+    for (size_t t = 0; t < nt; t++)
+        reach[t] = INFINITY;
+    for (size_t t = 0; t < nt; t++)
+        if (low[t] < zcut) {
+            int32_t r = find(tup, (int32_t)t);
+            reach[r] = fmin(reach[r], low[t]);
+        }
+    pieces = 0;
+    for (size_t t = 0; t < nt; t++)
+        if (find(tup, (int32_t)t) == (int32_t)t && reach[t] < minz)
+            pieces++;
+    free(reach);
+done:
+    free(vup);
+    free(tup);
+    free(side);
+    free(low);
+    return pieces;
+}
