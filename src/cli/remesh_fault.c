@@ -303,6 +303,7 @@ static fm_status mesh_object(const char *path, const fm_mesh *orig,
     double t1 = fm_clock_seconds();
     fm_remesh_options mo = r->mesh;
     mo.name = path;
+    mo.flap_max = r->join;
     fm_remesh_curve *store = NULL;
     unsigned char *dropped = NULL;
     size_t *curve_of = NULL, ntotal = 0;

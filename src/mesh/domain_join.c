@@ -992,6 +992,44 @@ fm_status join_reduce(fm_cdt *cdt, flat_domain *fd, fm_error *err)
     return FM_OK;
 }
 
+/* How far flap f reaches from the curves it is cut off by (m): the
+ * largest distance in 3D of a node on its boundary to the nearest of
+ * those curves' segments. */
+static double flap_width(fm_cdt *cdt, const flat_domain *fd, int32_t f)
+{
+    size_t ns = fd->nseg, ncut = 0;
+    double (*cut)[6] = malloc((ns + 1) * sizeof *cut);
+    if (!cut)
+        return INFINITY;
+    for (size_t k = fd->n; k < ns; k++) {
+        int32_t l, r;
+        fm_cdt_segment_faces(cdt, k, &l, &r);
+        if (fd->curve[k] < 0 || !fd->end[k] || r != f)
+            continue;
+        eval3(fd->surf, fd->ends + 4 * k, cut[ncut]);
+        eval3(fd->surf, fd->ends + 4 * k + 2, cut[ncut] + 3);
+        ncut++;
+    }
+    double width = 0;
+    for (size_t k = 0; k < ns && ncut; k++) {
+        int32_t l, r;
+        fm_cdt_segment_faces(cdt, k, &l, &r);
+        if (l != f && r != f)
+            continue;
+        const double *e = fd->ends + 4 * k;
+        double uv[3][2] = {{e[0], e[1]}, {e[2], e[3]}, {0.5 * (e[0] + e[2]), 0.5 * (e[1] + e[3])}};
+        for (int q = 0; q < 3; q++) {
+            double p[3], d = INFINITY;
+            eval3(fd->surf, uv[q], p);
+            for (size_t c = 0; c < ncut; c++)
+                d = fmin(d, fm_segment_distance3(p, cut[c], cut[c] + 3));
+            width = fmax(width, d);
+        }
+    }
+    free(cut);
+    return width;
+}
+
 static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char *keep_out,
                                fm_error *err)
 {
@@ -1078,6 +1116,19 @@ static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char
             st = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,
                               "the flap beyond a shared curve would be most of the sheet");
             goto done;
+        }
+        /* A flap is what overshoots the other fault: wider than the join
+         * distance, it is a part of this fault the other does not explain,
+         * so the sheet does not end at the curve. */
+        if (drop[f] && fd->flap_max > 0 && fd->surf) {
+            double w = flap_width(cdt, fd, (int32_t)f);
+            if (w > fd->flap_max) {
+                st = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,
+                                  "the flap beyond a shared curve reaches %.0f m from it, "
+                                  "more than the join distance %.0f m",
+                                  w, fd->flap_max);
+                goto done;
+            }
         }
         if (fill[f] && bound_right[f] > 0.5 * loop_len) {
             st = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,

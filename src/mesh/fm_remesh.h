@@ -62,6 +62,10 @@ typedef struct fm_remesh_options {
     double sea_level;      /* z of the cut, default 0 */
     int optimise_passes;   /* flip + smooth rounds, default 6 */
     size_t max_points;     /* safety bound per sheet; 0 = from area / H^2 */
+    double flap_max;       /* metres: the flap beyond a shared curve a sheet ends at is
+                              dropped only when it lies within this distance of the
+                              curve, else the sheet fails to end there (and runs on past
+                              the curve, fm_remesh_model_joined); 0 = any flap */
 } fm_remesh_options;
 
 void fm_remesh_options_default(fm_remesh_options *opt);

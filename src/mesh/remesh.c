@@ -121,6 +121,8 @@ fm_status fm_remesh_sheet_joined(const fm_fit_surface *s, const fm_trim_loop *co
         rc = domain_join(s, &dom, curves, ncurves, opt->size, opt->sea_level, &fd, err, opt->name);
         if (rc != FM_OK)
             goto done;
+        fd.surf = s;
+        fd.flap_max = opt->flap_max;
     }
     rc = domain_triangulate(s, loops, opt->sea_level, &dom, opt->size, opt->max_points, &fd, &cdt,
                             err, opt->name);

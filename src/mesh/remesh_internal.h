@@ -111,6 +111,10 @@ typedef struct flat_domain {
     int64_t *shared;
     int32_t *curve;
     unsigned char *end;
+    /* The surface, and the widest flap (m, 0: any) a curve may cut off
+     * (fm_remesh_options.flap_max). */
+    const fm_fit_surface *surf;
+    double flap_max;
 } flat_domain;
 void flat_free(flat_domain *f);
 
