@@ -225,6 +225,18 @@ static size_t kept_runs(const fm_connect_shared *sh, const curve_filter *flt, si
     return n;
 }
 
+/* Whether plan curve c lives on one sheet only: where a junction was
+ * given up and one sheet stops short of the other instead. */
+static int lone_curve(const fm_connect_plan *plan, size_t c)
+{
+    for (size_t i = 0; i < fm_connect_plan_njunctions(plan); i++) {
+        const fm_connect_junction *jn = fm_connect_plan_junction(plan, i);
+        if (jn->curve == (long)c)
+            return jn->type == FM_JUNCTION_UNJOINED;
+    }
+    return 0;
+}
+
 /* The shared curves the plan gives each sheet of fault f, as the mesher
  * takes them, less what the filter leaves out (a clipped curve may give
  * several); *store (free it) holds them, and per curve given its plan
@@ -284,6 +296,7 @@ static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f
                 cv[k].n = runs[2 * q + 1];
                 cv[k].node = sh[c].node + at;
                 cv[k].end = sh[c].end;
+                cv[k].lone = lone_curve(plan, sh[c].curve);
                 k++;
             }
         }

@@ -194,6 +194,11 @@ static void json_fault(fm_json *j, const run_state *rs, const fault_result *r, d
             fm_json_kv_int(j, "carved_triangles", (int64_t)r->carved);
             fm_json_kv_number(j, "carved_area_m2", r->carved_area);
         }
+        /* flaps beyond curves it ends at that reach farther than its join
+         * distance: not overshoots, so kept */
+        if (r->ms.flaps_kept) {
+            fm_json_kv_int(j, "flaps_kept", (int64_t)r->ms.flaps_kept);
+        }
         char w[3][160];
         int nw = fault_warnings(r, w);
         fm_json_key(j, "warnings");

@@ -791,7 +791,8 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
                 memcpy(fd->ends + 4 * ns, fd->uv + 2 * prev, 2 * sizeof *fd->ends);
                 memcpy(fd->ends + 4 * ns + 2, uv, 2 * sizeof *fd->ends);
                 fd->curve[ns] = (int32_t)c;
-                fd->end[ns] = (unsigned char)(cv[c].end != 0);
+                /* 2: an end whose flap goes whatever its width */
+                fd->end[ns] = (unsigned char)(cv[c].end == 0 ? 0 : cv[c].lone ? 2 : 1);
                 ns++;
             }
             prev = pi;
@@ -871,14 +872,14 @@ static int32_t uf_find(int32_t *par, int32_t a)
 }
 
 static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char *keep_out,
-                               fm_error *err);
+                               size_t *kept, fm_error *err);
 
 fm_status join_select(fm_cdt *cdt, const flat_domain *fd, fm_error *err)
 {
     unsigned char *keep = calloc(fm_cdt_nfaces(cdt) + 1, 1);
     if (!keep)
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
-    fm_status st = join_classify(cdt, fd, keep, err);
+    fm_status st = join_classify(cdt, fd, keep, NULL, err);
     if (st == FM_OK)
         st = fm_cdt_select_faces(cdt, keep, err);
     free(keep);
@@ -898,7 +899,7 @@ fm_status join_reduce(fm_cdt *cdt, flat_domain *fd, fm_error *err)
         free(what);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     }
-    fm_status st = join_classify(cdt, fd, keep, err);
+    fm_status st = join_classify(cdt, fd, keep, &fd->flaps_kept, err);
     size_t nb = 0, ni = 0;
     for (size_t k = 0; k < ns && st == FM_OK; k++) {
         int32_t l, r;
@@ -994,7 +995,7 @@ fm_status join_reduce(fm_cdt *cdt, flat_domain *fd, fm_error *err)
 
 /* How far flap f reaches from the curves it is cut off by (m): the
  * largest distance in 3D of a node on its boundary to the nearest of
- * those curves' segments. */
+ * those curves' segments; 0 when only lone curves cut it off. */
 static double flap_width(fm_cdt *cdt, const flat_domain *fd, int32_t f)
 {
     size_t ns = fd->nseg, ncut = 0;
@@ -1004,7 +1005,7 @@ static double flap_width(fm_cdt *cdt, const flat_domain *fd, int32_t f)
     for (size_t k = fd->n; k < ns; k++) {
         int32_t l, r;
         fm_cdt_segment_faces(cdt, k, &l, &r);
-        if (fd->curve[k] < 0 || !fd->end[k] || r != f)
+        if (fd->curve[k] < 0 || fd->end[k] != 1 || r != f)
             continue;
         eval3(fd->surf, fd->ends + 4 * k, cut[ncut]);
         eval3(fd->surf, fd->ends + 4 * k + 2, cut[ncut] + 3);
@@ -1031,7 +1032,7 @@ static double flap_width(fm_cdt *cdt, const flat_domain *fd, int32_t f)
 }
 
 static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char *keep_out,
-                               fm_error *err)
+                               size_t *kept, fm_error *err)
 {
     size_t nf = fm_cdt_nfaces(cdt), ns = fd->nseg;
     int32_t *par = malloc((nf + 1) * sizeof *par);
@@ -1098,6 +1099,16 @@ static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char
         if (l >= 0 && in[uf_find(par, l)] != 1 && !open[l])
             fill[l] = 1;
     }
+    /* A flap is what overshoots the other fault: one reaching farther from
+     * the curve than the join distance is a part of this fault the other
+     * does not explain, and stays (the sheet runs on past the curve there;
+     * the gap on the curve's other side is filled all the same). */
+    for (size_t f = 0; fd->flap_max > 0 && fd->surf && f < nf; f++)
+        if (drop[f] && !fill[f] && flap_width(cdt, fd, (int32_t)f) > fd->flap_max) {
+            drop[f] = 0;
+            if (kept)
+                (*kept)++;
+        }
     const double *area = fm_cdt_face_areas(cdt);
     double inside_area = 0;
     for (size_t f = 0; f < nf; f++)
@@ -1116,19 +1127,6 @@ static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char
             st = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,
                               "the flap beyond a shared curve would be most of the sheet");
             goto done;
-        }
-        /* A flap is what overshoots the other fault: wider than the join
-         * distance, it is a part of this fault the other does not explain,
-         * so the sheet does not end at the curve. */
-        if (drop[f] && fd->flap_max > 0 && fd->surf) {
-            double w = flap_width(cdt, fd, (int32_t)f);
-            if (w > fd->flap_max) {
-                st = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,
-                                  "the flap beyond a shared curve reaches %.0f m from it, "
-                                  "more than the join distance %.0f m",
-                                  w, fd->flap_max);
-                goto done;
-            }
         }
         if (fill[f] && bound_right[f] > 0.5 * loop_len) {
             st = fm_error_set(err, FM_ERR_TOPOLOGY, NULL, 0,

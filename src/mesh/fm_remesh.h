@@ -64,8 +64,8 @@ typedef struct fm_remesh_options {
     size_t max_points;     /* safety bound per sheet; 0 = from area / H^2 */
     double flap_max;       /* metres: the flap beyond a shared curve a sheet ends at is
                               dropped only when it lies within this distance of the
-                              curve, else the sheet fails to end there (and runs on past
-                              the curve, fm_remesh_model_joined); 0 = any flap */
+                              curve, else kept (the sheet runs on past the curve there,
+                              which stays a shared interior curve); 0 = any flap */
 } fm_remesh_options;
 
 void fm_remesh_options_default(fm_remesh_options *opt);
@@ -90,6 +90,7 @@ typedef struct fm_remesh_stats {
     int cut;                   /* 1: the top was cut, 0: wholly below (or keep) */
     int empty;                 /* 1: nothing of the sheet lies below sea level */
     double extended;           /* FM_TOP_EXTEND: largest up-dip extension (m) */
+    size_t flaps_kept;         /* flaps beyond shared curves kept as wider than flap_max */
     double time;               /* seconds */
 } fm_remesh_stats;
 
@@ -117,6 +118,9 @@ typedef struct fm_remesh_curve {
                              left (going from node 0 to node n-1, outer loops being
                              counter-clockwise): the flap beyond is dropped, a gap
                              before it filled; 0: the curve crosses the sheet */
+    int lone;             /* the sheet ends at it alone, short of another surface it
+                             would otherwise run through: the flap beyond is dropped
+                             whatever its width (fm_remesh_options.flap_max) */
 } fm_remesh_curve;
 
 /* fm_remesh_sheet with shared curves. node_out (may be NULL) receives per

@@ -124,10 +124,12 @@ fm_status fm_remesh_sheet_joined(const fm_fit_surface *s, const fm_trim_loop *co
         fd.surf = s;
         fd.flap_max = opt->flap_max;
     }
+    fd.flaps_kept = 0;
     rc = domain_triangulate(s, loops, opt->sea_level, &dom, opt->size, opt->max_points, &fd, &cdt,
                             err, opt->name);
     if (rc != FM_OK)
         goto done;
+    st->flaps_kept = fd.flaps_kept;
 
     size_t np = fm_cdt_npoints(cdt), nt = fm_cdt_ntriangles(cdt), ne = fm_cdt_nedges(cdt);
     size_t ninput = fm_cdt_ninput(cdt);

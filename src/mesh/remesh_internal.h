@@ -106,7 +106,7 @@ typedef struct flat_domain {
     /* With shared curves (domain_join): more points and segments; per
      * point its shared node id (-1: none); per segment the shared curve it
      * belongs to (-1: none) and whether that curve is one the sheet ends
-     * at (keeping the left side). */
+     * at (keeping the left side; 2: a lone curve, fm_remesh_curve.lone). */
     size_t npoints, nseg;
     int64_t *shared;
     int32_t *curve;
@@ -115,6 +115,7 @@ typedef struct flat_domain {
      * (fm_remesh_options.flap_max). */
     const fm_fit_surface *surf;
     double flap_max;
+    size_t flaps_kept; /* set by join_reduce: flaps wider than flap_max kept */
 } flat_domain;
 void flat_free(flat_domain *f);
 

@@ -88,6 +88,8 @@ typedef struct fm_synth_expect {
     long gap_to;              /* fault its s = 0 end should meet, -1 none */
     double gap;               /* ... and stops this short of (metres) */
     long overshoot_of;        /* fault its s = 0 end crosses, -1 none */
+    long crosses;             /* fault it crosses with an end beyond it by a distance that
+                                 grows with depth (no fixed overshoot), -1 none */
     double overshoot;         /* ... and sticks out beyond (metres) */
 } fm_synth_expect;
 void fm_synth_fault_expect(const fm_synth *s, size_t i, fm_synth_expect *e);

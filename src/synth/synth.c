@@ -175,4 +175,5 @@ void fm_synth_fault_expect(const fm_synth *s, size_t i, fm_synth_expect *e)
     e->gap = f->gap;
     e->overshoot_of = f->overshoot_of;
     e->overshoot = f->overshoot;
+    e->crosses = f->crosses;
 }

@@ -87,6 +87,8 @@ typedef struct synth_fault {
     double gap;            /* metres short of it */
     long overshoot_of;     /* fault index its s = 0 end crosses, or -1 */
     double overshoot;      /* metres beyond it */
+    long crosses;          /* fault index it crosses with an end beyond by a distance that
+                              grows with depth (the wedge), or -1 */
     /* results of the triangulation */
     fm_mesh *mesh;
     size_t nparts;

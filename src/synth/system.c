@@ -41,6 +41,7 @@ static synth_fault *add_fault(fm_synth *sy, const char *name, const char *kind,
     f->nsheets = 1;
     f->gap_to = -1;
     f->overshoot_of = -1;
+    f->crosses = -1;
     return f;
 }
 
@@ -168,6 +169,16 @@ void synth_layout(fm_synth *sy)
         sp->away = -1.0;
         sp->top_topo = 1;
     }
+
+    /* A flap that widens with depth: within the join distance near the
+     * top, wider below. What lies farther from the main fault than the
+     * join distance is no overshoot a junction can explain, and must not
+     * be cut away. */
+    f = add_fault(sy, "SYNT-MAIN-WDGE-Widening_overshoot_fault-SYN1", "planar",
+                  "widening overshoot: dip 80, crosses the main fault at 60 deg; its s = 0 end "
+                  "lies 200 m beyond it at the top and about 1.3 km at the bottom");
+    planar(tp, &f->sheet[0], (placement){14000.0, 200.0}, 255.0, 10000.0, 80.0, -12000.0);
+    f->crosses = 0;
 
     for (size_t i = 0; i < sy->nfaults; i++) {
         f = &sy->fault[i];

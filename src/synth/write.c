@@ -170,6 +170,11 @@ static void json_expected(fm_json *j, const fm_synth *sy, const synth_fault *f)
     } else {
         fm_json_null(j);
     }
+    fm_json_key(j, "crosses");
+    if (f->crosses >= 0)
+        fm_json_string(j, sy->fault[f->crosses].name);
+    else
+        fm_json_null(j);
     fm_json_end_object(j);
 }
 

@@ -28,7 +28,7 @@ for line in open(sys.argv[2]):
 bad = []
 def want(cond, what):
     if not cond: bad.append(what)
-want(j['faults'] == len(names) == 9, 'fault count')
+want(j['faults'] == len(names) == 10, 'fault count')
 want(j['vertices'] == nv and j['triangles'] == nt, 'vertex / triangle counts')
 want(j['distance'] == 1000 and j['self_checked'] is True, 'options')
 idx = {n: i for i, n in enumerate(names)}

@@ -32,10 +32,10 @@ main=SYNT-MAIN-SS-Main_strike_slip_fault-SYN1
 [ -f "$tmp/in/$main.ts" ] && ok || bad "synthetic input $main.ts missing"
 
 if [ "$mode" = broken ]; then
-    # The reference: all nine, and the T junctions of the main fault made.
+    # The reference: all ten, and the T junctions of the main fault made.
     expect_rc 0 "clean run" "$exe" remesh --quiet -o "$tmp/ref" "$tmp/in"
-    [ "$(json "$tmp/ref/report.json" "sum(1 for j in r['connect']['junctions'] if '$main' in j['faults'] and j['type'] != 'unjoined')")" = 2 ] &&
-        ok || bad "clean run: the main fault's two T junctions not made"
+    [ "$(json "$tmp/ref/report.json" "sum(1 for j in r['connect']['junctions'] if '$main' in j['faults'] and j['type'] != 'unjoined')")" = 3 ] &&
+        ok || bad "clean run: the main fault's three T junctions not made"
 
     # Without the main fault at all: what its neighbours should fall back to.
     mkdir -p "$tmp/in8" && cp "$tmp/in"/*.ts "$tmp/in8/" && rm "$tmp/in8/$main.ts"
@@ -50,7 +50,7 @@ if [ "$mode" = broken ]; then
             bad "$what: no report.json"
             return
         fi
-        [ "$(json "$r" "r['summary']['faults'], r['summary']['meshed'], r['summary']['failed']")" = "9 8 1" ] &&
+        [ "$(json "$r" "r['summary']['faults'], r['summary']['meshed'], r['summary']['failed']")" = "10 9 1" ] &&
             ok || bad "$what: summary $(json "$r" "r['summary']")"
         [ "$(json "$r" "[(f['status'], f['error']) for f in r['faults'] if f['file'].endswith('$main.ts')][0][0]")" = error ] &&
             ok || bad "$what: the broken fault is not reported as an error"
@@ -59,13 +59,13 @@ if [ "$mode" = broken ]; then
         # every other fault meshed and written, in every format
         local n
         n=$(ls "$out"/*.ts 2>/dev/null | wc -l)
-        [ "$n" = 8 ] && ok || bad "$what: $n .ts files written, expected 8"
+        [ "$n" = 9 ] && ok || bad "$what: $n .ts files written, expected 9"
         [ ! -e "$out/$main.ts" ] && ok || bad "$what: the broken fault was written"
         for f in mesh.vtu mesh.msh mesh.stl mesh.obj mesh.exo mesh.eqsim mesh.rsqsim model.igs; do
             [ -s "$out/$f" ] && ok || bad "$what: $f not written"
         done
-        [ "$(grep -c '^2 [0-9]* "SYNT-' "$out/mesh.msh")" = 8 ] && ! grep -q "\"$main\"" "$out/mesh.msh" &&
-            ok || bad "$what: mesh.msh does not name the 8 good faults"
+        [ "$(grep -c '^2 [0-9]* "SYNT-' "$out/mesh.msh")" = 9 ] && ! grep -q "\"$main\"" "$out/mesh.msh" &&
+            ok || bad "$what: mesh.msh does not name the 9 good faults"
         # no junction made with it; the neighbours as without it
         [ "$(json "$r" "sum(1 for j in r['connect']['junctions'] if '$main' in j['faults'] and j['type'] != 'unjoined')")" = 0 ] &&
             ok || bad "$what: a junction with the broken fault is made"

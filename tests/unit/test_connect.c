@@ -184,10 +184,11 @@ static void test_synth(void)
     long tj = fm_synth_find(sy, "SYNT-MAIN-TJNC-T_junction_gap_fault-SYN1");
     long xo = fm_synth_find(sy, "SYNT-MAIN-XOVR-Overshooting_fault-SYN1");
     long sp = fm_synth_find(sy, "SYNT-NWFB-SPLY-Branched_splay_fault-SYN1");
-    CHECK(main_f >= 0 && tj >= 0 && xo >= 0 && sp >= 0);
+    long wd = fm_synth_find(sy, "SYNT-MAIN-WDGE-Widening_overshoot_fault-SYN1");
+    CHECK(main_f >= 0 && tj >= 0 && xo >= 0 && sp >= 0 && wd >= 0);
     fm_connect_pairs *pairs = NULL;
     CHECK(fm_connect_find_pairs((const fm_model *const *)models, n, NULL, &pairs, &err) == FM_OK);
-    int seen_tj = 0, seen_xo = 0, seen_sp = 0;
+    int seen_tj = 0, seen_xo = 0, seen_sp = 0, seen_wd = 0;
     for (size_t i = 0; i < fm_connect_pairs_count(pairs); i++) {
         const fm_connect_pair *p = fm_connect_pairs_get(pairs, i);
         printf("pair %zu.%zu - %zu.%zu: distance %.1f crosses %d, trimmed %.1f crosses %d\n",
@@ -209,11 +210,14 @@ static void test_synth(void)
         } else if ((long)p->fault_b == xo) {
             seen_xo = 1;
             CHECK(p->crosses && p->trimmed_crosses);
+        } else if ((long)p->fault_b == wd) {
+            seen_wd = 1;
+            CHECK(p->crosses && p->trimmed_crosses);
         } else {
             CHECK(0); /* no other pair is meant to meet */
         }
     }
-    CHECK(seen_tj && seen_xo && seen_sp);
+    CHECK(seen_tj && seen_xo && seen_sp && seen_wd);
     fm_connect_pairs_destroy(pairs);
     if (main_f >= 0 && tj >= 0 && xo >= 0) {
         for (int k = 0; k < 2; k++) {
@@ -259,8 +263,10 @@ static void test_synth(void)
     fm_synth_destroy(sy);
 }
 
-/* The junction plan on the synthetic system: both designed junctions are
- * T-junctions with the main fault running through; the shared curve is
+/* The junction plan on the synthetic system: the three designed junctions
+ * on the main fault are T-junctions with the main fault running through
+ * (the widening overshoot too: most of its flap lies within the join
+ * distance; the mesher keeps what lies beyond); the shared curve is
  * cut at sea level, sampled at H and lies on both true surfaces; the
  * fault that ends keeps its bulk on the curve's left. */
 static void test_synth_plan(void)
@@ -278,6 +284,7 @@ static void test_synth_plan(void)
     long tj = fm_synth_find(sy, "SYNT-MAIN-TJNC-T_junction_gap_fault-SYN1");
     long xo = fm_synth_find(sy, "SYNT-MAIN-XOVR-Overshooting_fault-SYN1");
     long sp = fm_synth_find(sy, "SYNT-NWFB-SPLY-Branched_splay_fault-SYN1");
+    long wd = fm_synth_find(sy, "SYNT-MAIN-WDGE-Widening_overshoot_fault-SYN1");
     fm_connect_plan_options po;
     fm_connect_plan_options_default(&po);
     po.nthreads = 2;
@@ -285,7 +292,7 @@ static void test_synth_plan(void)
     CHECK(fm_connect_plan_build((const fm_model *const *)models, n, &po, &plan, &err) == FM_OK);
     if (!plan)
         goto out;
-    CHECK_EQ(fm_connect_plan_njunctions(plan), 3);
+    CHECK_EQ(fm_connect_plan_njunctions(plan), 4);
     const double *X = fm_connect_plan_nodes(plan);
     for (size_t i = 0; i < fm_connect_plan_njunctions(plan); i++) {
         const fm_connect_junction *j = fm_connect_plan_junction(plan, i);
@@ -306,6 +313,13 @@ static void test_synth_plan(void)
         CHECK((long)j->fault[0] == main_f);
         if ((long)j->fault[1] == tj) {
             CHECK_NEAR(j->gap, 300.0, 40.0);
+        } else if ((long)j->fault[1] == wd) {
+            /* 200 m past the main fault at the top to about 1.3 km at
+             * 12 km depth, over a surface crossing it at 60 degrees: the
+             * flap trimmed is what lies within the join distance */
+            CHECK(j->overshoot > 900.0 && j->overshoot <= 1000.0);
+            CHECK_NEAR(j->length, 12250.0, 300.0);
+            continue;
         } else {
             CHECK((long)j->fault[1] == xo);
             CHECK_NEAR(j->overshoot * sin(60.0 * FM_PI / 180), 400.0, 40.0);
@@ -322,8 +336,8 @@ static void test_synth_plan(void)
         splay_ends += sh && sh[0].end;
     }
     CHECK_EQ(splay_ends, 1);
-    CHECK_EQ(fm_connect_plan_sheet(plan, (size_t)main_f, 0, &sh), 2);
-    for (size_t k = 0; sh && k < 2; k++)
+    CHECK_EQ(fm_connect_plan_sheet(plan, (size_t)main_f, 0, &sh), 3);
+    for (size_t k = 0; sh && k < 3; k++)
         CHECK(sh[k].end == 0);
     for (int o = 0; o < 2; o++) {
         long f = o ? xo : tj;

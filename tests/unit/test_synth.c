@@ -445,7 +445,8 @@ static void test_separation(void)
             fm_synth_expect ej;
             fm_synth_fault_expect(s, j, &ej);
             if (j == i || e.gap_to == (long)j || e.overshoot_of == (long)j ||
-                ej.gap_to == (long)i || ej.overshoot_of == (long)i)
+                ej.gap_to == (long)i || ej.overshoot_of == (long)i || e.crosses == (long)j ||
+                ej.crosses == (long)i)
                 continue;
             const fm_mesh *m = fm_synth_fault_mesh(s, i);
             double dmin = 1e30;
