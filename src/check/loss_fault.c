@@ -7,9 +7,9 @@
 
 #include "check_internal.h"
 
-/* Sampling of an original triangle: at most this many steps along an edge,
- * so a huge triangle at a tiny size stays bounded. */
-#define MAX_STEPS 64
+/* Sampling of an original triangle: split in four at most this many times,
+ * so a huge triangle at a tiny size stays bounded (4^6 leaves). */
+#define MAX_DEPTH 6
 
 typedef struct near_fault {
     int32_t fault;
@@ -167,45 +167,80 @@ static void sample(const ck_set *s, int32_t f, const fm_closest_tree *own, const
         m->missing_away += w;
 }
 
+typedef struct sampler {
+    const ck_set *s;
+    int32_t f;
+    const fm_closest_tree *own;
+    double H, D, zcut;
+    int32_t hint;
+    near_query *q;
+    fm_loss_fault *m;
+} sampler;
+
+/* Triangle a, b, c split in four `depth` times, its leaves sampled at
+ * their centroids (the k^2 equal sub-triangles of a k = 2^depth grid).
+ * A part whose every point is known to lie within H/2 of the output (its
+ * centroid closer than H/2 less the part's reach from it) and below zcut
+ * counts whole without its leaves: the sum is the leaves' to the last
+ * bit of area, at a fraction of the queries. */
+static void sample_part(sampler *sp, const double *a, const double *b, const double *c, int depth)
+{
+    double g[3], reach = 0, ztop = fmax(a[2], fmax(b[2], c[2]));
+    for (int k = 0; k < 3; k++)
+        g[k] = (a[k] + b[k] + c[k]) / 3;
+    reach = sqrt(fmax((a[0] - g[0]) * (a[0] - g[0]) + (a[1] - g[1]) * (a[1] - g[1]) +
+                          (a[2] - g[2]) * (a[2] - g[2]),
+                      fmax((b[0] - g[0]) * (b[0] - g[0]) + (b[1] - g[1]) * (b[1] - g[1]) +
+                               (b[2] - g[2]) * (b[2] - g[2]),
+                           (c[0] - g[0]) * (c[0] - g[0]) + (c[1] - g[1]) * (c[1] - g[1]) +
+                               (c[2] - g[2]) * (c[2] - g[2]))));
+    if (depth > 0 && ztop <= sp->zcut && reach < 0.5 * sp->H &&
+        fm_closest_within(sp->own, g, 0.5 * sp->H - reach, &sp->hint)) {
+        double w = fm_triangle_area(a, b, c);
+        sp->m->orig_area += w;
+        return;
+    }
+    if (depth == 0) {
+        sample(sp->s, sp->f, sp->own, g, fm_triangle_area(a, b, c), sp->H, sp->D, &sp->hint,
+               sp->q, sp->m);
+        return;
+    }
+    double ab[3], bc[3], ca[3];
+    for (int k = 0; k < 3; k++) {
+        ab[k] = 0.5 * (a[k] + b[k]);
+        bc[k] = 0.5 * (b[k] + c[k]);
+        ca[k] = 0.5 * (c[k] + a[k]);
+    }
+    sample_part(sp, a, ab, ca, depth - 1);
+    sample_part(sp, ab, b, bc, depth - 1);
+    sample_part(sp, ca, bc, c, depth - 1);
+    sample_part(sp, ab, bc, ca, depth - 1);
+}
+
 static void missing(const ck_set *s, int32_t f, const fm_closest_tree *own, near_query *q,
                     fm_loss_fault *m)
 {
     const fm_mesh *o = s->in->orig[f];
-    double H = s->in->size[f], D = s->in->join[f];
     const double *X = fm_mesh_vertices(o);
     const int32_t *T = fm_mesh_triangles(o);
     size_t nv = fm_mesh_nvertices(o), nt = fm_mesh_ntriangles(o);
-    int32_t hint = -1;
+    sampler sp = {s, f, own, s->in->size[f], s->in->join[f], s->in->zcut[f], -1, q, m};
     for (size_t t = 0; t < nt; t++) {
         if (T[3 * t] < 0 || T[3 * t + 1] < 0 || T[3 * t + 2] < 0 || (size_t)T[3 * t] >= nv ||
             (size_t)T[3 * t + 1] >= nv || (size_t)T[3 * t + 2] >= nv)
             continue;
         const double *A = X + 3 * T[3 * t], *B = X + 3 * T[3 * t + 1], *C = X + 3 * T[3 * t + 2];
-        if (fmin(A[2], fmin(B[2], C[2])) > s->in->zcut[f])
+        if (fmin(A[2], fmin(B[2], C[2])) > sp.zcut)
             continue;
-        double ab[3], ac[3], L = 0;
-        for (int k = 0; k < 3; k++) {
-            ab[k] = B[k] - A[k];
-            ac[k] = C[k] - A[k];
+        /* leaves at most H/4 long */
+        double L = fmax(fm_segment_distance3(A, B, B),
+                        fmax(fm_segment_distance3(B, C, C), fm_segment_distance3(C, A, A)));
+        int depth = 0;
+        while (depth < MAX_DEPTH && L > 0.25 * sp.H) {
+            L *= 0.5;
+            depth++;
         }
-        L = fmax(sqrt(ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]),
-                 sqrt(ac[0] * ac[0] + ac[1] * ac[1] + ac[2] * ac[2]));
-        L = fmax(L, fm_segment_distance3(B, C, C));
-        double steps = ceil(L / (0.25 * H));
-        int k = steps < 1 ? 1 : steps > MAX_STEPS ? MAX_STEPS : (int)steps;
-        double w = fm_triangle_area(A, B, C) / ((double)k * k);
-        /* k^2 equal sub-triangles, each sampled at its centroid */
-        for (int i = 0; i < k; i++)
-            for (int j = 0; i + j < k; j++)
-                for (int down = 0; down < 2; down++) {
-                    if (down && i + j > k - 2)
-                        continue;
-                    double u = (i + (down ? 2.0 : 1.0) / 3) / k, v = (j + (down ? 2.0 : 1.0) / 3) / k;
-                    double p[3];
-                    for (int c = 0; c < 3; c++)
-                        p[c] = A[c] + u * ab[c] + v * ac[c];
-                    sample(s, f, own, p, w, H, D, &hint, q, m);
-                }
+        sample_part(&sp, A, B, C, depth);
     }
 }
 
@@ -258,6 +293,47 @@ static fm_status moved(const ck_set *s, int32_t f, fm_loss_fault *m)
     return FM_OK;
 }
 
+/* Fault f's triangles as a mesh of their own: a tree of it costs the
+ * fault's size, where one of a part of the whole set would walk all of the
+ * set's vertices. */
+static fm_mesh *fault_mesh(const ck_set *s, int32_t f)
+{
+    size_t n = s->tri_first[f + 1] - s->tri_first[f];
+    const int32_t *T = fm_mesh_triangles(s->in->set);
+    const double *X = fm_mesh_vertices(s->in->set);
+    int32_t *v = malloc((3 * n + 1) * sizeof *v);
+    fm_mesh *m = v ? fm_mesh_create() : NULL;
+    if (!m) {
+        free(v);
+        return NULL;
+    }
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++)
+            v[3 * i + k] = T[3 * s->tri[s->tri_first[f] + i] + k];
+    qsort(v, 3 * n, sizeof *v, cmp_i32);
+    size_t nv = 0;
+    for (size_t i = 0; i < 3 * n; i++)
+        if (!nv || v[i] != v[nv - 1])
+            v[nv++] = v[i];
+    int ok = fm_mesh_reserve(m, nv, n) == FM_OK;
+    for (size_t i = 0; ok && i < nv; i++)
+        ok = fm_mesh_add_vertex(m, X[3 * v[i]], X[3 * v[i] + 1], X[3 * v[i] + 2]) >= 0;
+    for (size_t i = 0; ok && i < n; i++) {
+        int32_t c[3];
+        for (int k = 0; k < 3; k++) {
+            int32_t key = T[3 * s->tri[s->tri_first[f] + i] + k];
+            c[k] = (int32_t)((const int32_t *)bsearch(&key, v, nv, sizeof *v, cmp_i32) - v);
+        }
+        ok = fm_mesh_add_triangle(m, c[0], c[1], c[2], f) >= 0;
+    }
+    free(v);
+    if (!ok) {
+        fm_mesh_destroy(m);
+        return NULL;
+    }
+    return m;
+}
+
 void ck_measure_fault(const ck_set *s, size_t fi, ck_fault_out *o)
 {
     int32_t f = (int32_t)fi;
@@ -265,8 +341,9 @@ void ck_measure_fault(const ck_set *s, size_t fi, ck_fault_out *o)
     size_t n = s->tri_first[f + 1] - s->tri_first[f];
     o->st = gaps(s, f, s->in->size[f], &q, o);
     if (o->st == FM_OK && s->in->orig && s->in->orig[f]) {
-        fm_closest_tree *own =
-            fm_closest_tree_create_part(s->in->set, s->tri + s->tri_first[f], n, NULL);
+        fm_mesh *sub = fault_mesh(s, f);
+        fm_closest_tree *own = sub ? fm_closest_tree_create_quick(sub, NULL) : NULL;
+        fm_mesh_destroy(sub);
         if (!own)
             o->st = FM_ERR_NOMEM;
         else {
