@@ -1031,6 +1031,59 @@ static double flap_width(fm_cdt *cdt, const flat_domain *fd, int32_t f)
     return width;
 }
 
+/* Kept faces that only flaps joined to the rest would be islands: a
+ * piece of the sheet cut off by the flaps dropped around it. Nothing of
+ * the fault may be lost that way, so the flaps next to such a piece are
+ * kept (its curves become interior there), until the kept faces are one
+ * piece or no flap is left to keep. par is scratch (nf entries). */
+static fm_status mend_islands(fm_cdt *cdt, const flat_domain *fd, unsigned char *drop,
+                              unsigned char *keep, int32_t *par, size_t *kept)
+{
+    size_t nf = fm_cdt_nfaces(cdt), ns = fd->nseg;
+    const double *area = fm_cdt_face_areas(cdt);
+    double *sum = malloc((nf + 1) * sizeof *sum);
+    if (!sum)
+        return FM_ERR_NOMEM;
+    for (int round = 0; round < 64; round++) {
+        for (size_t f = 0; f < nf; f++) {
+            par[f] = (int32_t)f;
+            sum[f] = 0;
+        }
+        for (size_t k = 0; k < ns; k++) {
+            int32_t l, r;
+            fm_cdt_segment_faces(cdt, k, &l, &r);
+            if (l >= 0 && r >= 0 && keep[l] && keep[r])
+                par[uf_find(par, l)] = uf_find(par, r);
+        }
+        int32_t big = -1;
+        for (size_t f = 0; f < nf; f++)
+            if (keep[f])
+                sum[uf_find(par, (int32_t)f)] += area[f];
+        for (size_t f = 0; f < nf; f++)
+            if (keep[f] && uf_find(par, (int32_t)f) == (int32_t)f && (big < 0 || sum[f] > sum[big]))
+                big = (int32_t)f;
+        int changed = 0;
+        for (size_t k = 0; big >= 0 && k < ns; k++) {
+            int32_t l, r;
+            fm_cdt_segment_faces(cdt, k, &l, &r);
+            if (l < 0 || r < 0 || keep[l] == keep[r])
+                continue;
+            int32_t in = keep[l] ? l : r, out = keep[l] ? r : l;
+            if (drop[out] && uf_find(par, in) != big) {
+                drop[out] = 0;
+                keep[out] = 1;
+                changed = 1;
+                if (kept)
+                    (*kept)++;
+            }
+        }
+        if (!changed)
+            break;
+    }
+    free(sum);
+    return FM_OK;
+}
+
 static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char *keep_out,
                                size_t *kept, fm_error *err)
 {
@@ -1134,6 +1187,11 @@ static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char
             goto done;
         }
         keep[f] = (unsigned char)((inside && !drop[f]) || fill[f]);
+    }
+    st = mend_islands(cdt, fd, drop, keep, par, kept);
+    if (st != FM_OK) {
+        fm_error_set(err, st, NULL, 0, "out of memory");
+        goto done;
     }
     memcpy(keep_out, keep, nf);
 done:
