@@ -41,6 +41,8 @@ static fm_status add_faults(fm_report *rep, const run_state *rs, fm_error *err)
             .fitted_area = r->fitted_area,
             .carved = r->carved,
             .carved_area = r->carved_area,
+            .loss = rs->loss && r->set_index < rs->nfaults ? fm_loss_fault_at(rs->loss, r->set_index)
+                                                            : NULL,
         };
         st = fm_report_add_fault(rep, &f, err);
     }
@@ -154,6 +156,17 @@ static fm_status add_facts(fm_report *rep, const remesh_cli *cli, const run_stat
                   fm_connect_plan_nnodes(rs->plan), t.carved, t.carved_pairs, t.carved_sheets);
     else if (st == FM_OK)
         st = fact(rep, err, "connection", "none: every fault meshed on its own");
+    loss_totals lt;
+    loss_totals_of(rs, &lt);
+    if (st == FM_OK && rs->loss)
+        st = fact(rep, err, "what connecting cost",
+                  "outlines left beside another fault (unclosed gaps) %.1f km in %zu fault pairs "
+                  "(%zu over 2 H); original area missing %.2f km\u00b2 (%.3f%%), %.2f "
+                  "km\u00b2 of it away from every other fault; inside of an original moved up "
+                  "to %.0f m; %zu islands in %zu faults; %zu intersection curves left unjoined",
+                  lt.gap / 1e3, lt.gap_pairs, lt.gap_pairs_over_2H, lt.missing / 1e6,
+                  lt.orig_area > 0 ? 100 * lt.missing / lt.orig_area : 0, lt.missing_away / 1e6,
+                  lt.moved_max, lt.islands, lt.island_faults, lt.unjoined_curves);
     return st;
 }
 

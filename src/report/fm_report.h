@@ -54,6 +54,7 @@ typedef struct fm_report_fault {
     double fitted_area;        /* m^2, of the trimmed fitted surface */
     size_t carved;             /* triangles it gave up where it ran through another */
     double carved_area;        /* m^2 */
+    const fm_loss_fault *loss; /* what connecting cost it (copied); NULL when not measured */
 } fm_report_fault;
 
 fm_status fm_report_add_fault(fm_report *r, const fm_report_fault *f, fm_error *err);

@@ -281,6 +281,20 @@ static void figures(FILE *fp, const rp_fault *f)
     }
     if (f->carved)
         fprintf(fp, "<div>%zu triangles carved</div>", f->carved);
+    /* what connecting cost it (report.json's connect_measures), when anything */
+    const fm_loss_fault *l = &f->loss;
+    if (f->has_loss && l->missing_area > 0)
+        fprintf(fp, "<div>original area missing: %.3f km&sup2; (%.2f%%), %.3f km&sup2; of it "
+                    "away from other faults</div>",
+                l->missing_area / 1e6, l->orig_area > 0 ? 100 * l->missing_area / l->orig_area : 0,
+                l->missing_away / 1e6);
+    if (f->has_loss && l->islands)
+        fprintf(fp, "<div>%zu island%s (%zu triangles)</div>", l->islands,
+                l->islands > 1 ? "s" : "", l->island_triangles);
+    if (f->has_loss && l->moved_max > FM_FIDELITY_TOL)
+        fprintf(fp, "<div class=\"w\">inside of the original moved %.0f m</div>", l->moved_max);
+    if (f->has_loss && l->gap > 0)
+        fprintf(fp, "<div>outline left beside other faults: %.1f km</div>", l->gap / 1e3);
     if (f->join_error) {
         fputs("<div class=\"why\">", fp);
         esc(fp, f->join_error);

@@ -134,6 +134,9 @@ fm_status fm_report_add_fault(fm_report *r, const fm_report_fault *in, fm_error 
     f->fitted_area = in->fitted_area;
     f->carved = in->carved;
     f->carved_area = in->carved_area;
+    f->has_loss = in->loss != NULL;
+    if (in->loss)
+        f->loss = *in->loss;
     f->kind = classify(f);
     r->nf++;
     return FM_OK;

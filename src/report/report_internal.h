@@ -36,6 +36,8 @@ typedef struct rp_fault {
     double fitted_area;
     size_t carved;
     double carved_area;
+    int has_loss;
+    fm_loss_fault loss;
     rp_kind kind;
 } rp_fault;
 
