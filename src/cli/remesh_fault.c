@@ -225,14 +225,20 @@ static size_t kept_runs(const fm_connect_shared *sh, const curve_filter *flt, si
     return n;
 }
 
-/* Whether plan curve c lives on one sheet only: where a junction was
- * given up and one sheet stops short of the other instead. */
-static int lone_curve(const fm_connect_plan *plan, size_t c)
+/* Plan curve c as sheet s of fault f holds it: whether it lives on that
+ * sheet only (where a junction was given up and one sheet stops short of
+ * the other instead), and the sheet it is shared with (fault * 65536 +
+ * sheet; -1 when none). */
+static int curve_side(const fm_connect_plan *plan, size_t c, size_t f, size_t s, long *partner)
 {
+    *partner = -1;
     for (size_t i = 0; i < fm_connect_plan_njunctions(plan); i++) {
         const fm_connect_junction *jn = fm_connect_plan_junction(plan, i);
-        if (jn->curve == (long)c)
-            return jn->type == FM_JUNCTION_UNJOINED;
+        if (jn->curve != (long)c)
+            continue;
+        int o = jn->fault[0] == f && jn->sheet[0] == s;
+        *partner = (long)(jn->fault[o] * 65536 + jn->sheet[o]);
+        return jn->type == FM_JUNCTION_UNJOINED;
     }
     return 0;
 }
@@ -296,7 +302,7 @@ static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f
                 cv[k].n = runs[2 * q + 1];
                 cv[k].node = sh[c].node + at;
                 cv[k].end = sh[c].end;
-                cv[k].lone = lone_curve(plan, sh[c].curve);
+                cv[k].lone = curve_side(plan, sh[c].curve, f, i, &cv[k].partner);
                 k++;
             }
         }

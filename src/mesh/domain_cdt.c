@@ -130,6 +130,7 @@ void flat_free(flat_domain *f)
     free(f->shared);
     free(f->curve);
     free(f->end);
+    free(f->partner);
     memset(f, 0, sizeof *f);
 }
 

@@ -726,9 +726,12 @@ fm_status domain_join(const fm_fit_surface *s, remesh_domain *dom, const fm_reme
     fd->ends = malloc(4 * S * sizeof *fd->ends + 1);
     fd->curve = malloc(S * sizeof *fd->curve + 1);
     fd->end = malloc(S + 1);
+    fd->partner = malloc((nc + 1) * sizeof *fd->partner);
     if (!fd->uv || !fd->level || !fd->shared || !fd->seg || !fd->segs || !fd->ends || !fd->curve ||
-        !fd->end)
+        !fd->end || !fd->partner)
         goto nomem;
+    for (size_t c = 0; c < nc; c++)
+        fd->partner[c] = cv[c].partner;
     size_t np = 0, ns = 0;
     for (size_t l = 0; l < dom->n; l++) {
         const dom_loop *lp = &dom->loops[l];
@@ -1031,57 +1034,28 @@ static double flap_width(fm_cdt *cdt, const flat_domain *fd, int32_t f)
     return width;
 }
 
-/* Kept faces that only flaps joined to the rest would be islands: a
- * piece of the sheet cut off by the flaps dropped around it. Nothing of
- * the fault may be lost that way, so the flaps next to such a piece are
- * kept (its curves become interior there), until the kept faces are one
- * piece or no flap is left to keep. par is scratch (nf entries). */
-static fm_status mend_islands(fm_cdt *cdt, const flat_domain *fd, unsigned char *drop,
-                              unsigned char *keep, int32_t *par, size_t *kept)
+/* Whether face f may be kept as a flap: no curve shared with a partner
+ * that cuts f off also keeps f on its other side. Such a face lies beyond
+ * one curve of a pair of sheets and before another of the same pair (two
+ * faults meeting again): it is that second junction's to decide, and
+ * keeping it would run the sheet through the other. */
+static int flap_alone(fm_cdt *cdt, const flat_domain *fd, int32_t f)
 {
-    size_t nf = fm_cdt_nfaces(cdt), ns = fd->nseg;
-    const double *area = fm_cdt_face_areas(cdt);
-    double *sum = malloc((nf + 1) * sizeof *sum);
-    if (!sum)
-        return FM_ERR_NOMEM;
-    for (int round = 0; round < 64; round++) {
-        for (size_t f = 0; f < nf; f++) {
-            par[f] = (int32_t)f;
-            sum[f] = 0;
+    for (size_t k = fd->n; k < fd->nseg; k++) {
+        int32_t l, r;
+        fm_cdt_segment_faces(cdt, k, &l, &r);
+        if (fd->curve[k] < 0 || !fd->end[k] || l != f)
+            continue;
+        long pk = fd->partner[fd->curve[k]];
+        for (size_t q = fd->n; q < fd->nseg; q++) {
+            int32_t lq, rq;
+            fm_cdt_segment_faces(cdt, q, &lq, &rq);
+            if (fd->curve[q] >= 0 && fd->end[q] == 1 && rq == f &&
+                fd->partner[fd->curve[q]] == pk)
+                return 0;
         }
-        for (size_t k = 0; k < ns; k++) {
-            int32_t l, r;
-            fm_cdt_segment_faces(cdt, k, &l, &r);
-            if (l >= 0 && r >= 0 && keep[l] && keep[r])
-                par[uf_find(par, l)] = uf_find(par, r);
-        }
-        int32_t big = -1;
-        for (size_t f = 0; f < nf; f++)
-            if (keep[f])
-                sum[uf_find(par, (int32_t)f)] += area[f];
-        for (size_t f = 0; f < nf; f++)
-            if (keep[f] && uf_find(par, (int32_t)f) == (int32_t)f && (big < 0 || sum[f] > sum[big]))
-                big = (int32_t)f;
-        int changed = 0;
-        for (size_t k = 0; big >= 0 && k < ns; k++) {
-            int32_t l, r;
-            fm_cdt_segment_faces(cdt, k, &l, &r);
-            if (l < 0 || r < 0 || keep[l] == keep[r])
-                continue;
-            int32_t in = keep[l] ? l : r, out = keep[l] ? r : l;
-            if (drop[out] && uf_find(par, in) != big) {
-                drop[out] = 0;
-                keep[out] = 1;
-                changed = 1;
-                if (kept)
-                    (*kept)++;
-            }
-        }
-        if (!changed)
-            break;
     }
-    free(sum);
-    return FM_OK;
+    return 1;
 }
 
 static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char *keep_out,
@@ -1157,7 +1131,8 @@ static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char
      * does not explain, and stays (the sheet runs on past the curve there;
      * the gap on the curve's other side is filled all the same). */
     for (size_t f = 0; fd->flap_max > 0 && fd->surf && f < nf; f++)
-        if (drop[f] && !fill[f] && flap_width(cdt, fd, (int32_t)f) > fd->flap_max) {
+        if (drop[f] && !fill[f] && flap_alone(cdt, fd, (int32_t)f) &&
+            flap_width(cdt, fd, (int32_t)f) > fd->flap_max) {
             drop[f] = 0;
             if (kept)
                 (*kept)++;
@@ -1187,11 +1162,6 @@ static fm_status join_classify(fm_cdt *cdt, const flat_domain *fd, unsigned char
             goto done;
         }
         keep[f] = (unsigned char)((inside && !drop[f]) || fill[f]);
-    }
-    st = mend_islands(cdt, fd, drop, keep, par, kept);
-    if (st != FM_OK) {
-        fm_error_set(err, st, NULL, 0, "out of memory");
-        goto done;
     }
     memcpy(keep_out, keep, nf);
 done:

@@ -121,6 +121,9 @@ typedef struct fm_remesh_curve {
     int lone;             /* the sheet ends at it alone, short of another surface it
                              would otherwise run through: the flap beyond is dropped
                              whatever its width (fm_remesh_options.flap_max) */
+    long partner;         /* the sheet it is shared with, in the caller's numbering (-1:
+                             none): a flap the same partner's curve keeps on its other side
+                             is that junction's to decide, so it goes whatever its width */
 } fm_remesh_curve;
 
 /* fm_remesh_sheet with shared curves. node_out (may be NULL) receives per

@@ -115,6 +115,7 @@ typedef struct flat_domain {
      * (fm_remesh_options.flap_max). */
     const fm_fit_surface *surf;
     double flap_max;
+    long *partner;     /* per shared curve: fm_remesh_curve.partner */
     size_t flaps_kept; /* set by join_reduce: flaps wider than flap_max kept */
 } flat_domain;
 void flat_free(flat_domain *f);

@@ -695,7 +695,7 @@ static void test_curve_through_notch(void)
     int64_t *ids = malloc(nq * sizeof *ids);
     for (size_t i = 0; i < nq; i++)
         ids[i] = 100 + (int64_t)i;
-    fm_remesh_curve cv = {uv, nq, ids, 1, 0};
+    fm_remesh_curve cv = {uv, nq, ids, 1, 0, -1};
     const fm_trim_loop *loops[1] = {loop};
     fm_remesh_options opt;
     fm_remesh_options_default(&opt);
