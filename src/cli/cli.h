@@ -35,6 +35,12 @@ extern const char *fm_cli_repair_help;
  * fm_input_list_free), or -1 after printing why (a missing path). */
 long fm_input_list(char *const *args, size_t nargs, char ***out);
 void fm_input_list_free(char **list, long n);
+/* Refuses (-1, after printing why) an output folder that would put the
+ * inputs at risk: the folder an input file lies in (an output of the same
+ * name would replace it), or an input folder or one inside it (the
+ * outputs would be read as inputs next time). Nothing is created. */
+int fm_output_guard(const char *outdir, char *const *args, size_t nargs, char *const *files,
+                    long nfiles);
 
 /* Parses a non-negative number option value; prints and returns -1 on
  * error. */

@@ -1,3 +1,6 @@
+/* realpath */
+#define _XOPEN_SOURCE 700
+
 #include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
@@ -56,7 +59,39 @@ static char *join(const char *dir, const char *name)
     return p;
 }
 
-static int walk(const char *dir, strvec *out)
+/* Folders read so far, by device and inode: a symbolic link back up the
+ * tree (ln -s . x) would otherwise have the walk read everything again,
+ * or for ever with two such links. */
+typedef struct seen_dirs {
+    dev_t *dev;
+    ino_t *ino;
+    size_t n, cap;
+} seen_dirs;
+
+/* 1 when dir (stat sb) was read already, 0 after noting it, -1 when out
+ * of memory. */
+static int seen_before(seen_dirs *s, const struct stat *sb)
+{
+    for (size_t i = 0; i < s->n; i++)
+        if (s->dev[i] == sb->st_dev && s->ino[i] == sb->st_ino)
+            return 1;
+    if (s->n == s->cap) {
+        size_t cap = s->cap ? 2 * s->cap : 64;
+        dev_t *d = realloc(s->dev, cap * sizeof *d);
+        if (d)
+            s->dev = d;
+        ino_t *i = d ? realloc(s->ino, cap * sizeof *i) : NULL;
+        if (!d || !i)
+            return -1;
+        s->ino = i;
+        s->cap = cap;
+    }
+    s->dev[s->n] = sb->st_dev;
+    s->ino[s->n++] = sb->st_ino;
+    return 0;
+}
+
+static int walk(const char *dir, strvec *out, seen_dirs *seen)
 {
     DIR *d = opendir(dir);
     if (!d) {
@@ -82,7 +117,14 @@ static int walk(const char *dir, strvec *out)
         if (!path) {
             rc = -1;
         } else if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
-            rc = walk(path, out);
+            int again = seen_before(seen, &sb);
+            if (again < 0)
+                rc = -1;
+            else if (again)
+                fprintf(stderr, "faultmesh: %s: a folder read already (a symbolic link loops "
+                                "back to it), skipped\n", path);
+            else
+                rc = walk(path, out, seen);
         } else if (has_ts_suffix(names.v[i])) {
             rc = push(out, path);
         }
@@ -97,21 +139,34 @@ static int walk(const char *dir, strvec *out)
 long fm_input_list(char *const *args, size_t nargs, char ***out)
 {
     strvec list = {0};
+    seen_dirs seen = {0};
+    long n = -1;
     for (size_t i = 0; i < nargs; i++) {
         struct stat sb;
         if (stat(args[i], &sb) != 0) {
             fprintf(stderr, "faultmesh: %s: %s\n", args[i], strerror(errno));
-            fm_input_list_free(list.v, list.n);
-            return -1;
+            goto done;
         }
-        int rc = S_ISDIR(sb.st_mode) ? walk(args[i], &list) : push(&list, args[i]);
-        if (rc) {
-            fm_input_list_free(list.v, list.n);
-            return -1;
+        int rc = 0;
+        if (!S_ISDIR(sb.st_mode))
+            rc = push(&list, args[i]);
+        else if ((rc = seen_before(&seen, &sb)) == 0)
+            rc = walk(args[i], &list, &seen);
+        else if (rc > 0) {
+            fprintf(stderr, "faultmesh: %s: a folder read already, skipped\n", args[i]);
+            rc = 0;
         }
+        if (rc)
+            goto done;
     }
     *out = list.v;
-    return list.n;
+    n = list.n;
+done:
+    if (n < 0)
+        fm_input_list_free(list.v, list.n);
+    free(seen.dev);
+    free(seen.ino);
+    return n;
 }
 
 void fm_input_list_free(char **list, long n)
@@ -119,6 +174,110 @@ void fm_input_list_free(char **list, long n)
     for (long i = 0; i < n; i++)
         free(list[i]);
     free(list);
+}
+
+/* The absolute, symbolic-link-free form of path, which need not exist
+ * yet: its longest existing ancestor resolved, the rest appended
+ * (malloc'ed; NULL when nothing of it resolves or out of memory). */
+static char *resolve(const char *path)
+{
+    char *r = realpath(path, NULL);
+    if (r)
+        return r;
+    size_t n = strlen(path);
+    char *head = malloc(n + 1);
+    if (!head)
+        return NULL;
+    memcpy(head, path, n + 1);
+    while (n > 0 && head[n - 1] == '/')
+        head[--n] = '\0';
+    char *slash = strrchr(head, '/');
+    const char *tail = slash ? slash + 1 : head;
+    char *parent = NULL;
+    if (!slash)
+        parent = realpath(".", NULL);
+    else if (slash == head)
+        parent = realpath("/", NULL);
+    else {
+        *slash = '\0';
+        parent = resolve(head);
+    }
+    char *out = NULL;
+    if (parent && strcmp(tail, ".") && strcmp(tail, "..") && *tail) {
+        out = join(parent, tail);
+    } else if (parent && (!strcmp(tail, ".") || !*tail)) {
+        out = parent;
+        parent = NULL;
+    }
+    free(parent);
+    free(head);
+    return out;
+}
+
+/* 1 when path is dir or lies inside it (both resolved). */
+static int within(const char *path, const char *dir)
+{
+    size_t n = strlen(dir);
+    if (n == 1 && dir[0] == '/')
+        return 1;
+    return !strncmp(path, dir, n) && (path[n] == '\0' || path[n] == '/');
+}
+
+int fm_output_guard(const char *outdir, char *const *args, size_t nargs, char *const *files,
+                    long nfiles)
+{
+    char *out = resolve(outdir);
+    if (!out) {
+        fprintf(stderr, "faultmesh: %s: cannot tell where the output folder is: %s\n", outdir,
+                strerror(errno));
+        return -1;
+    }
+    int rc = 0;
+    for (size_t i = 0; i < nargs && !rc; i++) {
+        struct stat sb;
+        char *in = stat(args[i], &sb) == 0 && S_ISDIR(sb.st_mode) ? resolve(args[i]) : NULL;
+        if (in && within(out, in)) {
+            fprintf(stderr,
+                    "faultmesh: output folder %s is the input folder %s or lies inside it: the "
+                    "outputs could replace inputs and would be read as inputs; choose another "
+                    "-o\n",
+                    outdir, args[i]);
+            rc = -1;
+        }
+        free(in);
+    }
+    for (long i = 0; i < nfiles && !rc; i++) {
+        /* the folder the path names (a link replaced would be lost too),
+         * and the one its target lies in */
+        char *dir = malloc(strlen(files[i]) + 3);
+        if (!dir) {
+            rc = -1;
+            break;
+        }
+        strcpy(dir, files[i]);
+        char *slash = strrchr(dir, '/');
+        if (slash)
+            slash[1] = '\0';
+        else
+            strcpy(dir, ".");
+        char *a = resolve(dir), *t = realpath(files[i], NULL), *b = NULL;
+        if (t && (slash = strrchr(t, '/')) != NULL) {
+            *slash = '\0';
+            b = t[0] ? t : NULL;
+        }
+        if ((a && !strcmp(a, out)) || (b && !strcmp(b, out)) || (t && !b && !strcmp(out, "/"))) {
+            fprintf(stderr,
+                    "faultmesh: output folder %s holds the input %s, which an output of the "
+                    "same name would replace; choose another -o\n",
+                    outdir, files[i]);
+            rc = -1;
+        }
+        free(a);
+        free(t);
+        free(dir);
+    }
+    free(out);
+    return rc;
 }
 
 int fm_parse_double(const char *opt, const char *s, double *out)

@@ -94,6 +94,13 @@ endif()
 add_test(NAME remesh_cli
   COMMAND bash ${FM_TOOLS}/remesh_cli_test.sh $<TARGET_FILE:faultmesh_cli> ${CMAKE_CURRENT_SOURCE_DIR}/data
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_cli)
+# inputs_safe: an output folder that could replace an input or be read as
+# one is refused before any work; symbolic link loops in input folders are
+# read once (issue 18, items 1 and 2)
+add_test(NAME inputs_safe
+  COMMAND bash ${FM_TOOLS}/inputs_safe_test.sh $<TARGET_FILE:faultmesh_cli>
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/inputs_safe)
+set_tests_properties(inputs_safe PROPERTIES TIMEOUT 600)
 add_test(NAME remesh_progress
   COMMAND bash ${FM_TOOLS}/remesh_progress_check.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_progress)
