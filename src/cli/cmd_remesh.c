@@ -189,6 +189,25 @@ static void *html_worker(void *arg)
     return NULL;
 }
 
+/* The whole run, bounded as each fault is (fit_file): refused before the
+ * junctions and meshes are made when its faults together call for more
+ * triangles than the limit. 1 after saying so. */
+static int too_many_triangles(const remesh_cli *cli, const file_job *jobs, size_t n)
+{
+    double sum = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t o = 0; jobs[i].model && o < jobs[i].n; o++)
+            if (jobs[i].model[o])
+                sum += jobs[i].res[o].expected;
+    if (!cli->max_triangles || sum <= (double)cli->max_triangles)
+        return 0;
+    fprintf(stderr,
+            "faultmesh: at the sizes asked the faults call for about %.3g triangles, more than "
+            "--max-triangles %zu: give a larger size, or raise the limit\n",
+            sum, cli->max_triangles);
+    return 1;
+}
+
 static int run(const remesh_cli *cli, char **files, long nfiles)
 {
     fm_error err;
@@ -210,7 +229,7 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         jobs[i].path = files[i];
     double t0 = fm_clock_seconds();
     run_jobs(cli, NULL, 0, NULL, jobs, (size_t)nfiles);
-    if (settle_crs(cli, jobs, (size_t)nfiles, &rs)) {
+    if (too_many_triangles(cli, jobs, (size_t)nfiles) || settle_crs(cli, jobs, (size_t)nfiles, &rs)) {
         for (long i = 0; i < nfiles; i++)
             abandon_job(&jobs[i]);
         free(jobs);

@@ -469,6 +469,23 @@ void fit_file(const remesh_cli *cli, file_job *job)
         if (fit_object(cli, path, fm_tsurf_mesh(job->objs[o]), r, &job->model[o], &err) != FM_OK) {
             r->status = "error";
             r->error = strdup(err.message);
+            continue;
+        }
+        /* what its size asks for, before anything is spent on it: an
+         * equilateral triangle of side H covers sqrt(3)/4 H^2 */
+        r->fitted_area =
+            fitted_area(job->model[o], r->mesh.top != FM_TOP_KEEP, r->mesh.sea_level);
+        r->expected = r->fitted_area / (0.4330127018922193 * r->mesh.size * r->mesh.size);
+        if (cli->max_triangles && r->expected > (double)cli->max_triangles) {
+            char msg[400];
+            snprintf(msg, sizeof msg,
+                     "%s: at size %g m its %.3g km2 call for about %.3g triangles, more than "
+                     "--max-triangles %zu: give a larger size, or raise the limit",
+                     path, r->mesh.size, r->fitted_area / 1e6, r->expected, cli->max_triangles);
+            r->status = "error";
+            r->error = strdup(msg);
+            fm_model_destroy(job->model[o]);
+            job->model[o] = NULL;
         }
     }
 }

@@ -23,7 +23,7 @@ static fm_status add_faults(fm_report *rep, const run_state *rs, fm_error *err)
     for (size_t i = 0; st == FM_OK && i < rs->nres; i++) {
         const fault_result *r = &rs->res[i];
         int ok = r->status && !strcmp(r->status, "ok");
-        char w[3][160];
+        char w[FM_MAX_WARNINGS][160];
         const char *warn[3] = {w[0], w[1], w[2]};
         fm_report_fault f = {
             .name = r->name,

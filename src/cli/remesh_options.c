@@ -41,6 +41,9 @@ void remesh_usage(FILE *fp)
             "                        area gives way there, reported)\n"
             "  --join D              join faults whose surfaces come within D metres\n"
             "                        (default 1000)\n"
+            "  --max-triangles N     refuse a fault, or the run, whose size calls for more\n"
+            "                        than N triangles over its fitted area (default\n"
+            "                        20000000, what a 24 GB machine holds; 0: no limit)\n"
             "  --keep-duplicate smaller|larger\n"
             "                        of two faults that nearly duplicate each other (half\n"
             "                        the area of one within 50 m of the other, as rupture\n"
@@ -137,6 +140,9 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     } else if (!strcmp(a, "--keep-crossings")) {
         cli->carve = 0;
         return 1;
+    } else if (!strcmp(a, "--max-triangles")) {
+        if (fm_parse_size(a, val, &cli->max_triangles))
+            return -1;
     } else if (!strcmp(a, "--join")) {
         if (fm_parse_double(a, val, &cli->join) || !(cli->join > 0))
             return -1;
@@ -198,6 +204,7 @@ void cli_defaults(remesh_cli *cli)
     cli->carve = 1;
     cli->html = 1;
     cli->join = 1000;
+    cli->max_triangles = FM_DEFAULT_MAX_TRIANGLES;
     cli->keep = FM_CONNECT_KEEP_SMALLER;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     cli->jobs = ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;

@@ -19,7 +19,7 @@ static const char *top_name(fm_top_mode t)
  * of the check that the mesh issue bounds, when this fault breaks them.
  * Writes up to three messages into w (each up to 160 bytes); returns the
  * count. Nodes of an extended top lie off the original by design. */
-int fault_warnings(const fault_result *r, char w[3][160])
+int fault_warnings(const fault_result *r, char w[FM_MAX_WARNINGS][160])
 {
     int n = 0;
     /* A node past the original's edge is expected where the fault closes
@@ -34,6 +34,12 @@ int fault_warnings(const fault_result *r, char w[3][160])
         snprintf(w[n++], 160,
                  "nodes up to %.0f m past the original's edge (the fitted outline bulges out)",
                  r->fid.beyond_max);
+    /* A size near the fault's own extent leaves a few triangles that
+     * follow neither its outline nor its shape. */
+    if (r->expected > 0 && r->expected < 8)
+        snprintf(w[n++], 160, "size %g m is %s the fault: its %.3g km2 call for %.2g triangles",
+                 r->mesh.size, r->expected < 1 ? "larger than" : "about the extent of",
+                 r->fitted_area / 1e6, r->expected);
     size_t loose = r->q.below_20 - r->q.below_20_forced;
     if (loose > 0)
         snprintf(w[n++], 160,
@@ -56,7 +62,7 @@ void print_fault(const fault_result *r, double H)
            100.0 * (double)r->q.below_30 / (double)(r->q.triangles ? r->q.triangles : 1),
            100.0 * (double)r->q.edges_in_band / (double)(r->q.edges ? r->q.edges : 1), r->fid.rms,
            r->fid.max, r->ms.cut ? "  cut" : "");
-    char w[3][160];
+    char w[FM_MAX_WARNINGS][160];
     int nw = fault_warnings(r, w);
     for (int k = 0; k < nw; k++)
         printf("    warning: %s\n", w[k]);
@@ -199,7 +205,7 @@ static void json_fault(fm_json *j, const run_state *rs, const fault_result *r, d
         if (r->ms.flaps_kept) {
             fm_json_kv_int(j, "flaps_kept", (int64_t)r->ms.flaps_kept);
         }
-        char w[3][160];
+        char w[FM_MAX_WARNINGS][160];
         int nw = fault_warnings(r, w);
         fm_json_key(j, "warnings");
         fm_json_begin_array(j);
@@ -372,7 +378,7 @@ void run_totals_of(const run_state *rs, run_totals *t)
         if (strcmp(st, "ok"))
             continue;
         t->ok++;
-        char w[3][160];
+        char w[FM_MAX_WARNINGS][160];
         t->warned += fault_warnings(r, w) > 0;
         t->sheets += r->sheets;
         t->triangles += r->q.triangles;

@@ -45,7 +45,16 @@ typedef struct remesh_cli {
     int carve;    /* remove what still crosses between faults (default 1 when connecting) */
     sim_cli sim;          /* --slip, --metadata, --eqsim-coords */
     int html;             /* write report.html (default 1) */
+    size_t max_triangles; /* refuse a fault or run expected to need more (0: no limit) */
 } remesh_cli;
+
+/* Triangles a run may be expected to make by default: what a 24 GB
+ * machine holds through the whole pipeline (about 0.75 kB per triangle
+ * measured on the whole CFM at 500 m), with room to spare. */
+#define FM_DEFAULT_MAX_TRIANGLES 20000000
+
+/* Messages fault_warnings gives at most. */
+#define FM_MAX_WARNINGS 4
 
 /* What one fault came to, for report.json. */
 typedef struct fault_result {
@@ -61,6 +70,7 @@ typedef struct fault_result {
     fm_fidelity fid;
     fm_remesh_stats ms;
     double fitted_area;  /* trimmed fitted surface (below sea level when cut), m^2 */
+    double expected;     /* triangles its size calls for over that area */
     double t_fit, t_mesh, t_check;
     unsigned char *join_failed; /* per sheet: its shared curves did not fit (meshed without) */
     char *join_error;           /* why, for the first such sheet */
@@ -197,9 +207,9 @@ void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp);
 void print_fault(const fault_result *r, double H);
 fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_attrs *sa,
                        fm_error *err);
-/* What a user should look at before trusting meshed fault r: up to three
- * messages in w; their count. */
-int fault_warnings(const fault_result *r, char w[3][160]);
+/* What a user should look at before trusting meshed fault r: up to
+ * FM_MAX_WARNINGS messages in w; their count. */
+int fault_warnings(const fault_result *r, char w[FM_MAX_WARNINGS][160]);
 
 /* remesh_loss.c */
 typedef struct loss_totals {

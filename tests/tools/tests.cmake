@@ -94,6 +94,13 @@ endif()
 add_test(NAME remesh_cli
   COMMAND bash ${FM_TOOLS}/remesh_cli_test.sh $<TARGET_FILE:faultmesh_cli> ${CMAKE_CURRENT_SOURCE_DIR}/data
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_cli)
+# remesh_bounds: a size that calls for more triangles than --max-triangles
+# refuses the fault or the run before anything is spent on it (issue 18,
+# item 3)
+add_test(NAME remesh_bounds
+  COMMAND bash ${FM_TOOLS}/remesh_bounds_test.sh $<TARGET_FILE:faultmesh_cli>
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_bounds)
+set_tests_properties(remesh_bounds PROPERTIES TIMEOUT 600)
 # inputs_safe: an output folder that could replace an input or be read as
 # one is refused before any work; symbolic link loops in input folders are
 # read once (issue 18, items 1 and 2)
