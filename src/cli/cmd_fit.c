@@ -255,6 +255,11 @@ int fm_cmd_fit(int argc, char **argv)
     }
     char **files = NULL;
     long nfiles = rc ? -1 : fm_input_list(paths, npaths, &files);
+    if (nfiles == 0) {
+        fprintf(stderr, "faultmesh fit: no .ts files found\n");
+        fm_input_list_free(files, nfiles);
+        nfiles = -1;
+    }
     if (nfiles >= 0 && fm_output_guard(cli.dir, paths, npaths, files, nfiles)) {
         fm_input_list_free(files, nfiles);
         nfiles = -1;

@@ -391,6 +391,11 @@ static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **c
     }
     char **files = NULL;
     long nfiles = fm_input_list(paths, npaths, &files);
+    if (nfiles == 0) {
+        fprintf(stderr, "faultmesh remesh: no .ts files found\n");
+        fm_input_list_free(files, nfiles);
+        nfiles = -1;
+    }
     if (nfiles >= 0 && fm_output_guard(cli.dir, paths, npaths, files, nfiles)) {
         fm_input_list_free(files, nfiles);
         nfiles = -1;

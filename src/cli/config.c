@@ -4,11 +4,13 @@
 #include "config.h"
 
 #include <ctype.h>
+#include <errno.h>
 #include <fnmatch.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 static void entry_free(cfg_entry *e)
 {
@@ -350,9 +352,15 @@ static int parse(reader *r, FILE *fp, config *c)
 
 config *config_read(const char *path)
 {
+    struct stat sb;
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        fprintf(stderr, "faultmesh: %s: a folder, not a settings file\n", path);
+        return NULL;
+    }
     FILE *fp = fopen(path, "r");
     if (!fp) {
-        fprintf(stderr, "faultmesh: %s: cannot read the settings file\n", path);
+        fprintf(stderr, "faultmesh: %s: cannot read the settings file: %s\n", path,
+                strerror(errno));
         return NULL;
     }
     config *c = calloc(1, sizeof *c);

@@ -285,7 +285,9 @@ int fm_parse_double(const char *opt, const char *s, double *out)
     char *end;
     errno = 0;
     double v = s ? strtod(s, &end) : 0.0;
-    if (!s || end == s || *end || errno || !(v >= 0.0) || v > 1e12) {
+    /* decimal only: strtod also takes hexadecimal (0x10), inf and nan */
+    int decimal = s && s[strspn(s, "0123456789.eE+-")] == '\0';
+    if (!s || !decimal || end == s || *end || errno || !(v >= 0.0) || v > 1e12) {
         fprintf(stderr, "faultmesh: %s needs a non-negative number, got '%s'\n", opt,
                 s ? s : "");
         return -1;

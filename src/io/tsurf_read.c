@@ -307,6 +307,10 @@ static fm_status do_trgl(reader *r, const char *p, const char *e)
         if (s != FM_OK)
             return s;
     }
+    /* a fourth index is no triangle: dropping it would mesh a surface the
+     * file does not describe */
+    if (fm_lex_skip_ws(p, e) != e)
+        return fail(r, r->L.line, FM_ERR_PARSE, "TRGL has more than three vertex ids");
     open_part_if_needed(r);
     if (fm_mesh_add_triangle(r->ts->mesh, v[0], v[1], v[2], (int32_t)(r->ts->nparts - 1)) < 0)
         return nomem(r);
@@ -729,6 +733,12 @@ fm_status fm_tsurf_read_buffer(const char *name, const char *buf, size_t len,
     r.st = S_TOP;
     fm_idmap_init(&r.ids);
 
+    /* UTF-16 (Windows editors save it so) holds NUL bytes too: named for
+     * what it is, so the user knows to convert it. */
+    if (len >= 2 && (memcmp(buf, "\xFF\xFE", 2) == 0 || memcmp(buf, "\xFE\xFF", 2) == 0))
+        return fm_error_set(err, FM_ERR_PARSE, name, 1,
+                            "UTF-16 text (byte order mark %s): save it as UTF-8 or ASCII",
+                            buf[0] == '\xFF' ? "FF FE" : "FE FF");
     /* A NUL byte never occurs in text; one scan of the buffer settles it
      * before any line is looked at. */
     const char *nul = len ? memchr(buf, '\0', len) : NULL;

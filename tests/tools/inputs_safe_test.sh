@@ -6,6 +6,8 @@
 # real folder once: symbolic links back up the tree (one, two, through a
 # subfolder) are reported and skipped, never read again or looped on; a
 # dangling link is one failed input; a link out of the tree is followed.
+# A folder with no .ts file, a folder as the settings file and numbers
+# that are not decimal are usage errors (exit 2).
 # usage: inputs_safe_test.sh FAULTMESH TMPDIR
 set -u
 exe=$1 tmp=$2
@@ -56,6 +58,19 @@ expect_rc 1 "remesh with a dangling link" timeout 120 "$exe" remesh --quiet --si
 [ "$(json "$tmp/links/report.json" "len(r['faults'])")" = 4 ] && ok ||
     bad "dangling and outside links: $(json "$tmp/links/report.json" "[f['file'] for f in r['faults']]")"
 [ "$(sums)" = "$before" ] && ok || bad "inputs changed by the link runs"
+# usage that used to pass for something else: a folder with no .ts file,
+# a folder given as the settings file, numbers other than decimal
+mkdir -p "$tmp/none"
+for cmd in remesh fit; do
+    expect_rc 2 "$cmd on a folder with no .ts file" "$exe" "$cmd" -o "$tmp/none-out" "$tmp/none"
+    grep -q "no .ts files found" "$tmp/err" && ok || bad "$cmd no .ts: $(cat "$tmp/err")"
+done
+expect_rc 2 "--config naming a folder" "$exe" remesh --config "$tmp/none" -o "$tmp/cfg" "$tmp/s"
+grep -q "a folder, not a settings file" "$tmp/err" && ok || bad "--config folder: $(cat "$tmp/err")"
+for v in 0x10 inf nan 1e3x; do
+    expect_rc 2 "--size $v" "$exe" remesh --size "$v" -o "$tmp/num" "$tmp/s"
+done
+[ ! -e "$tmp/none-out" ] && [ ! -e "$tmp/num" ] && ok || bad "a refused run created its output folder"
 echo "inputs safe: $pass passed, $fail failed"
 [ "$fail" = 0 ] && rm -rf "$tmp"
 [ "$fail" = 0 ]
