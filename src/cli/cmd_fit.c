@@ -10,6 +10,7 @@
 #include "fm_json.h"
 #include "fm_model.h"
 #include "fm_model_write.h"
+#include "fm_names.h"
 #include "fm_sort.h"
 #include "fm_tsurf.h"
 
@@ -64,21 +65,6 @@ static fault_figures combine(const fm_model *m)
     return f;
 }
 
-/* A file name from a fault name: path separators and oddities become '_'. */
-static void safe_name(const char *name, char *out, size_t n)
-{
-    size_t k = 0;
-    for (const char *p = name; *p && k + 1 < n; p++) {
-        char c = *p;
-        int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                 c == '-' || c == '_' || c == '.';
-        out[k++] = ok ? c : '_';
-    }
-    out[k] = '\0';
-    if (k == 0 || out[0] == '.')
-        snprintf(out, n, "fault");
-}
-
 static fm_status write_outputs(const fit_cli *cli, const char *base, const char *name,
                                const fm_model *m, fm_error *err)
 {
@@ -102,8 +88,8 @@ static fm_status write_outputs(const fit_cli *cli, const char *base, const char 
 
 /* Fits one file; appends its faults to the report. Returns the number of
  * faults that failed (a file that cannot be read counts as one). */
-static int fit_file(const fit_cli *cli, const char *path, fm_json *j, double **rms,
-                    size_t *nrms, size_t *within)
+static int fit_file(const fit_cli *cli, fm_namer *nm, const char *path, fm_json *j,
+                    double **rms, size_t *nrms, size_t *within)
 {
     fm_tsurf **objs = NULL;
     size_t nobj = 0;
@@ -121,11 +107,12 @@ static int fit_file(const fit_cli *cli, const char *path, fm_json *j, double **r
     int failed = 0;
     for (size_t o = 0; o < nobj; o++) {
         const char *name = fm_tsurf_name(objs[o]);
-        char base[256];
-        safe_name(name[0] ? name : path, base, sizeof base);
-        if (nobj > 1) {
-            size_t l = strlen(base);
-            snprintf(base + l, sizeof base - l, "_%zu", o);
+        /* one naming rule with remesh, over the whole run */
+        const char *base = fm_namer_next(nm, name[0] ? name : path);
+        if (!base) {
+            fprintf(stderr, "faultmesh: %s: out of memory\n", path);
+            failed++;
+            continue;
         }
         fm_surface *surf = NULL;
         fm_model *model = NULL;
@@ -295,8 +282,10 @@ int fm_cmd_fit(int argc, char **argv)
     double *rms = NULL;
     size_t nrms = 0, within = 0;
     long failed = 0;
+    fm_namer *nm = fm_namer_create();
     for (long i = 0; i < nfiles; i++)
-        failed += fit_file(&cli, files[i], &j, &rms, &nrms, &within);
+        failed += nm ? fit_file(&cli, nm, files[i], &j, &rms, &nrms, &within) : 1;
+    fm_namer_destroy(nm);
     fm_json_end_array(&j);
     double median = fm_median(rms, nrms);
     fm_json_key(&j, "summary");

@@ -6,46 +6,9 @@
 #include <string.h>
 
 #include "fm_atomic.h"
+#include "fm_names.h"
 #include "fm_tsurf.h"
 #include "faultset_internal.h"
-
-#define STEM_MAX 200
-
-static int keep(unsigned char c)
-{
-    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-           c == '.' || c == '-' || c == '_';
-}
-
-static int same_ignoring_case(const char *a, const char *b)
-{
-    for (; *a && *b; a++, b++) {
-        char x = *a >= 'A' && *a <= 'Z' ? (char)(*a + 32) : *a;
-        char y = *b >= 'A' && *b <= 'Z' ? (char)(*b + 32) : *b;
-        if (x != y)
-            return 0;
-    }
-    return *a == *b;
-}
-
-/* The rule of the header, without the suffixes. */
-static char *stem(const char *name)
-{
-    char *s = malloc(STEM_MAX + 1);
-    if (!s)
-        return NULL;
-    size_t n = 0;
-    for (const char *c = name; *c && n < STEM_MAX; c++) {
-        if (keep((unsigned char)*c))
-            s[n++] = *c;
-        else if (c == name || keep((unsigned char)c[-1])) /* first of a run */
-            s[n++] = '_';
-    }
-    s[n] = '\0';
-    if (s[0] == '.')
-        s[0] = '_';
-    return s;
-}
 
 void fm_faultset_free_file_names(char **names, size_t n)
 {
@@ -61,28 +24,20 @@ static fm_status file_names(const fm_faultset *fs, char ***out, fm_error *err)
 {
     *out = NULL;
     char **names = calloc(fs->nfaults, sizeof *names);
-    if (!names)
+    fm_namer *nm = fm_namer_create();
+    for (size_t i = 0; names && nm && i < fs->nfaults; i++) {
+        const char *stem = fm_namer_next(nm, fs->names[i]);
+        size_t len = stem ? strlen(stem) + 4 : 0;
+        names[i] = stem ? malloc(len) : NULL;
+        if (!names[i])
+            break;
+        snprintf(names[i], len, "%s.ts", stem);
+    }
+    int ok = names && nm && (fs->nfaults == 0 || names[fs->nfaults - 1]);
+    fm_namer_destroy(nm);
+    if (!ok) {
+        fm_faultset_free_file_names(names, names ? fs->nfaults : 0);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
-    for (size_t i = 0; i < fs->nfaults; i++) {
-        char *base = stem(fs->names[i]);
-        /* base, "-" and a counter (at most 20 digits), ".ts" */
-        names[i] = malloc(STEM_MAX + 32);
-        if (!base || !names[i]) {
-            free(base);
-            fm_faultset_free_file_names(names, fs->nfaults);
-            return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
-        }
-        /* Compare stems with their ".ts" so that "a-2" and a renamed "a" meet. */
-        snprintf(names[i], STEM_MAX + 32, "%s.ts", base);
-        for (size_t k = 2;; k++) {
-            size_t j = 0;
-            while (j < i && !same_ignoring_case(names[j], names[i]))
-                j++;
-            if (j == i)
-                break;
-            snprintf(names[i], STEM_MAX + 32, "%s-%zu.ts", base, k);
-        }
-        free(base);
     }
     *out = names;
     return FM_OK;
@@ -177,7 +132,7 @@ int fs_tsurf_scratch_init(fs_tsurf_scratch *sc, const fs_tsurf_plan *pl)
     size_t nv = fm_mesh_nvertices(pl->fs->mesh);
     sc->map = malloc((nv ? nv : 1) * sizeof *sc->map);
     sc->used = malloc((pl->max_uses ? pl->max_uses : 1) * sizeof *sc->used);
-    sc->path = malloc(strlen(pl->dir) + STEM_MAX + 40);
+    sc->path = malloc(strlen(pl->dir) + FM_STEM_MAX + 40);
     if (!sc->map || !sc->used || !sc->path)
         return -1;
     for (size_t v = 0; v < nv; v++)

@@ -188,13 +188,8 @@ fm_status fm_faultset_write_obj(const char *path, const fm_faultset *fs, fm_erro
  * GOCAD_ORIGINAL_COORDINATE_SYSTEM block is the CFM's (metres, z up,
  * "ZPOSITIVE Elevation") with NAME = the CRS when set, "Default" without.
  *
- * File names (fm_faultset_tsurf_file_names): the name's bytes
- * A-Z a-z 0-9 '.' '-' '_' are kept, every run of other bytes (spaces,
- * punctuation, each multi-byte UTF-8 character) becomes one '_', a
- * leading '.' becomes '_' (no hidden files, no "..") and the result is
- * cut to 200 bytes; if it then equals, ignoring ASCII case (macOS and
- * Windows file systems), the name of an earlier fault, "-2", "-3", ... is
- * appended until it does not; ".ts" ends it.
+ * File names (fm_faultset_tsurf_file_names): the stem fm_names.h gives
+ * each fault's name, in fault order, and ".ts".
  *
  * Each file is atomic on its own and the input is validated before the
  * first is written, so bad input writes nothing, but running out of memory

@@ -101,6 +101,11 @@ add_test(NAME remesh_bounds
   COMMAND bash ${FM_TOOLS}/remesh_bounds_test.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_bounds)
 set_tests_properties(remesh_bounds PROPERTIES TIMEOUT 600)
+# names: fit and remesh name per-fault files by one collision-free rule
+add_test(NAME names
+  COMMAND bash ${FM_TOOLS}/names_test.sh $<TARGET_FILE:faultmesh_cli>
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/names)
+set_tests_properties(names PROPERTIES TIMEOUT 600)
 # inputs_safe: an output folder that could replace an input or be read as
 # one is refused before any work; symbolic link loops in input folders are
 # read once (issue 18, items 1 and 2)
