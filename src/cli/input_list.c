@@ -110,7 +110,8 @@ static int walk(const char *dir, strvec *out, seen_dirs *seen)
         }
     }
     closedir(d);
-    qsort(names.v, (size_t)names.n, sizeof *names.v, cmp_str);
+    if (names.n > 1) /* qsort is not to be given the NULL of an empty folder */
+        qsort(names.v, (size_t)names.n, sizeof *names.v, cmp_str);
     for (long i = 0; i < names.n && rc == 0; i++) {
         char *path = join(dir, names.v[i]);
         struct stat sb;
