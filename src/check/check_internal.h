@@ -9,6 +9,14 @@
 #include "fm_closest.h"
 #include "fm_sort.h"
 
+/* Union-find over up[] (each entry its own root to begin with): the root
+ * of x, halving paths; two sets joined under the smaller root, so roots
+ * do not depend on the order of the joins. */
+int32_t ck_find(int32_t *up, int32_t x);
+void ck_unite(int32_t *up, int32_t a, int32_t b);
+/* qsort order of uint64_t values. */
+int ck_cmp_u64(const void *a, const void *b);
+
 /* The outline of o: its edges used by one triangle only, seams between
  * sheets left out, as (lo << 32 | hi) vertex pairs in *out (malloc'ed,
  * ascending), their number in *n. */

@@ -16,21 +16,6 @@ struct fm_loss {
     size_t npairs;
 };
 
-static int32_t find(int32_t *up, int32_t x)
-{
-    while (up[x] != x) {
-        up[x] = up[up[x]];
-        x = up[x];
-    }
-    return x;
-}
-
-static int cmp_u64(const void *a, const void *b)
-{
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return (x > y) - (x < y);
-}
-
 /* Triangles per fault, outline edges per fault and pieces, from the sides
  * of the set's triangles. */
 static fm_status topology(const fm_mesh *m, const int32_t *sheet, size_t nf, ck_set *s)
@@ -73,9 +58,7 @@ static fm_status topology(const fm_mesh *m, const int32_t *sheet, size_t nf, ck_
                     same++;
                     /* joined to an earlier triangle of its sheet */
                     if (j < i && (!sheet || sheet[side[j].index] == sheet[t])) {
-                        int32_t a = find(s->root, t), b = find(s->root, (int32_t)side[j].index);
-                        if (a != b)
-                            s->root[a < b ? b : a] = a < b ? a : b;
+                        ck_unite(s->root, t, (int32_t)side[j].index);
                     }
                 }
             if (same == 1)
@@ -104,7 +87,7 @@ static fm_status topology(const fm_mesh *m, const int32_t *sheet, size_t nf, ck_
     free(cur);
     free(bnd);
     for (size_t t = 0; t < nt; t++) {
-        s->root[t] = find(s->root, (int32_t)t);
+        s->root[t] = ck_find(s->root, (int32_t)t);
         s->piece_size[s->root[t]]++;
     }
     return FM_OK;
@@ -121,7 +104,7 @@ static fm_status shared_nodes(const fm_mesh *m, ck_set *s)
     for (size_t t = 0; t < nt; t++)
         for (int k = 0; k < 3; k++)
             vf[n++] = (uint64_t)(uint32_t)T[3 * t + k] << 32 | (uint32_t)tag[t];
-    qsort(vf, n, sizeof *vf, cmp_u64);
+    qsort(vf, n, sizeof *vf, ck_cmp_u64);
     size_t u = 0;
     for (size_t i = 0; i < n; i++)
         if (!u || vf[i] != vf[u - 1])
@@ -190,7 +173,7 @@ static fm_status pieces(const ck_set *s, fm_loss_fault *F)
                 sz[k++] = s->piece_size[t];
             sh[i] = in->sheet ? (uint64_t)(uint32_t)in->sheet[t] : 0;
         }
-        qsort(sh, n, sizeof *sh, cmp_u64);
+        qsort(sh, n, sizeof *sh, ck_cmp_u64);
         size_t nsh = 0;
         for (size_t i = 0; i < n; i++)
             nsh += !i || sh[i] != sh[i - 1];
@@ -210,7 +193,7 @@ static fm_status pieces(const ck_set *s, fm_loss_fault *F)
         }
         if (k > expect) {
             F[f].islands = k - expect;
-            qsort(sz, k, sizeof *sz, cmp_u64);
+            qsort(sz, k, sizeof *sz, ck_cmp_u64);
             for (size_t i = 0; i < k - expect; i++)
                 F[f].island_triangles += sz[i];
         }

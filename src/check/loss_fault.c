@@ -250,29 +250,21 @@ static int cmp_i32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static fm_status moved(const ck_set *s, int32_t f, fm_loss_fault *m)
+/* The output's nodes over the original's inside (sub: the fault's own
+ * mesh, its nodes in the set's order). */
+static fm_status moved(const ck_set *s, int32_t f, const fm_mesh *sub, fm_loss_fault *m)
 {
     const fm_mesh *o = s->in->orig[f];
-    size_t n = s->tri_first[f + 1] - s->tri_first[f];
-    const int32_t *T = fm_mesh_triangles(s->in->set);
-    const double *X = fm_mesh_vertices(s->in->set);
-    int32_t *v = malloc((3 * n + 1) * sizeof *v);
+    const double *X = fm_mesh_vertices(sub);
     uint64_t *E = NULL;
     size_t ne = 0;
-    fm_closest_tree *tree = v ? fm_closest_tree_create_quick(o, NULL) : NULL;
+    fm_closest_tree *tree = fm_closest_tree_create_quick(o, NULL);
     if (!tree || ck_outline_edges(o, &E, &ne) != FM_OK) {
-        free(v);
         fm_closest_tree_destroy(tree);
         return FM_ERR_NOMEM;
     }
-    for (size_t i = 0; i < n; i++)
-        for (int k = 0; k < 3; k++)
-            v[3 * i + k] = T[3 * s->tri[s->tri_first[f] + i] + k];
-    qsort(v, 3 * n, sizeof *v, cmp_i32);
-    for (size_t i = 0; i < 3 * n; i++) {
-        if (i && v[i] == v[i - 1])
-            continue;
-        const double *p = X + 3 * v[i];
+    for (size_t v = 0; v < fm_mesh_nvertices(sub); v++) {
+        const double *p = X + 3 * v;
         fm_closest_hit hit;
         if (!fm_closest_query(tree, p, INFINITY, &hit))
             continue;
@@ -287,7 +279,6 @@ static fm_status moved(const ck_set *s, int32_t f, fm_loss_fault *m)
             memcpy(m->moved_at, p, sizeof m->moved_at);
         }
     }
-    free(v);
     free(E);
     fm_closest_tree_destroy(tree);
     return FM_OK;
@@ -343,14 +334,14 @@ void ck_measure_fault(const ck_set *s, size_t fi, ck_fault_out *o)
     if (o->st == FM_OK && s->in->orig && s->in->orig[f]) {
         fm_mesh *sub = fault_mesh(s, f);
         fm_closest_tree *own = sub ? fm_closest_tree_create_quick(sub, NULL) : NULL;
-        fm_mesh_destroy(sub);
         if (!own)
             o->st = FM_ERR_NOMEM;
         else {
             missing(s, f, own, &q, &o->m);
-            o->st = q.nomem ? FM_ERR_NOMEM : n ? moved(s, f, &o->m) : FM_OK;
+            o->st = q.nomem ? FM_ERR_NOMEM : n ? moved(s, f, sub, &o->m) : FM_OK;
         }
         fm_closest_tree_destroy(own);
+        fm_mesh_destroy(sub);
     }
     free(q.near);
 }

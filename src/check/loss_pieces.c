@@ -10,23 +10,6 @@
 
 #include "check_internal.h"
 
-static int32_t find(int32_t *up, int32_t x)
-{
-    while (up[x] != x) {
-        up[x] = up[up[x]];
-        x = up[x];
-    }
-    return x;
-}
-
-static void unite(int32_t *up, int32_t a, int32_t b)
-{
-    a = find(up, a);
-    b = find(up, b);
-    if (a != b)
-        up[a < b ? b : a] = a < b ? a : b;
-}
-
 typedef struct cell_vertex {
     int64_t c[3];
     int32_t v;
@@ -75,7 +58,7 @@ static int weld(const fm_mesh *o, int32_t *up)
                         double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                                     (a[2] - b[2]) * (a[2] - b[2]);
                         if (d2 <= FM_LOSS_TOUCH * FM_LOSS_TOUCH)
-                            unite(up, cv[i].v, cv[j].v);
+                            ck_unite(up, cv[i].v, cv[j].v);
                     }
                 }
     free(cv);
@@ -108,14 +91,14 @@ size_t ck_orig_pieces(const fm_mesh *o, double zcut, double minz)
             low[t] = fmin(low[t], X[3 * a + 2]);
             /* an edge reaching below the level joins its triangles */
             if (fmin(X[3 * a + 2], X[3 * b + 2]) < zcut)
-                side[ns++] = (fm_keyed){fm_edge_key((uint64_t)find(vup, a), (uint64_t)find(vup, b)), t};
+                side[ns++] = (fm_keyed){fm_edge_key((uint64_t)ck_find(vup, a), (uint64_t)ck_find(vup, b)), t};
         }
     }
     if (fm_sort_keyed(side, ns))
         goto done;
     for (size_t i = 1; i < ns; i++)
         if (side[i].key == side[i - 1].key)
-            unite(tup, (int32_t)side[i].index, (int32_t)side[i - 1].index);
+            ck_unite(tup, (int32_t)side[i].index, (int32_t)side[i - 1].index);
     /* a piece counts once, when some triangle of it reaches minz */
     double *reach = malloc((nt + 1) * sizeof *reach);
     if (!reach)
@@ -124,12 +107,12 @@ size_t ck_orig_pieces(const fm_mesh *o, double zcut, double minz)
         reach[t] = INFINITY;
     for (size_t t = 0; t < nt; t++)
         if (low[t] < zcut) {
-            int32_t r = find(tup, (int32_t)t);
+            int32_t r = ck_find(tup, (int32_t)t);
             reach[r] = fmin(reach[r], low[t]);
         }
     pieces = 0;
     for (size_t t = 0; t < nt; t++)
-        if (find(tup, (int32_t)t) == (int32_t)t && reach[t] < minz)
+        if (ck_find(tup, (int32_t)t) == (int32_t)t && reach[t] < minz)
             pieces++;
     free(reach);
 done:

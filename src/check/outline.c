@@ -5,12 +5,6 @@
 
 #include "check_internal.h"
 
-static int cmp_u64(const void *a, const void *b)
-{
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return (x > y) - (x < y);
-}
-
 /* Outline edges whose ends lie this close (m) to those of another are a
  * seam between two sheets, not an edge of the surface. */
 #define FM_SEAM_WELD 1.0
@@ -36,7 +30,7 @@ fm_status ck_outline_edges(const fm_mesh *o, uint64_t **out, size_t *n)
             uint64_t a = (uint32_t)T[3 * t + k], b = (uint32_t)T[3 * t + (k + 1) % 3];
             key[3 * t + k] = a < b ? a << 32 | b : b << 32 | a;
         }
-    qsort(key, 3 * nt, sizeof *key, cmp_u64);
+    qsort(key, 3 * nt, sizeof *key, ck_cmp_u64);
     size_t m = 0;
     for (size_t e = 0; e < 3 * nt;) {
         size_t r = e + 1;

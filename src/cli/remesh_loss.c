@@ -21,7 +21,7 @@ void measure_loss(const remesh_cli *cli, run_state *rs)
         const fault_result *r = &rs->res[rs->set_res[f]];
         size[f] = r->mesh.size;
         join[f] = r->join;
-        zcut[f] = r->mesh.top == FM_TOP_KEEP ? INFINITY : 0;
+        zcut[f] = r->mesh.top == FM_TOP_KEEP ? INFINITY : r->mesh.sea_level;
     }
     if (st == FM_OK) {
         fm_loss_input in = {rs->set, rs->sheet, nf, rs->set_orig, size, join, zcut, cli->jobs};
