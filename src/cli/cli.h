@@ -41,6 +41,11 @@ void fm_input_list_free(char **list, long n);
  * outputs would be read as inputs next time). Nothing is created. */
 int fm_output_guard(const char *outdir, char *const *args, size_t nargs, char *const *files,
                     long nfiles);
+/* The inputs of a command that writes into outdir: fm_input_list, then
+ * refused (-1, after printing why, "faultmesh CMD: ...") when there is no
+ * .ts file among them or fm_output_guard refuses outdir. */
+long fm_input_list_for(const char *cmd, const char *outdir, char *const *args, size_t nargs,
+                       char ***out);
 
 /* Parses a non-negative number option value; prints and returns -1 on
  * error. */

@@ -241,16 +241,7 @@ int fm_cmd_fit(int argc, char **argv)
         rc = FM_EXIT_USAGE;
     }
     char **files = NULL;
-    long nfiles = rc ? -1 : fm_input_list(paths, npaths, &files);
-    if (nfiles == 0) {
-        fprintf(stderr, "faultmesh fit: no .ts files found\n");
-        fm_input_list_free(files, nfiles);
-        nfiles = -1;
-    }
-    if (nfiles >= 0 && fm_output_guard(cli.dir, paths, npaths, files, nfiles)) {
-        fm_input_list_free(files, nfiles);
-        nfiles = -1;
-    }
+    long nfiles = rc ? -1 : fm_input_list_for("fit", cli.dir, paths, npaths, &files);
     free(paths);
     if (rc || nfiles < 0)
         return FM_EXIT_USAGE;

@@ -390,16 +390,7 @@ static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **c
         return FM_EXIT_USAGE;
     }
     char **files = NULL;
-    long nfiles = fm_input_list(paths, npaths, &files);
-    if (nfiles == 0) {
-        fprintf(stderr, "faultmesh remesh: no .ts files found\n");
-        fm_input_list_free(files, nfiles);
-        nfiles = -1;
-    }
-    if (nfiles >= 0 && fm_output_guard(cli.dir, paths, npaths, files, nfiles)) {
-        fm_input_list_free(files, nfiles);
-        nfiles = -1;
-    }
+    long nfiles = fm_input_list_for("remesh", cli.dir, paths, npaths, &files);
     free(paths);
     if (nfiles < 0) {
         sim_cli_free(&cli.sim);

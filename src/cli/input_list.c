@@ -281,6 +281,20 @@ int fm_output_guard(const char *outdir, char *const *args, size_t nargs, char *c
     return rc;
 }
 
+long fm_input_list_for(const char *cmd, const char *outdir, char *const *args, size_t nargs,
+                       char ***out)
+{
+    long n = fm_input_list(args, nargs, out);
+    if (n == 0)
+        fprintf(stderr, "faultmesh %s: no .ts files found\n", cmd);
+    if (n == 0 || (n > 0 && fm_output_guard(outdir, args, nargs, *out, n))) {
+        fm_input_list_free(*out, n);
+        *out = NULL;
+        return -1;
+    }
+    return n;
+}
+
 int fm_parse_double(const char *opt, const char *s, double *out)
 {
     char *end;

@@ -383,7 +383,6 @@ static fm_status mesh_object(const char *path, const fm_mesh *orig,
     free(curve_of);
     free(per);
     free(store);
-    r->fitted_area = fitted_area(model, r->mesh.top != FM_TOP_KEEP, r->mesh.sea_level);
     /* Shared nodes take the plan's position (on both surfaces), as in the
      * fault set, so that the check measures what is written. */
     if (st == FM_OK && plan && *ids) {
