@@ -6,9 +6,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <pthread.h>
 #include <sys/stat.h>
 
+#include "fm_parallel.h"
 #include "fm_sort.h"
 #include "remesh_run.h"
 
@@ -23,8 +23,6 @@ typedef struct pool {
     file_job *jobs;
     const size_t *order; /* the order jobs are handed out in */
     const double *bytes;  /* per job: its file's size, the progress weight */
-    size_t n, next;
-    pthread_mutex_t mu;
 } pool;
 
 /* Whether a job has faults to mesh again. */
@@ -36,24 +34,18 @@ static int marked(const file_job *job)
     return 0;
 }
 
-static void *worker(void *arg)
+/* The i-th job handed out. */
+static void run_one(void *arg, size_t i)
 {
     pool *p = arg;
-    for (;;) {
-        pthread_mutex_lock(&p->mu);
-        size_t i = p->next++;
-        pthread_mutex_unlock(&p->mu);
-        if (i >= p->n)
-            return NULL;
-        size_t at = p->order ? p->order[i] : i;
-        file_job *job = &p->jobs[at];
-        if (p->phase == 0)
-            fit_file(p->cli, job);
-        else
-            mesh_file(p->plan, p->flt, job, p->phase == 2);
-        if (p->phase != 2 || marked(job))
-            progress_step(p->cli->prog, p->bytes ? p->bytes[at] : 1);
-    }
+    size_t at = p->order ? p->order[i] : i;
+    file_job *job = &p->jobs[at];
+    if (p->phase == 0)
+        fit_file(p->cli, job);
+    else
+        mesh_file(p->plan, p->flt, job, p->phase == 2);
+    if (p->phase != 2 || marked(job))
+        progress_step(p->cli->prog, p->bytes ? p->bytes[at] : 1);
 }
 
 typedef struct job_key {
@@ -112,19 +104,8 @@ void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
         }
     static const char *stage[3] = {"read and fit", "mesh", "mesh again"};
     progress_begin(cli->prog, stage[phase], count, "files", weight);
-    pool p = {cli, plan, phase, flt, jobs, order, bytes, n, 0, PTHREAD_MUTEX_INITIALIZER};
-    size_t nt = cli->jobs > 1 ? (size_t)cli->jobs - 1 : 0;
-    pthread_t *th = nt ? calloc(nt, sizeof *th) : NULL;
-    size_t started = 0;
-    for (size_t k = 0; th && k < nt; k++)
-        if (pthread_create(&th[k], NULL, worker, &p) == 0)
-            started++;
-        else
-            break;
-    worker(&p);
-    for (size_t k = 0; k < started; k++)
-        pthread_join(th[k], NULL);
-    free(th);
+    pool p = {cli, plan, phase, flt, jobs, order, bytes};
+    fm_parallel_for(n, cli->jobs, run_one, &p, NULL, NULL, 0, 0);
     free(order);
     free(bytes);
     progress_end(cli->prog);
