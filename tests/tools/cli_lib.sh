@@ -8,3 +8,6 @@ expect_rc() { # expected-rc description command...
     "$@" >"$tmp/out" 2>"$tmp/err"; local rc=$?
     if [ "$rc" = "$want" ]; then ok; else bad "$what: exit $rc, expected $want"; cat "$tmp/err"; fi
 }
+# json FILE EXPR: EXPR evaluated with r the parsed FILE (report.json
+# queries without jq: python3 is there wherever the tests run)
+json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print($2)" "$1"; }

@@ -10,7 +10,6 @@ set -u
 exe=$1 tmp=$2
 rm -rf "$tmp" && mkdir -p "$tmp"
 . "$(dirname "$0")/cli_lib.sh"
-json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print($2)" "$1"; }
 
 expect_rc 0 "synth" "$exe" synth --spacing 2000 -o "$tmp/in"
 # A sanitizer build reserves terabytes of address space for its shadow

@@ -10,8 +10,6 @@ set -u
 exe=$1 data=$2/cli tmp=$3
 rm -rf "$tmp" && mkdir -p "$tmp"
 . "$(dirname "$0")/cli_lib.sh"
-# report.json queries without jq: python3 is there wherever the tests run
-json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print($2)" "$1"; }
 
 # Two small real faults from the synthetic system, and the bad file.
 expect_rc 0 "synth" "$exe" synth -o "$tmp/s"

@@ -22,7 +22,6 @@ set -u
 exe=$1 tmp=$2 mode=$3 cfm=${4:-}
 rm -rf "$tmp" && mkdir -p "$tmp"
 . "$(dirname "$0")/cli_lib.sh"
-json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print($2)" "$1"; }
 # Background jobs get SIGINT ignored unless job control is on (and a
 # signal ignored at start stays ignored, as for nohup).
 set -m

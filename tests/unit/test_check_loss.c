@@ -97,6 +97,32 @@ static void test_gap(void)
     fm_mesh_destroy(m);
 }
 
+/* The two faults as output (fault 1 100 m short of fault 0, fault 0 with
+ * the squares keep0 keeps) and their originals, whole: fault 0 with rows0
+ * rows of squares from -5 km up (6: rising 1 km above sea level, which
+ * does not count). */
+typedef struct fixture {
+    fm_mesh *m, *orig[2];
+} fixture;
+
+static void setup(fixture *fx, keep_fn keep0, int rows0)
+{
+    fx->m = fm_mesh_create();
+    fx->orig[0] = fm_mesh_create();
+    fx->orig[1] = fm_mesh_create();
+    two_faults(fx->m, 100, keep0);
+    double oo[3] = {0, 0, -5000}, o1o[3] = {5000, 100, -5000};
+    grid(fx->orig[0], oo, X, Z, 10, rows0, 0, keep_all);
+    grid(fx->orig[1], o1o, Y, Z, 5, 5, 0, keep_all);
+}
+
+static void teardown(fixture *fx)
+{
+    fm_mesh_destroy(fx->m);
+    fm_mesh_destroy(fx->orig[0]);
+    fm_mesh_destroy(fx->orig[1]);
+}
+
 /* fault 0 without its two first columns of squares (x < 2 km) */
 static int keep_right(int i, int j)
 {
@@ -106,15 +132,9 @@ static int keep_right(int i, int j)
 
 static void test_missing(void)
 {
-    fm_mesh *m = fm_mesh_create(), *o0 = fm_mesh_create(), *o1 = fm_mesh_create();
-    two_faults(m, 100, keep_right);
-    /* the originals: fault 0 whole, and rising 1 km above sea level, which
-     * does not count */
-    double oo[3] = {0, 0, -5000}, o1o[3] = {5000, 100, -5000};
-    grid(o0, oo, X, Z, 10, 6, 0, keep_all);
-    grid(o1, o1o, Y, Z, 5, 5, 0, keep_all);
-    const fm_mesh *orig[2] = {o0, o1};
-    fm_loss *l = measure(m, orig, 1);
+    fixture fx;
+    setup(&fx, keep_right, 6);
+    fm_loss *l = measure(fx.m, (const fm_mesh *const *)fx.orig, 1);
     CHECK(l != NULL);
     const fm_loss_fault *f = fm_loss_fault_at(l, 0);
     CHECK_NEAR(f->orig_area, 50e6, 1);
@@ -128,9 +148,7 @@ static void test_missing(void)
     CHECK_EQ(f->pieces, 1);
     CHECK_EQ(f->orig_pieces, 1);
     fm_loss_destroy(l);
-    fm_mesh_destroy(m);
-    fm_mesh_destroy(o0);
-    fm_mesh_destroy(o1);
+    teardown(&fx);
 }
 
 static int keep_not_middle(int i, int j)
@@ -141,13 +159,9 @@ static int keep_not_middle(int i, int j)
 
 static void test_missing_near_other(void)
 {
-    fm_mesh *m = fm_mesh_create(), *o0 = fm_mesh_create(), *o1 = fm_mesh_create();
-    two_faults(m, 100, keep_not_middle);
-    double oo[3] = {0, 0, -5000}, o1o[3] = {5000, 100, -5000};
-    grid(o0, oo, X, Z, 10, 5, 0, keep_all);
-    grid(o1, o1o, Y, Z, 5, 5, 0, keep_all);
-    const fm_mesh *orig[2] = {o0, o1};
-    fm_loss *l = measure(m, orig, 2);
+    fixture fx;
+    setup(&fx, keep_not_middle, 5);
+    fm_loss *l = measure(fx.m, (const fm_mesh *const *)fx.orig, 2);
     const fm_loss_fault *f = fm_loss_fault_at(l, 0);
     /* x in (4.5, 5.5) km is missing, all of it within 500 m of fault 1 */
     CHECK_NEAR(f->missing_area, 5e6, 0.4e6);
@@ -157,46 +171,34 @@ static void test_missing_near_other(void)
     CHECK_EQ(f->islands, 1);
     CHECK_EQ(f->island_triangles, 40);
     fm_loss_destroy(l);
-    fm_mesh_destroy(m);
-    fm_mesh_destroy(o0);
-    fm_mesh_destroy(o1);
+    teardown(&fx);
 }
 
 static void test_moved(void)
 {
-    fm_mesh *m = fm_mesh_create(), *o0 = fm_mesh_create(), *o1 = fm_mesh_create();
-    two_faults(m, 100, keep_all);
-    double oo[3] = {0, 0, -5000}, o1o[3] = {5000, 100, -5000};
-    grid(o0, oo, X, Z, 10, 5, 0, keep_all);
-    grid(o1, o1o, Y, Z, 5, 5, 0, keep_all);
+    fixture fx;
+    setup(&fx, keep_all, 5);
     /* fault 0's node (2 km, 0, -3 km), inside, pulled 300 m aside; its
      * node (10 km, 0, -2 km), on the outline, pushed 400 m past it */
-    double *V = fm_mesh_vertices_mut(m);
+    double *V = fm_mesh_vertices_mut(fx.m);
     V[3 * (2 * 11 + 2) + 1] = 300;
     V[3 * (3 * 11 + 10) + 0] += 400;
-    const fm_mesh *orig[2] = {o0, o1};
-    fm_loss *l = measure(m, orig, 1);
+    fm_loss *l = measure(fx.m, (const fm_mesh *const *)fx.orig, 1);
     const fm_loss_fault *f = fm_loss_fault_at(l, 0);
     CHECK_NEAR(f->moved_max, 300, 1e-6);
     CHECK_EQ(f->moved_over, 1);
     CHECK_NEAR(f->moved_at[0], 2000, 1e-9);
     CHECK_NEAR(fm_loss_fault_at(l, 1)->moved_max, 0, 1e-6);
     fm_loss_destroy(l);
-    fm_mesh_destroy(m);
-    fm_mesh_destroy(o0);
-    fm_mesh_destroy(o1);
+    teardown(&fx);
 }
 
 /* The same answers on any number of threads. */
 static void test_threads(void)
 {
-    fm_mesh *m = fm_mesh_create(), *o0 = fm_mesh_create(), *o1 = fm_mesh_create();
-    two_faults(m, 100, keep_not_middle);
-    double oo[3] = {0, 0, -5000}, o1o[3] = {5000, 100, -5000};
-    grid(o0, oo, X, Z, 10, 5, 0, keep_all);
-    grid(o1, o1o, Y, Z, 5, 5, 0, keep_all);
-    const fm_mesh *orig[2] = {o0, o1};
-    fm_loss *a = measure(m, orig, 1), *b = measure(m, orig, 3);
+    fixture fx;
+    setup(&fx, keep_not_middle, 5);
+    fm_loss *a = measure(fx.m, (const fm_mesh *const *)fx.orig, 1), *b = measure(fx.m, (const fm_mesh *const *)fx.orig, 3);
     for (size_t f = 0; f < 2; f++)
         CHECK(!memcmp(fm_loss_fault_at(a, f), fm_loss_fault_at(b, f), sizeof(fm_loss_fault)));
     CHECK_EQ(fm_loss_npairs(a), fm_loss_npairs(b));
@@ -204,9 +206,7 @@ static void test_threads(void)
         CHECK(!memcmp(fm_loss_pair_at(a, k), fm_loss_pair_at(b, k), sizeof(fm_loss_pair)));
     fm_loss_destroy(a);
     fm_loss_destroy(b);
-    fm_mesh_destroy(m);
-    fm_mesh_destroy(o0);
-    fm_mesh_destroy(o1);
+    teardown(&fx);
 }
 
 /* A tag out of range is refused, not read past. */
