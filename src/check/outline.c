@@ -18,28 +18,25 @@ static double dist2(const double *a, const double *b)
  * hi) vertex pairs in *out (malloc'ed, ascending), their number in *n. */
 fm_status ck_outline_edges(const fm_mesh *o, uint64_t **out, size_t *n)
 {
-    size_t nt = fm_mesh_ntriangles(o);
-    const int32_t *T = fm_mesh_triangles(o);
-    uint64_t *key = malloc((3 * nt + 1) * sizeof *key);
+    size_t ns = 0;
+    fm_keyed *side = fm_mesh_sides(o, &ns);
+    uint64_t *key = side ? malloc((ns + 1) * sizeof *key) : NULL;
     *out = NULL;
     *n = 0;
-    if (!key)
+    if (!key) {
+        free(side);
         return FM_ERR_NOMEM;
-    for (size_t t = 0; t < nt; t++)
-        for (int k = 0; k < 3; k++) {
-            uint64_t a = (uint32_t)T[3 * t + k], b = (uint32_t)T[3 * t + (k + 1) % 3];
-            key[3 * t + k] = a < b ? a << 32 | b : b << 32 | a;
-        }
-    qsort(key, 3 * nt, sizeof *key, ck_cmp_u64);
+    }
     size_t m = 0;
-    for (size_t e = 0; e < 3 * nt;) {
+    for (size_t e = 0; e < ns;) {
         size_t r = e + 1;
-        while (r < 3 * nt && key[r] == key[e])
+        while (r < ns && side[r].key == side[e].key)
             r++;
         if (r - e == 1)
-            key[m++] = key[e];
+            key[m++] = side[e].key;
         e = r;
     }
+    free(side);
     /* A seam is no outline: an original may hold two sheets side by side
      * whose vertices along the join are distinct ids a few millimetres
      * apart (Big Bear rupture), each edge there used once. An edge used
