@@ -242,7 +242,7 @@ int main(int argc, char **argv)
     for (int k = 0; k < 4; k++)
         snprintf(p[k], sizeof p[k], "%s/all/mesh.%s", out, ext[k]);
     snprintf(p[4], sizeof p[4], "%s/all", out);
-    fm_faultset_outputs o = {p[0], p[1], p[2], p[3], FM_MSH_41, p[4], NULL};
+    fm_faultset_outputs o = {p[0], p[1], p[2], p[3], FM_MSH_41, p[4], NULL, NULL, NULL};
     int threads[3] = {1, 2, 4}, nthreads = 3;
     if (jobs > 0) {
         threads[0] = jobs;

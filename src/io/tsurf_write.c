@@ -1,4 +1,5 @@
 /* GoCAD TSurf writer. */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,14 +13,14 @@
 typedef struct out {
     FILE *fp;
     size_t n;
-    int failed;
+    int failed; /* errno of the first failed write, 0 if none */
     char buf[1 << 16];
 } out;
 
 static void out_flush(out *o)
 {
-    if (o->n && fwrite(o->buf, 1, o->n, o->fp) != o->n)
-        o->failed = 1;
+    if (o->n && fwrite(o->buf, 1, o->n, o->fp) != o->n && !o->failed)
+        o->failed = errno ? errno : EIO;
     o->n = 0;
 }
 
@@ -36,8 +37,8 @@ static void out_str(out *o, const char *s)
     size_t n = strlen(s);
     if (n > sizeof o->buf / 2) { /* long header values: pass through */
         out_flush(o);
-        if (fwrite(s, 1, n, o->fp) != n)
-            o->failed = 1;
+        if (fwrite(s, 1, n, o->fp) != n && !o->failed)
+            o->failed = errno ? errno : EIO;
         return;
     }
     memcpy(out_room(o, n), s, n);
@@ -394,8 +395,11 @@ fm_status fm_tsurf_write_stream(FILE *fp, const char *name, fm_tsurf *const *obj
         plan_free(&pl);
     }
     out_flush(o);
-    if (st == FM_OK && (o->failed || ferror(fp)))
-        st = fm_error_set(err, FM_ERR_IO, name, 0, "cannot write");
+    /* a full disk often shows only when the stream's own buffer goes */
+    if (st == FM_OK && !o->failed && (ferror(fp) || fflush(fp) != 0))
+        o->failed = errno ? errno : EIO;
+    if (st == FM_OK && o->failed)
+        st = fm_error_set(err, FM_ERR_IO, name, 0, "cannot write: %s", strerror(o->failed));
     free(o);
     return st;
 }

@@ -2,9 +2,12 @@
  * file, handed out in a fixed order, so that which thread writes a file
  * never changes its bytes. */
 #include <pthread.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "faultset_internal.h"
+#include "fm_names.h"
 
 enum { SINGLE_VTU, SINGLE_MSH, SINGLE_STL, SINGLE_OBJ, SINGLE_EXO, NSINGLE };
 
@@ -14,13 +17,19 @@ typedef struct pool {
     int singles[NSINGLE]; /* the single-file outputs asked for, in order */
     size_t nsingles, ntasks;
     fs_tsurf_plan plan;
+    const fm_error *plan_err; /* the TSurf files cannot be written: why */
+    fm_status *status;        /* per task: FM_OK when written */
+    fm_error **failed;        /* per failed task: its error (NULL if memory ran out) */
 
     pthread_mutex_t mu;
-    size_t next;         /* next task to hand out */
-    int stop;            /* a task failed: hand out no more */
-    size_t failed_task;  /* lowest failing task, ntasks if none */
-    fm_error failed_err; /* its error */
+    size_t next; /* next task to hand out */
 } pool;
+
+static const char *single_path(const fm_faultset_outputs *o, int kind)
+{
+    const char *paths[NSINGLE] = {o->vtu, o->msh, o->stl, o->obj, o->exo};
+    return paths[kind];
+}
 
 static fm_status write_single(const pool *p, int kind, fm_error *err)
 {
@@ -34,6 +43,27 @@ static fm_status write_single(const pool *p, int kind, fm_error *err)
     }
 }
 
+static fm_status run_task(pool *p, size_t i, fs_tsurf_scratch *sc, int *have_scratch,
+                          fm_error *e)
+{
+    if (i < p->nsingles)
+        return write_single(p, p->singles[i], e);
+    if (p->plan_err) {
+        *e = *p->plan_err;
+        return e->code;
+    }
+    /* Scratch is a vertex map of the whole set: made once per thread, on
+     * its first TSurf file. */
+    if (!*have_scratch) {
+        if (fs_tsurf_scratch_init(sc, &p->plan) != 0) {
+            fs_tsurf_scratch_free(sc);
+            return fm_error_set(e, FM_ERR_NOMEM, p->out->tsurf_dir, 0, "out of memory");
+        }
+        *have_scratch = 1;
+    }
+    return fs_tsurf_write_fault(&p->plan, i - p->nsingles, sc, e);
+}
+
 static void *worker(void *arg)
 {
     pool *p = arg;
@@ -41,39 +71,72 @@ static void *worker(void *arg)
     int have_scratch = 0;
     for (;;) {
         pthread_mutex_lock(&p->mu);
-        size_t i = p->stop ? p->ntasks : p->next++;
+        size_t i = p->next++;
         pthread_mutex_unlock(&p->mu);
         if (i >= p->ntasks)
             break;
         fm_error e;
         fm_error_clear(&e);
-        fm_status st;
-        if (i < p->nsingles) {
-            st = write_single(p, p->singles[i], &e);
-        } else {
-            /* Scratch is a vertex map of the whole set: made once per
-             * thread, on its first TSurf file. */
-            if (!have_scratch && fs_tsurf_scratch_init(&sc, &p->plan) != 0) {
-                fs_tsurf_scratch_free(&sc);
-                st = fm_error_set(&e, FM_ERR_NOMEM, p->out->tsurf_dir, 0, "out of memory");
-            } else {
-                have_scratch = 1;
-                st = fs_tsurf_write_fault(&p->plan, i - p->nsingles, &sc, &e);
-            }
-        }
+        fm_status st = run_task(p, i, &sc, &have_scratch, &e);
         if (st != FM_OK) {
             e.code = st;
-            pthread_mutex_lock(&p->mu);
-            p->stop = 1;
-            if (i < p->failed_task) {
-                p->failed_task = i;
-                p->failed_err = e;
-            }
-            pthread_mutex_unlock(&p->mu);
+            /* each task has slots of its own: no lock */
+            p->status[i] = st;
+            p->failed[i] = malloc(sizeof e);
+            if (p->failed[i])
+                *p->failed[i] = e;
         }
     }
     fs_tsurf_scratch_free(&sc);
     return NULL;
+}
+
+/* Every file asked for, as not written, for why (the set could not be
+ * written at all). */
+static fm_status all_failed(const fm_faultset_outputs *out, const fm_error *why)
+{
+    for (int k = 0; k < NSINGLE && out->done; k++)
+        if (single_path(out, k))
+            out->done(out->done_ctx, single_path(out, k), SIZE_MAX, why);
+    if (out->tsurf_dir && out->done)
+        out->done(out->done_ctx, out->tsurf_dir, SIZE_MAX, why);
+    return why->code;
+}
+
+/* out->done for each task, in order; the first failure into err. */
+static fm_status account(pool *p, fm_error *err)
+{
+    fm_status first = FM_OK;
+    char *path = NULL;
+    if (p->ntasks > p->nsingles)
+        path = malloc(strlen(p->out->tsurf_dir) + FM_STEM_MAX + 40);
+    for (size_t i = 0; i < p->ntasks; i++) {
+        fm_error oom;
+        const fm_error *e = p->failed[i];
+        const char *where;
+        size_t fault = SIZE_MAX;
+        if (i < p->nsingles) {
+            where = single_path(p->out, p->singles[i]);
+        } else {
+            fault = i - p->nsingles;
+            if (path)
+                sprintf(path, "%s/%s", p->out->tsurf_dir, p->plan.files[fault]);
+            where = path ? path : p->out->tsurf_dir;
+        }
+        if (p->status[i] != FM_OK && !e) {
+            fm_error_set(&oom, FM_ERR_NOMEM, where, 0, "out of memory");
+            e = &oom;
+        }
+        if (e && first == FM_OK) {
+            first = e->code;
+            if (err)
+                *err = *e;
+        }
+        if (p->out->done)
+            p->out->done(p->out->done_ctx, where, fault, e);
+    }
+    free(path);
+    return first;
 }
 
 fm_status fm_faultset_write_all(const fm_faultset *fs, const fm_faultset_outputs *out,
@@ -85,29 +148,46 @@ fm_status fm_faultset_write_all(const fm_faultset *fs, const fm_faultset_outputs
                         : out->obj  ? out->obj
                         : out->exo  ? out->exo
                                     : out->tsurf_dir;
-    fm_status st = fm_faultset_validate(fs, where, err);
-    if (st != FM_OK)
-        return st;
-    if (out->msh && out->msh_version != FM_MSH_41 && out->msh_version != FM_MSH_22)
-        return fm_error_set(err, FM_ERR_INVALID, out->msh, 0, "unknown MSH version %d",
-                            (int)out->msh_version);
+    fm_error e;
+    fm_error_clear(&e);
+    fm_status st = fm_faultset_validate(fs, where, &e);
+    if (st == FM_OK && out->msh && out->msh_version != FM_MSH_41 &&
+        out->msh_version != FM_MSH_22)
+        st = fm_error_set(&e, FM_ERR_INVALID, out->msh, 0, "unknown MSH version %d",
+                          (int)out->msh_version);
+    if (st != FM_OK) {
+        if (err)
+            *err = e;
+        return all_failed(out, &e);
+    }
     pool p = {.fs = fs, .out = out, .mu = PTHREAD_MUTEX_INITIALIZER};
-    const char *paths[NSINGLE] = {out->vtu, out->msh, out->stl, out->obj, out->exo};
     for (int k = 0; k < NSINGLE; k++)
-        if (paths[k])
+        if (single_path(out, k))
             p.singles[p.nsingles++] = k;
     p.ntasks = p.nsingles;
+    fm_error plan_err;
+    fm_error_clear(&plan_err);
     if (out->tsurf_dir) {
         /* Names and directory before any file, so that they cannot fail
-         * part way. */
-        st = fs_tsurf_plan_make(&p.plan, out->tsurf_dir, fs, err);
-        if (st != FM_OK) {
-            fs_tsurf_plan_free(&p.plan);
-            return st;
+         * part way; when they fail the other files are still written. */
+        if (fs_tsurf_plan_make(&p.plan, out->tsurf_dir, fs, &plan_err) != FM_OK) {
+            plan_err.code = plan_err.code ? plan_err.code : FM_ERR_IO;
+            p.plan_err = &plan_err;
         }
-        p.ntasks += fs->nfaults;
+        if (p.plan.files)
+            p.ntasks += fs->nfaults;
     }
-    p.failed_task = p.ntasks;
+    p.failed = calloc(p.ntasks + 1, sizeof *p.failed);
+    p.status = calloc(p.ntasks + 1, sizeof *p.status);
+    if (!p.failed || !p.status) {
+        free(p.failed);
+        free(p.status);
+        fs_tsurf_plan_free(&p.plan);
+        fm_error_set(&e, FM_ERR_NOMEM, where, 0, "out of memory");
+        if (err)
+            *err = e;
+        return all_failed(out, &e);
+    }
 
     size_t nextra = nthreads > 1 ? (size_t)nthreads - 1 : 0;
     if (nextra > p.ntasks)
@@ -121,12 +201,22 @@ fm_status fm_faultset_write_all(const fm_faultset *fs, const fm_faultset_outputs
     for (size_t k = 0; k < started; k++)
         pthread_join(th[k], NULL);
     free(th);
+    st = account(&p, err);
+    if (p.plan_err && !p.plan.files) {
+        /* the names themselves could not be made */
+        if (out->done)
+            out->done(out->done_ctx, out->tsurf_dir, SIZE_MAX, p.plan_err);
+        if (st == FM_OK) {
+            st = p.plan_err->code;
+            if (err)
+                *err = *p.plan_err;
+        }
+    }
+    for (size_t i = 0; i < p.ntasks; i++)
+        free(p.failed[i]);
+    free(p.failed);
+    free(p.status);
     fs_tsurf_plan_free(&p.plan);
     pthread_mutex_destroy(&p.mu);
-    if (p.failed_task < p.ntasks) {
-        if (err)
-            *err = p.failed_err;
-        return p.failed_err.code;
-    }
-    return FM_OK;
+    return st;
 }

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include <exodusII.h>
+#include <netcdf.h>
 
 #include "faultset_internal.h"
 #include "fm_atomic.h"
@@ -24,6 +25,22 @@ static pthread_once_t opts_once = PTHREAD_ONCE_INIT;
 /* The library's default options may print or abort on an error; errors
  * are reported through fm_error instead. */
 static void quiet_exodus(void) { ex_opts(EX_DEFAULT); }
+
+/* The last Exodus II error in words: its message and the netCDF or system
+ * reason of its code. The library keeps one error for the process; only
+ * one Exodus II file is written at a time here. */
+static const char *exodus_reason(char *buf, size_t n)
+{
+    const char *msg = NULL, *func = NULL;
+    int code = 0;
+    ex_get_err(&msg, &func, &code);
+    /* netCDF's codes are negative, the system's positive; Exodus's own
+     * (beyond +-1000) say no more than its message */
+    const char *why = code && code > -1000 && code < 1000 ? nc_strerror(code) : "";
+    snprintf(buf, n, "%s%s%s (%s)", msg && *msg ? msg : "failed", *why ? ": " : "", why,
+             func && *func ? func : "exodus");
+    return buf;
+}
 
 typedef struct exo_job {
     const fm_faultset *fs;
@@ -325,16 +342,21 @@ fm_status fm_faultset_write_exodus(const char *path, const fm_faultset *fs, fm_e
     int exo = ex_create(fm_atomic_name_tmp(tmp), EX_NOCLOBBER, &cws, &iows);
     fm_atomic_name_created(tmp);
     if (exo < 0) {
-        st = fm_error_set(err, FM_ERR_IO, path, 0, "cannot create Exodus II file (error %d)",
-                          exo);
+        char why[400];
+        st = fm_error_set(err, FM_ERR_IO, path, 0, "cannot create Exodus II file: %s",
+                          exodus_reason(why, sizeof why));
     } else {
         int rc = put_all(exo, &j);
+        char why[400];
+        if (rc < 0 && rc != -ENOMEM)
+            exodus_reason(why, sizeof why); /* before ex_close can replace it */
         int rc_close = ex_close(exo);
+        if (rc >= 0 && rc_close < 0)
+            exodus_reason(why, sizeof why);
         if (rc == -ENOMEM)
             st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
         else if (rc < 0 || rc_close < 0)
-            st = fm_error_set(err, FM_ERR_IO, path, 0, "Exodus II write failed (error %d)",
-                              rc < 0 ? rc : rc_close);
+            st = fm_error_set(err, FM_ERR_IO, path, 0, "Exodus II write failed: %s", why);
         else {
             st = fm_atomic_name_commit(tmp, 0, err);
             tmp = NULL; /* freed, and removed on failure */

@@ -197,12 +197,19 @@ fm_status fm_faultset_write_obj(const char *path, const fm_faultset *fs, fm_erro
  * and named). */
 fm_status fm_faultset_write_tsurf(const char *dir, const fm_faultset *fs, fm_error *err);
 
+/* What became of one file fm_faultset_write_all was asked for: path, the
+ * fault of a TSurf file (SIZE_MAX for the files of the whole set) and
+ * err, NULL when the file was written, else why not (naming path). */
+typedef void (*fm_output_done)(void *ctx, const char *path, size_t fault, const fm_error *err);
+
 /* Which outputs fm_faultset_write_all writes; a NULL path skips one. */
 typedef struct fm_faultset_outputs {
     const char *vtu, *msh, *stl, *obj; /* file paths */
     fm_msh_version msh_version;
     const char *tsurf_dir; /* one NAME.ts per fault, as fm_faultset_write_tsurf */
     const char *exo;       /* Exodus II file path */
+    fm_output_done done;   /* may be NULL */
+    void *done_ctx;
 } fm_faultset_outputs;
 
 /* Every requested output, written as the functions above write them, by
@@ -211,10 +218,14 @@ typedef struct fm_faultset_outputs {
  * file is byte-identical whatever nthreads. The set is validated once,
  * before any file is written.
  *
- * After a failure no further file is started; those being written are
- * finished, so every file present is complete and a failing one leaves
- * nothing. The error returned is that of the first failing file in the
- * order VTU, MSH, STL, OBJ, Exodus II, TSurf by fault, and names it. */
+ * A file that fails does not stop the others: every file asked for is
+ * tried, every file present is complete and a failing one leaves nothing.
+ * Then out->done, when set, is called on the calling thread once per file
+ * asked for, in the order VTU, MSH, STL, OBJ, Exodus II, TSurf by fault
+ * (when the set is invalid, or the TSurf names cannot be made, each file
+ * with that error; TSurf files whose names are unknown then make one call
+ * with path tsurf_dir). The error returned is that of the first failing
+ * file in that order, and names it. */
 fm_status fm_faultset_write_all(const fm_faultset *fs, const fm_faultset_outputs *out,
                                 int nthreads, fm_error *err);
 

@@ -1,5 +1,6 @@
 #include "fs_out.h"
 
+#include <errno.h>
 #include <stdarg.h>
 #include <stdlib.h>
 
@@ -18,24 +19,28 @@ fs_out *fs_out_open(FILE *fp)
 
 void fs_out_flush(fs_out *o)
 {
-    if (o->n && fwrite(o->buf, 1, o->n, o->fp) != o->n)
-        o->failed = 1;
+    if (o->n && fwrite(o->buf, 1, o->n, o->fp) != o->n && !o->failed)
+        o->failed = errno ? errno : EIO;
     o->n = 0;
 }
 
 int fs_out_finish(fs_out *o)
 {
     fs_out_flush(o);
-    int bad = o->failed || ferror(o->fp);
+    /* the buffered bytes reach the device only now: a full disk shows here */
+    if (!o->failed && (ferror(o->fp) || fflush(o->fp) != 0))
+        o->failed = errno ? errno : EIO;
+    int failed = o->failed;
     free(o);
-    return bad ? -1 : 0;
+    return failed;
 }
 
 fm_status fs_out_commit(fs_out *o, fm_atomic_file *af, const char *path, fm_error *err)
 {
-    if (fs_out_finish(o) != 0) {
+    int failed = fs_out_finish(o);
+    if (failed) {
         fm_atomic_abort(af);
-        return fm_error_set(err, FM_ERR_IO, path, 0, "write failed");
+        return fm_error_set(err, FM_ERR_IO, path, 0, "write failed: %s", strerror(failed));
     }
     return fm_atomic_commit(af, err);
 }
@@ -44,8 +49,8 @@ void fs_out_bytes(fs_out *o, const void *p, size_t n)
 {
     if (n > FS_OUT_BLOCK / 2) { /* large blocks go straight through */
         fs_out_flush(o);
-        if (fwrite(p, 1, n, o->fp) != n)
-            o->failed = 1;
+        if (fwrite(p, 1, n, o->fp) != n && !o->failed)
+            o->failed = errno ? errno : EIO;
         return;
     }
     memcpy(fs_out_room(o, n), p, n);

@@ -19,16 +19,17 @@
 typedef struct fs_out {
     FILE *fp;
     size_t n;
-    int failed;
+    int failed; /* errno of the first failed write, 0 if none */
     char buf[FS_OUT_BLOCK];
 } fs_out;
 
 /* A buffer for fp, NULL when memory runs out. */
 fs_out *fs_out_open(FILE *fp);
-/* Flushes and frees o; 0, or -1 if any write failed. */
+/* Flushes and frees o; 0, or the errno of the first write that failed. */
 int fs_out_finish(fs_out *o);
 /* The end of every writer: finishes o, then renames af into place, or
- * removes it if any write failed ("write failed", naming path). */
+ * removes it if any write failed ("write failed: " and the system's
+ * reason, naming path). */
 fm_status fs_out_commit(fs_out *o, fm_atomic_file *af, const char *path, fm_error *err);
 void fs_out_flush(fs_out *o);
 void fs_out_bytes(fs_out *o, const void *p, size_t n);

@@ -1,6 +1,7 @@
 /* fm_faultset_write_all: the same bytes as the one-format writers whatever
- * the thread count, and on failure the first failing file named, no
- * partial or temporary file, bad input writing nothing. */
+ * the thread count; on failure every other file still written, each file
+ * accounted for in order, the first failing one named, no partial or
+ * temporary file; bad input writing nothing, and saying so per file. */
 #include <dirent.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -90,7 +91,7 @@ static void test_same_bytes(void)
             char name[32];
             snprintf(name, sizeof name, "fswa_%d_%d", v, threads);
             make_paths(&p, name);
-            fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, ver, p.dir, p.exo};
+            fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, ver, p.dir, p.exo, NULL, NULL};
             CHECK_EQ(fm_faultset_write_all(&fs, &out, threads, &err), FM_OK);
             CHECK(fm_test_same_file(ref.vtu, p.vtu));
             CHECK(fm_test_same_file(ref.msh, p.msh));
@@ -112,8 +113,36 @@ static void test_same_bytes(void)
     fm_mesh_destroy(m);
 }
 
-/* A directory where mesh.msh should go: MSH fails and is named, the
- * error is the same on any thread count, nothing partial is left. */
+/* What fm_output_done saw. */
+typedef struct tally {
+    int calls, failed, out_of_order;
+    size_t last_fault, failed_fault;
+    char first_failed[FM_ERROR_MESSAGE_MAX];
+} tally;
+
+static void count_done(void *ctx, const char *path, size_t fault, const fm_error *err)
+{
+    tally *t = ctx;
+    /* set files first (SIZE_MAX), then TSurf by fault */
+    if (t->calls && fault != SIZE_MAX && t->last_fault != SIZE_MAX && fault != t->last_fault + 1)
+        t->out_of_order++;
+    if (fault == SIZE_MAX && t->calls && t->last_fault != SIZE_MAX)
+        t->out_of_order++;
+    t->last_fault = fault;
+    t->calls++;
+    if (err) {
+        if (!t->failed++)
+            snprintf(t->first_failed, sizeof t->first_failed, "%s", err->message);
+        else
+            t->failed_fault = fault;
+        if (!strstr(err->message, path))
+            t->out_of_order++;
+    }
+}
+
+/* A directory where mesh.msh should go, and one where a TSurf file should:
+ * both fail, with the reason, and are named, the error is the same on any
+ * thread count, every other file is written, nothing partial is left. */
 static void test_blocked(void)
 {
     fm_mesh *m = sample_mesh();
@@ -124,21 +153,41 @@ static void test_blocked(void)
         snprintf(name, sizeof name, "fswa_blocked_%d", threads);
         make_paths(&p, name);
         CHECK_EQ(fm_mkdir_p(p.msh, NULL), FM_OK);
-        fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, FM_MSH_41, p.dir, p.exo};
+        /* and a directory where the third fault's TSurf should go */
+        char **files = NULL;
+        CHECK_EQ(fm_faultset_tsurf_file_names(&fs, &files, NULL), FM_OK);
+        char ts[8400];
+        snprintf(ts, sizeof ts, "%s/%s", p.dir, files[2]);
+        CHECK_EQ(fm_mkdir_p(ts, NULL), FM_OK);
+        tally t = {0};
+        fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, FM_MSH_41, p.dir, p.exo,
+                                   count_done, &t};
         fm_error err;
         fm_error_clear(&err);
         CHECK_EQ(fm_faultset_write_all(&fs, &out, threads, &err), FM_ERR_IO);
         CHECK(strstr(err.message, "mesh.msh") != NULL);
+        CHECK(strstr(err.message, "directory") != NULL); /* the reason, not only "failed" */
+        /* every file asked for, once, in order; the two failures named */
+        CHECK_EQ(t.calls, 5 + NFAULTS);
+        CHECK_EQ(t.failed, 2);
+        CHECK(strstr(t.first_failed, "mesh.msh") != NULL);
+        CHECK_EQ(t.failed_fault, 2);
+        CHECK_EQ(t.out_of_order, 0);
         struct stat st;
         CHECK(stat(p.msh, &st) == 0 && S_ISDIR(st.st_mode));
         int tmp;
-        CHECK(count_entries(p.dir, &tmp) >= 1);
+        /* the 5 set files (mesh.msh the folder) and the TSurf files */
+        CHECK_EQ(count_entries(p.dir, &tmp), 5 + NFAULTS);
         CHECK_EQ(tmp, 0);
-        /* Every file present is whole: VTU was written first. */
+        /* every file after the failing one was written, whole */
         size_t n;
         char *vtu = fm_test_read_file(p.vtu, &n);
         CHECK(vtu && n > 20 && memcmp(vtu + n - 11, "</VTKFile>\n", 11) == 0);
         free(vtu);
+        CHECK(stat(p.exo, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0);
+        snprintf(ts, sizeof ts, "%s/%s", p.dir, files[NFAULTS - 1]);
+        CHECK(stat(ts, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0);
+        fm_faultset_free_file_names(files, NFAULTS);
     }
     fm_mesh_destroy(m);
 }
@@ -151,11 +200,16 @@ static void test_invalid(void)
     fm_faultset fs = {.mesh = m, .names = names, .nfaults = NFAULTS};
     paths p;
     make_paths(&p, "fswa_invalid");
-    fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, FM_MSH_41, p.dir, p.exo};
+    tally t = {0};
+    fm_faultset_outputs out = {p.vtu, p.msh, p.stl, p.obj, FM_MSH_41, p.dir, p.exo,
+                               count_done, &t};
     fm_error err;
     CHECK_EQ(fm_faultset_write_all(&fs, &out, 3, &err), FM_ERR_NUMERIC);
     int tmp;
     CHECK_EQ(count_entries(p.dir, &tmp), 0);
+    /* the five files and the TSurf folder, each said to be not written */
+    CHECK_EQ(t.calls, 6);
+    CHECK_EQ(t.failed, 6);
     fm_mesh_destroy(m);
 }
 
