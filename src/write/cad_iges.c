@@ -106,6 +106,19 @@ fm_status fm_cad_face_create(const char *name, const fm_fit_surface *s, const do
                 fm_cad_face_destroy(f);
                 return FM_ERR_INVALID;
             }
+        /* the writer's own check (iges_check.c) would refuse the whole
+         * file for it: a face too small for its surface's parameters is
+         * refused here, alone */
+        double area = 0;
+        for (size_t i = 0; i < n; i++) {
+            const double *p = uv + 2 * (a + i), *q = uv + 2 * (a + (i + 1) % n);
+            area += p[0] * q[1] - q[0] * p[1];
+        }
+        if (!(fabs(0.5 * area) > 1e-12 * (f->dom[1] - f->dom[0]) * (f->dom[3] - f->dom[2]))) {
+            fm_cad_face_destroy(f);
+            return fm_error_set(err, FM_ERR_INVALID, what, 0,
+                                "CAD face loop %zu encloses no area", l);
+        }
         /* the first corner starts the first curve; none: point 0 */
         size_t s0 = 0;
         while (corner && s0 < n && !corner[a + s0])

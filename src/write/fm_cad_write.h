@@ -32,8 +32,9 @@ typedef struct fm_cad_face fm_cad_face;
  * uv[2 (start[k + 1] - 1) + 1] (the last point joins the first, not
  * repeated); loop 0 is the outer one, the rest holes; either sense.
  * corner (may be NULL) flags per point where a new curve starts. Fails
- * (FM_ERR_INVALID) on a loop of fewer than 3 points or a point outside
- * the surface's parameter rectangle by more than 1e-7 of its diagonal. */
+ * (FM_ERR_INVALID) on a loop of fewer than 3 points, a point outside
+ * the surface's parameter rectangle by more than 1e-7 of its diagonal, or
+ * a loop enclosing no more than 1e-12 of that rectangle's area. */
 fm_status fm_cad_face_create(const char *name, const fm_fit_surface *s, const double *uv,
                              const size_t *start, size_t nloops, const unsigned char *corner,
                              fm_cad_face **out, fm_error *err);
