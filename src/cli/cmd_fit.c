@@ -65,25 +65,41 @@ static fault_figures combine(const fm_model *m)
     return f;
 }
 
+static const char *const fit_ext[3] = {"model.json", "igs", "vtu"};
+
+/* The three files of a fitted fault, each tried whatever became of the
+ * others; each one not written said on stderr and flagged in *missing
+ * (bit k: fit_ext[k]). The first failure's status and error. */
 static fm_status write_outputs(const fit_cli *cli, const char *base, const char *name,
-                               const fm_model *m, fm_error *err)
+                               const fm_model *m, unsigned *missing, fm_error *err)
 {
+    *missing = 0;
     size_t n = strlen(cli->dir) + strlen(base) + 32;
     char *path = malloc(n);
-    if (!path)
+    if (!path) {
+        *missing = 7;
         return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
-    snprintf(path, n, "%s/%s.model.json", cli->dir, base);
-    fm_status st = fm_model_write_json(path, name, m, err);
-    if (st == FM_OK) {
-        snprintf(path, n, "%s/%s.igs", cli->dir, base);
-        st = fm_model_write_iges(path, name, m, err);
     }
-    if (st == FM_OK) {
-        snprintf(path, n, "%s/%s.vtu", cli->dir, base);
-        st = fm_model_write_vtu(path, name, m, err);
+    fm_status first = FM_OK;
+    for (int k = 0; k < 3; k++) {
+        snprintf(path, n, "%s/%s.%s", cli->dir, base, fit_ext[k]);
+        fm_error e;
+        fm_error_clear(&e);
+        fm_status st = k == 0   ? fm_model_write_json(path, name, m, &e)
+                       : k == 1 ? fm_model_write_iges(path, name, m, &e)
+                                : fm_model_write_vtu(path, name, m, &e);
+        if (st == FM_OK)
+            continue;
+        *missing |= 1u << k;
+        fprintf(stderr, "faultmesh: not written: %s\n", e.message);
+        if (first == FM_OK) {
+            first = st;
+            if (err)
+                *err = e;
+        }
     }
     free(path);
-    return st;
+    return first;
 }
 
 /* Fits one file; appends its faults to the report. Returns the number of
@@ -125,16 +141,32 @@ static int fit_file(const fit_cli *cli, fm_namer *nm, const char *path, fm_json 
                               name[0] ? name : base);
         if (st == FM_OK)
             st = fm_model_build(path, surf, &cli->model, &model, &err);
-        if (st == FM_OK)
-            st = write_outputs(cli, base, name[0] ? name : base, model, &err);
+        unsigned missing = 0;
+        int said = 0;
+        if (st == FM_OK) {
+            st = write_outputs(cli, base, name[0] ? name : base, model, &missing, &err);
+            said = st != FM_OK;
+        }
         fm_json_begin_object(j);
         fm_json_kv_string(j, "file", path);
         fm_json_kv_string(j, "name", name);
         if (st != FM_OK) {
             failed++;
-            fprintf(stderr, "faultmesh: %s\n", err.message);
+            if (!said)
+                fprintf(stderr, "faultmesh: %s\n", err.message);
             fm_json_kv_string(j, "status", "error");
             fm_json_kv_string(j, "error", err.message);
+            if (missing) {
+                fm_json_key(j, "outputs_missing");
+                fm_json_begin_array(j);
+                for (int k = 0; k < 3; k++)
+                    if (missing & (1u << k)) {
+                        char f[FM_STEM_MAX + 16];
+                        snprintf(f, sizeof f, "%s.%s", base, fit_ext[k]);
+                        fm_json_string(j, f);
+                    }
+                fm_json_end_array(j);
+            }
         } else {
             fault_figures f = combine(model);
             double worst = fmax(f.to_rms, f.from_rms);

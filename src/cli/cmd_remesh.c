@@ -174,6 +174,17 @@ static int settle_crs(const remesh_cli *cli, const file_job *jobs, size_t njobs,
     return rs->crs ? 0 : -1;
 }
 
+/* A report written (err NULL) or not. */
+static void note_report(output_log *log, const char *name, const fm_error *err)
+{
+    size_t n = strlen(log->dir) + strlen(name) + 2;
+    char *p = malloc(n);
+    if (p)
+        snprintf(p, n, "%s/%s", log->dir, name);
+    outputs_note(log, p ? p : name, SIZE_MAX, OUTPUT_REPORT, err);
+    free(p);
+}
+
 typedef struct html_job {
     const remesh_cli *cli;
     const run_state *rs;
@@ -216,7 +227,8 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
         fprintf(stderr, "faultmesh: %s\n", err.message);
         return FM_EXIT_FAILURES;
     }
-    run_state rs = {0};
+    output_log outputs = {.dir = cli->dir};
+    run_state rs = {.outputs = &outputs};
     rs.set = fm_mesh_create();
     if (!rs.set)
         return FM_EXIT_FAILURES;
@@ -282,31 +294,23 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     }
     sim_attrs sa;
     progress_begin(cli->prog, "write", 0, NULL, 0);
-    fm_status st = write_set(cli, &rs, &sa, &err);
+    /* noted only on this thread: report.html's does not look at it */
+    write_set(cli, &rs, &sa);
     if (html_async)
         pthread_join(html_thread, NULL);
-    if (hj.st != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", hj.err.message);
-        rs.failed++;
-    }
+    if (cli->html)
+        note_report(&outputs, "report.html", hj.st == FM_OK ? NULL : &hj.err);
     for (long i = 0; i < nfiles; i++)
         release_job(&jobs[i]);
     free(jobs);
     rs.time[4] = fm_clock_seconds() - t4;
-    if (st != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", err.message);
-        rs.failed++;
-    }
     /* report.json even when the meshes could not be written: it says what
-     * each fault came to (without the element attributes then) */
+     * each fault came to, and which files are missing */
     fm_error_clear(&err);
-    fm_status rst = write_report(cli, &rs, st == FM_OK && rs.nfaults ? &sa : NULL, &err);
+    fm_status rst = write_report(cli, &rs, sa.slip ? &sa : NULL, &err);
     sim_attrs_free(&sa);
     progress_end(cli->prog);
-    if (rst != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", err.message);
-        rs.failed++;
-    }
+    note_report(&outputs, "report.json", rst == FM_OK ? NULL : &err);
     if (!cli->quiet)
         print_summary(cli, &rs, stdout);
     for (size_t i = 0; i < rs.nres; i++) {
@@ -339,7 +343,9 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     free(rs.crs);
     fm_connect_plan_destroy(plan);
     fm_mesh_destroy(rs.set);
-    return rs.failed ? FM_EXIT_FAILURES : FM_EXIT_OK;
+    int unwritten = outputs.unwritten > 0;
+    outputs_free(&outputs);
+    return rs.failed || unwritten ? FM_EXIT_FAILURES : FM_EXIT_OK;
 }
 
 static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **cinputs,

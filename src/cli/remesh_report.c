@@ -166,7 +166,12 @@ static void json_fault(fm_json *j, const run_state *rs, const fault_result *r, d
     fm_json_kv_string(j, "file", r->file ? r->file : "");
     if (r->name)
         fm_json_kv_string(j, "name", r->name);
-    fm_json_kv_string(j, "status", r->status ? r->status : "error");
+    /* meshed, but a file it should be in was not written */
+    int incomplete = r->status && !strcmp(r->status, "ok") && r->set_index != SIZE_MAX &&
+                     !outputs_complete(rs->outputs, r->set_index);
+    fm_json_kv_string(j, "status", incomplete ? "incomplete" : r->status ? r->status : "error");
+    if (incomplete)
+        outputs_json_missing(j, rs->outputs, r->set_index);
     if (r->error)
         fm_json_kv_string(j, "error", r->error);
     if (r->fc.line) {
@@ -459,6 +464,8 @@ void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp)
     fprintf(fp, "  %-14s read and fit %.1f s, connect %.1f s, mesh %.1f s, merge and check "
                 "%.1f s, write %.1f s; %.1f s in all\n",
             "time", rs->time[0], rs->time[1], rs->time[2], rs->time[3], rs->time[4], T);
+    if (rs->outputs)
+        outputs_print(rs->outputs, fp);
     for (size_t i = 0; i < rs->nres; i++) {
         const fault_result *r = &rs->res[i];
         if (r->status && !strcmp(r->status, "error"))
@@ -505,10 +512,19 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
     json_connect(&j, cli, rs, &t);
     if (sa)
         sim_json_summary(&j, &cli->sim, sa);
+    if (rs->outputs)
+        outputs_json(&j, rs->outputs);
     fm_json_key(&j, "summary");
     fm_json_begin_object(&j);
     fm_json_kv_int(&j, "faults", (int64_t)rs->nres);
     fm_json_kv_int(&j, "meshed", (int64_t)t.ok);
+    size_t incomplete = 0;
+    for (size_t i = 0; i < rs->nres; i++)
+        incomplete += rs->res[i].status && !strcmp(rs->res[i].status, "ok") &&
+                      rs->res[i].set_index != SIZE_MAX &&
+                      !outputs_complete(rs->outputs, rs->res[i].set_index);
+    /* meshed, with some of their files not written */
+    fm_json_kv_int(&j, "incomplete", (int64_t)incomplete);
     fm_json_kv_int(&j, "failed", rs->failed);
     fm_json_kv_int(&j, "meshed_with_warnings", (int64_t)t.warned);
     fm_json_kv_int(&j, "triangles", (int64_t)t.triangles);

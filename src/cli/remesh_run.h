@@ -92,6 +92,26 @@ typedef struct fault_result {
     size_t ncad;
 } fault_result;
 
+/* Which faults an output file holds: all of them (the set's files),
+ * one (its TSurf file), or none (the reports). */
+typedef enum output_kind { OUTPUT_SET, OUTPUT_FAULT, OUTPUT_REPORT } output_kind;
+
+typedef struct output_rec {
+    char *file;  /* inside the output folder */
+    char *error; /* why it was not written; NULL when it was */
+    size_t fault; /* OUTPUT_FAULT: the fault's index in the set */
+    output_kind kind;
+} output_rec;
+
+/* Every output file of a run, written or not (remesh_outputs.c). */
+typedef struct output_log {
+    const char *dir;
+    output_rec *rec;
+    size_t n, cap;
+    size_t written, unwritten;
+    size_t lost; /* records memory ran out for */
+} output_log;
+
 typedef struct run_state {
     fm_mesh *set;       /* all faults; tag = fault index */
     int32_t *sheet;     /* per triangle of set: the sheet of its fault it is on */
@@ -118,6 +138,7 @@ typedef struct run_state {
     const fm_cad_face **cad; /* the faces of the faults in set, in order */
     size_t ncad;
     fm_loss *loss;          /* the connect measures of the final set; NULL if not taken */
+    output_log *outputs;    /* what was written; filled while writing */
 } run_state;
 
 /* One input file's faults, fitted and then meshed by workers; merged
@@ -179,9 +200,27 @@ void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
 void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
                    size_t njobs);
 
+/* remesh_outputs.c: an output file written (err NULL) or not (said on
+ * stderr); outputs_done is the same as an fm_output_done of the set's
+ * files (ctx: the log). */
+void outputs_note(output_log *log, const char *path, size_t fault, output_kind kind,
+                  const fm_error *err);
+void outputs_done(void *ctx, const char *path, size_t fault, const fm_error *err);
+void outputs_free(output_log *log);
+/* Whether every file fault f (its index in the set) should be in was
+ * written. */
+int outputs_complete(const output_log *log, size_t f);
+/* "outputs_missing": the files f should be in that were not written. */
+void outputs_json_missing(fm_json *j, const output_log *log, size_t f);
+/* "outputs": counts, and every file with its outcome. */
+void outputs_json(fm_json *j, const output_log *log);
+/* The summary's lines: counts, and each file not written with why. */
+void outputs_print(const output_log *log, FILE *fp);
+
 /* remesh_set.c */
 void merge_job(const remesh_cli *cli, file_job *job, run_state *rs);
 void carve_set(const remesh_cli *cli, run_state *rs);
+
 /* Junction jn as meshed: the plan's type, unless one of its faults failed
  * or came out empty (*why is then that fault's error, *which the fault),
  * or the mesher could not fit its curve into one of its sheets or the
@@ -189,7 +228,10 @@ void carve_set(const remesh_cli *cli, run_state *rs);
  * else *which is SIZE_MAX). */
 fm_junction_type junction_outcome(const run_state *rs, const fm_connect_junction *jn,
                                   const char **why, size_t *which);
-fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa, fm_error *err);
+/* The fault set in every format (remesh_set.c): every file tried even
+ * when another failed, each noted in rs->outputs; the first failure's
+ * status, FM_OK when all were written. */
+fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa);
 
 /* remesh_report.c */
 /* The run's figures over all faults and junctions. */

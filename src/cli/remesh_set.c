@@ -426,24 +426,44 @@ static int junction_sets_make(const run_state *rs, junction_sets *js)
     return rc;
 }
 
+/* Every file of the set as not written, for one reason (the set could not
+ * be prepared). */
+static fm_status none_written(output_log *log, const char *dir, const fm_error *why)
+{
+    static const char *const files[] = {"mesh.vtu",   "mesh.msh",    "mesh.stl",
+                                        "mesh.obj",   "mesh.exo",    "NAME.ts",
+                                        "model.igs",  "mesh.rsqsim", "mesh.eqsim"};
+    size_t n = strlen(dir) + 32;
+    char *path = malloc(n);
+    for (size_t k = 0; k < sizeof files / sizeof *files; k++) {
+        if (path)
+            snprintf(path, n, "%s/%s", dir, files[k]);
+        outputs_note(log, path ? path : files[k], SIZE_MAX, OUTPUT_SET, why);
+    }
+    free(path);
+    return why->code;
+}
+
 /* The fault set in every format, the files shared among cli->jobs threads
- * (the bytes do not depend on how many); the simulator files after them.
- * *sa gets the element attributes (cleared when there are no faults). */
-fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa,
-                    fm_error *err)
+ * (the bytes do not depend on how many); model.igs and the simulator
+ * files after them, each tried whatever became of the others. *sa gets the
+ * element attributes (cleared when there are no faults). */
+fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
 {
     memset(sa, 0, sizeof *sa);
     if (!rs->nfaults)
         return FM_OK;
+    fm_error err;
+    fm_error_clear(&err);
     junction_sets js = {0};
     int32_t *tags = malloc(rs->nfaults * sizeof *tags);
     char **pnames = NULL;
     fm_status st = FM_OK;
     if (!tags || junction_sets_make(rs, &js))
-        st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+        st = fm_error_set(&err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
     if (st == FM_OK)
         st = fm_msh_tags_make(cli->msh_tags, (const char *const *)rs->names, rs->nfaults, tags,
-                              &pnames, err);
+                              &pnames, &err);
     fm_faultset fs = {.mesh = rs->set,
                       .names = (const char *const *)rs->names,
                       .nfaults = rs->nfaults,
@@ -454,7 +474,7 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa,
                       .nodesets = js.set,
                       .nnodesets = js.n};
     if (st == FM_OK && sim_attrs_make(&cli->sim, &fs, sa) != 0)
-        st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+        st = fm_error_set(&err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
     /* the element attributes, and which sheet of its fault a triangle is on
      * (the repair stage's sheets: the parts of a branching fault) */
     fm_vtu_array cells[sizeof sa->cells / sizeof *sa->cells + 1];
@@ -464,29 +484,33 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa,
     fs.cell_data = cells;
     fs.ncell_data = sizeof cells / sizeof *cells;
     size_t n = strlen(cli->dir) + 32;
-    char *path = st == FM_OK ? malloc(5 * n) : NULL;
+    char *path = st == FM_OK ? malloc(6 * n) : NULL;
     if (st == FM_OK && !path)
-        st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
-    if (st == FM_OK) {
-        const char *ext[5] = {"vtu", "msh", "stl", "obj", "exo"};
-        for (int k = 0; k < 5; k++)
-            snprintf(path + (size_t)k * n, n, "%s/mesh.%s", cli->dir, ext[k]);
+        st = fm_error_set(&err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    if (st != FM_OK) {
+        none_written(rs->outputs, cli->dir, &err);
+    } else {
+        const char *ext[6] = {"vtu", "msh", "stl", "obj", "exo", "igs"};
+        for (int k = 0; k < 6; k++)
+            snprintf(path + (size_t)k * n, n, "%s/%s.%s", cli->dir, k < 5 ? "mesh" : "model",
+                     ext[k]);
         fm_faultset_outputs out = {.vtu = path,
                                    .msh = path + n,
                                    .stl = path + 2 * n,
                                    .obj = path + 3 * n,
                                    .exo = path + 4 * n,
                                    .msh_version = cli->msh,
-                                   .tsurf_dir = cli->dir};
-        st = fm_faultset_write_all(&fs, &out, cli->jobs, err);
-    }
-    if (st == FM_OK) {
-        snprintf(path, n, "%s/model.igs", cli->dir);
-        st = fm_cad_write_iges(path, rs->cad, rs->ncad, rs->crs, err);
+                                   .tsurf_dir = cli->dir,
+                                   .done = outputs_done,
+                                   .done_ctx = rs->outputs};
+        st = fm_faultset_write_all(&fs, &out, cli->jobs, &err);
+        const char *igs = path + 5 * n;
+        fm_status cst = fm_cad_write_iges(igs, rs->cad, rs->ncad, rs->crs, &err);
+        outputs_note(rs->outputs, igs, SIZE_MAX, OUTPUT_SET, cst == FM_OK ? NULL : &err);
+        fm_status sst = sim_write(&cli->sim, &fs, sa, cli->dir, outputs_done, rs->outputs);
+        st = st != FM_OK ? st : cst != FM_OK ? cst : sst;
     }
     free(path);
-    if (st == FM_OK)
-        st = sim_write(&cli->sim, &fs, sa, cli->dir, err);
     free(tags);
     fm_faultset_free_file_names(pnames, rs->nfaults);
     free_junction_sets(&js);

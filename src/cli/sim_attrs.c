@@ -222,21 +222,30 @@ int sim_attrs_make(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a)
 }
 
 fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
-                    const char *dir, fm_error *err)
+                    const char *dir, fm_output_done done, void *ctx)
 {
     size_t n = strlen(dir) + 32;
     char *path = malloc(n);
-    if (!path)
-        return fm_error_set(err, FM_ERR_NOMEM, dir, 0, "out of memory");
     fm_sim_slip slip = {a->rake_f, a->rate_f};
-    snprintf(path, n, "%s/mesh.rsqsim", dir);
-    fm_status st = fm_faultset_write_rsqsim(path, fs, &slip, err);
-    if (st == FM_OK) {
-        snprintf(path, n, "%s/mesh.eqsim", dir);
-        st = fm_faultset_write_eqsim(path, fs, &slip, sc->eqsim, err);
+    fm_status first = FM_OK;
+    for (int k = 0; k < 2; k++) {
+        const char *name = k ? "mesh.eqsim" : "mesh.rsqsim";
+        fm_error err;
+        fm_error_clear(&err);
+        fm_status st;
+        if (!path) {
+            st = fm_error_set(&err, FM_ERR_NOMEM, name, 0, "out of memory");
+        } else {
+            snprintf(path, n, "%s/%s", dir, name);
+            st = k ? fm_faultset_write_eqsim(path, fs, &slip, sc->eqsim, &err)
+                   : fm_faultset_write_rsqsim(path, fs, &slip, &err);
+        }
+        done(ctx, path ? path : name, SIZE_MAX, st == FM_OK ? NULL : &err);
+        if (first == FM_OK)
+            first = st;
     }
     free(path);
-    return st;
+    return first;
 }
 
 void sim_json_fault(fm_json *j, const sim_attrs *a, size_t f)

@@ -60,9 +60,10 @@ typedef struct sim_attrs {
 int sim_attrs_make(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a);
 void sim_attrs_free(sim_attrs *a);
 
-/* DIR/mesh.rsqsim and DIR/mesh.eqsim. */
+/* DIR/mesh.rsqsim and DIR/mesh.eqsim, each tried, each told to done;
+ * the first failure's status. */
 fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
-                    const char *dir, fm_error *err);
+                    const char *dir, fm_output_done done, void *ctx);
 
 /* Fault f's "attributes" object of report.json. */
 void sim_json_fault(fm_json *j, const sim_attrs *a, size_t f);

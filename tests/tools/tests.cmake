@@ -113,6 +113,12 @@ add_test(NAME inputs_safe
   COMMAND bash ${FM_TOOLS}/inputs_safe_test.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/inputs_safe)
 set_tests_properties(inputs_safe PROPERTIES TIMEOUT 600)
+# outputs: a file that cannot be written does not take the others with it;
+# each is accounted for, with its reason (issue 18, item 4)
+add_test(NAME outputs
+  COMMAND bash ${FM_TOOLS}/outputs_test.sh $<TARGET_FILE:faultmesh_cli>
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/outputs)
+set_tests_properties(outputs PROPERTIES TIMEOUT 600)
 add_test(NAME remesh_progress
   COMMAND bash ${FM_TOOLS}/remesh_progress_check.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_progress)
