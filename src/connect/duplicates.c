@@ -214,18 +214,30 @@ done:
 }
 
 /* The part of fault m's sampled area (by triangle centroids) within tol of
- * the tree, summed triangle by triangle in order. Sample triangles are a
- * few hundred metres at most, far below the kilometres a duplicate shares,
- * so centroids weigh the area well. A run whose box stays more than tol
- * from the tree adds nothing and is passed over whole. */
-static double near_area(const fm_model *m, const fault_runs *runs, const fm_closest_tree *tree,
-                        double tol)
+ * any of the trees, summed triangle by triangle in order. Sample triangles
+ * are a few hundred metres at most, far below the kilometres a duplicate
+ * shares, so centroids weigh the area well. A run whose box stays more
+ * than tol from every tree adds nothing and is passed over whole. NAN when
+ * memory runs out. */
+static double near_area(const fm_model *m, const fault_runs *runs,
+                        const fm_closest_tree *const *trees, size_t ntrees, double tol)
 {
     double sum = 0;
-    int32_t hint = -1;
+    int32_t *hint = malloc((ntrees + 1) * sizeof *hint);
+    unsigned char *meets = malloc(ntrees + 1);
+    if (!hint || !meets) {
+        free(hint);
+        free(meets);
+        return NAN;
+    }
+    for (size_t k = 0; k < ntrees; k++)
+        hint[k] = -1;
     for (size_t r = 0; r < runs->n; r++) {
         const double *lo = runs->box + 6 * r, *hi = lo + 3;
-        if (!box_meets(tree, lo, hi, tol + PAD))
+        int any = 0;
+        for (size_t k = 0; k < ntrees; k++)
+            any |= meets[k] = (unsigned char)box_meets(trees[k], lo, hi, tol + PAD);
+        if (!any)
             continue;
         const fm_mesh *a = fm_model_samples(m, runs->sheet[r]);
         const double *X = fm_mesh_vertices(a);
@@ -236,10 +248,15 @@ static double near_area(const fm_model *m, const fault_runs *runs, const fm_clos
                          *w = X + 3 * (size_t)T[3 * t + 2];
             double c[3];
             centroid(p, q, w, c);
-            if (fm_closest_within(tree, c, tol, &hint))
+            int near = 0;
+            for (size_t k = 0; k < ntrees && !near; k++)
+                near = meets[k] && fm_closest_within(trees[k], c, tol, &hint[k]);
+            if (near)
                 sum += fm_triangle_area(p, q, w);
         }
     }
+    free(hint);
+    free(meets);
     return sum;
 }
 
@@ -262,7 +279,11 @@ fm_status fm_connect_overlap(const fm_model *a, const fm_model *b, double tolera
     } else {
         area[0] = ra.area;
         area[1] = rb.area;
-        double near[2] = {near_area(a, &ra, tb, tolerance), near_area(b, &rb, ta, tolerance)};
+        const fm_closest_tree *tree_a = ta, *tree_b = tb;
+        double near[2] = {near_area(a, &ra, &tree_b, 1, tolerance),
+                          near_area(b, &rb, &tree_a, 1, tolerance)};
+        if (isnan(near[0]) || isnan(near[1]))
+            st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory (overlap)");
         for (int k = 0; k < 2; k++)
             share[k] = area[k] > 0 ? near[k] / area[k] : 0.0;
     }
@@ -338,7 +359,8 @@ static fm_status candidate_pairs(const fm_model *const *models, size_t n,
 
 /* The faults of the candidate pairs: first each fault's area and runs, then
  * per fault the tree of its part near its partners, and each partner's
- * area near it. Tasks run on N threads; every result has its own slot. */
+ * area near it; last each fault's area near any of its partners. Tasks run
+ * on N threads; every result has its own slot. */
 typedef struct measure_work {
     const fm_model *const *models;
     fpair *fp;
@@ -346,8 +368,9 @@ typedef struct measure_work {
     const size_t *fault;  /* the faults in some pair, ascending */
     const size_t *slot;   /* per fault index: its place in fault[] */
     fault_runs *runs;     /* per place */
+    fm_closest_tree **tree; /* per place: its part near its partners */
     double tol;
-    double *area;
+    double *area, *cover; /* per fault index */
     fm_status *st;
     fm_error *err;
 } measure_work;
@@ -360,44 +383,87 @@ static void runs_task(void *user, size_t i)
     w->area[f] = w->runs[i].area;
 }
 
+/* The places of fault f's partners, in pair order; NULL when out of memory. */
+static size_t *partners(const measure_work *w, size_t f, size_t *n)
+{
+    size_t *p = malloc((w->m + 1) * sizeof *p);
+    *n = 0;
+    for (size_t k = 0; p && k < w->m; k++)
+        if (w->fp[k].a == f || w->fp[k].b == f)
+            p[(*n)++] = w->slot[w->fp[k].a == f ? w->fp[k].b : w->fp[k].a];
+    return p;
+}
+
 static void near_task(void *user, size_t i)
 {
     measure_work *w = user;
-    size_t f = w->fault[i], no = 0;
-    const fault_runs **other = malloc((w->m + 1) * sizeof *other);
-    if (!other) {
+    size_t f = w->fault[i], no;
+    size_t *place = partners(w, f, &no);
+    const fault_runs **other = malloc((no + 1) * sizeof *other);
+    for (size_t k = 0; place && other && k < no; k++)
+        other[k] = &w->runs[place[k]];
+    fm_closest_tree *tree =
+        place && other ? near_part(w->models[f], &w->runs[i], other, no, w->tol, &w->err[i])
+                       : NULL;
+    free(place);
+    free(other);
+    if (!tree) {
         w->st[i] = fm_error_set(&w->err[i], FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
         return;
     }
-    for (size_t k = 0; k < w->m; k++)
-        if (w->fp[k].a == f || w->fp[k].b == f)
-            other[no++] = &w->runs[w->slot[w->fp[k].a == f ? w->fp[k].b : w->fp[k].a]];
-    fm_closest_tree *tree = near_part(w->models[f], &w->runs[i], other, no, w->tol, &w->err[i]);
-    free(other);
-    if (!tree) {
-        w->st[i] = FM_ERR_NOMEM;
-        return;
-    }
+    w->tree[i] = tree;
+    const fm_closest_tree *one = tree;
     for (size_t k = 0; k < w->m; k++) {
         fpair *q = &w->fp[k];
         if (q->a == f)
-            q->near[1] = near_area(w->models[q->b], &w->runs[w->slot[q->b]], tree, w->tol);
+            q->near[1] = near_area(w->models[q->b], &w->runs[w->slot[q->b]], &one, 1, w->tol);
         else if (q->b == f)
-            q->near[0] = near_area(w->models[q->a], &w->runs[w->slot[q->a]], tree, w->tol);
+            q->near[0] = near_area(w->models[q->a], &w->runs[w->slot[q->a]], &one, 1, w->tol);
     }
-    fm_closest_tree_destroy(tree);
+}
+
+static void cover_task(void *user, size_t i)
+{
+    measure_work *w = user;
+    size_t f = w->fault[i], no;
+    size_t *place = partners(w, f, &no);
+    const fm_closest_tree **trees = malloc((no + 1) * sizeof *trees);
+    for (size_t k = 0; place && trees && k < no; k++)
+        trees[k] = w->tree[place[k]];
+    double a = place && trees ? near_area(w->models[f], &w->runs[i], trees, no, w->tol) : NAN;
+    free(place);
+    free(trees);
+    w->cover[f] = a;
+    if (isnan(a))
+        w->st[i] = fm_error_set(&w->err[i], FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+}
+
+/* One round of tasks; the first fault in order that failed reports. */
+static fm_status round_of(size_t nf, int nthreads, void (*task)(void *, size_t),
+                          measure_work *w, fm_error *err)
+{
+    cn_parallel_for(nf, nthreads, task, w);
+    for (size_t i = 0; i < nf; i++)
+        if (w->st[i] != FM_OK) {
+            if (err)
+                *err = w->err[i];
+            return w->st[i];
+        }
+    return FM_OK;
 }
 
 static fm_status measure_pairs(const fm_model *const *models, size_t n, fpair *fp, size_t m,
-                               double tol, int nthreads, double *area, fm_error *err)
+                               double tol, int nthreads, double *area, double *cover,
+                               fm_error *err)
 {
     size_t *slot = malloc((n ? n : 1) * sizeof *slot);
     size_t *fault = malloc((n ? n : 1) * sizeof *fault), nf = 0;
     fm_status *st = calloc(n ? n : 1, sizeof *st);
     fm_error *errs = calloc(n ? n : 1, sizeof *errs);
     fault_runs *runs = calloc(n ? n : 1, sizeof *runs);
+    fm_closest_tree **tree = calloc(n ? n : 1, sizeof *tree);
     fm_status rc = FM_OK;
-    if (!slot || !fault || !st || !errs || !runs) {
+    if (!slot || !fault || !st || !errs || !runs || !tree) {
         rc = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
         goto done;
     }
@@ -410,27 +476,18 @@ static fm_status measure_pairs(const fm_model *const *models, size_t n, fpair *f
             slot[f] = nf;
             fault[nf++] = f;
         }
-    measure_work w = {models, fp, m, fault, slot, runs, tol, area, st, errs};
-    /* both rounds report the first fault in order that failed */
-    cn_parallel_for(nf, nthreads, runs_task, &w);
-    for (size_t i = 0; i < nf && rc == FM_OK; i++)
-        if (st[i] != FM_OK) {
-            rc = st[i];
-            if (err)
-                *err = errs[i];
-        }
-    if (rc == FM_OK) {
-        cn_parallel_for(nf, nthreads, near_task, &w);
-        for (size_t i = 0; i < nf && rc == FM_OK; i++)
-            if (st[i] != FM_OK) {
-                rc = st[i];
-                if (err)
-                    *err = errs[i];
-            }
-    }
+    measure_work w = {models, fp, m, fault, slot, runs, tree, tol, area, cover, st, errs};
+    rc = round_of(nf, nthreads, runs_task, &w, err);
+    if (rc == FM_OK)
+        rc = round_of(nf, nthreads, near_task, &w, err);
+    if (rc == FM_OK)
+        rc = round_of(nf, nthreads, cover_task, &w, err);
 done:
     for (size_t i = 0; runs && i < nf; i++)
         runs_free(&runs[i]);
+    for (size_t i = 0; tree && i < nf; i++)
+        fm_closest_tree_destroy(tree[i]);
+    free(tree);
     free(runs);
     free(slot);
     free(fault);
@@ -457,11 +514,15 @@ fm_status fm_connect_find_duplicates(const fm_model *const *models, size_t n,
     fpair *fp = NULL;
     size_t m = 0;
     double *area = calloc(n ? n : 1, sizeof *area);
-    if (!area || candidate_pairs(models, n, pairs, opt->tolerance, &fp, &m) != FM_OK) {
+    double *cover = calloc(n ? n : 1, sizeof *cover);
+    if (!area || !cover ||
+        candidate_pairs(models, n, pairs, opt->tolerance, &fp, &m) != FM_OK) {
         free(area);
+        free(cover);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
     }
-    fm_status st = measure_pairs(models, n, fp, m, opt->tolerance, opt->nthreads, area, err);
+    fm_status st =
+        measure_pairs(models, n, fp, m, opt->tolerance, opt->nthreads, area, cover, err);
     fm_connect_duplicate *dup = st == FM_OK ? malloc((m ? m : 1) * sizeof *dup) : NULL;
     if (st == FM_OK && !dup)
         st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
@@ -472,8 +533,14 @@ fm_status fm_connect_find_duplicates(const fm_model *const *models, size_t n,
                            ar[1] > 0 ? fp[k].near[1] / ar[1] : 0};
         if (fmax(share[0], share[1]) < opt->min_share)
             continue;
-        /* index 0 of share and area belongs to the dropped fault */
+        /* index 0 of share and area belongs to the dropped fault; the
+         * rule's choice stands only if what its partners together cover of
+         * it reaches the share (a section under a composite, not a small
+         * patch lying on a large fault, which would lose the large one) */
         int swap = !drop_first(opt, ar[0], ar[1]);
+        size_t drop = swap ? fp[k].b : fp[k].a;
+        if (!(cover[drop] >= opt->min_share * area[drop]))
+            swap = !swap;
         fm_connect_duplicate *d = &dup[nd++];
         d->dropped = swap ? fp[k].b : fp[k].a;
         d->kept = swap ? fp[k].a : fp[k].b;
@@ -485,6 +552,7 @@ fm_status fm_connect_find_duplicates(const fm_model *const *models, size_t n,
     }
     free(fp);
     free(area);
+    free(cover);
     if (st != FM_OK) {
         free(dup);
         return st;

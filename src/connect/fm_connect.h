@@ -196,7 +196,11 @@ const double *fm_connect_curve_angles(const fm_connect_curves *c, size_t i);
  * reaches `min_share`. Rule: FM_CONNECT_KEEP_SMALLER (default) gives up the
  * larger fault of the pair, which keeps the section faults and drops the
  * composites over them; FM_CONNECT_KEEP_LARGER the opposite. Equal areas:
- * the later fault (higher index) goes. Pairs decide in order of their
+ * the later fault (higher index) goes. Nothing is lost by it: the fault the
+ * rule would give up goes only when the faults it is paired with cover
+ * (together, within `tolerance`) at least `min_share` of it; otherwise the
+ * other of the pair goes (a small patch lying on a large fault is given up,
+ * never the large fault). Pairs decide in order of their
  * larger share, strongest first; a pair one of whose faults has already
  * been given up decides nothing (the other stays unless a pair of its own
  * drops it). */

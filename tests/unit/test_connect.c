@@ -789,6 +789,45 @@ static void test_duplicates(void)
         fm_model_destroy(models[k]);
 }
 
+/* A small patch lying 20 m beside a large fault repeats a corner of it:
+ * under either rule the patch is given up, never the large fault, of which
+ * the patch covers a tenth (nothing is lost). */
+static void test_duplicate_patch(void)
+{
+    fm_mesh *meshes[2] = {plane_part(-8000, 8000, 0, -6000, 500),
+                          plane_part(-8000, -6000, 20, -2000, 250)};
+    const char *names[2] = {"large", "patch"};
+    fm_model *models[2];
+    for (int k = 0; k < 2; k++) {
+        models[k] = fit_mesh(names[k], meshes[k]);
+        fm_mesh_destroy(meshes[k]);
+        CHECK(models[k] != NULL);
+        if (!models[k])
+            return;
+    }
+    fm_error err;
+    fm_connect_pairs *pairs = NULL;
+    CHECK(fm_connect_find_pairs((const fm_model *const *)models, 2, NULL, &pairs, &err) == FM_OK);
+    for (int keep = 0; keep < 2 && pairs; keep++) {
+        fm_connect_duplicate_options o;
+        fm_connect_duplicate_options_default(&o);
+        o.keep = keep ? FM_CONNECT_KEEP_LARGER : FM_CONNECT_KEEP_SMALLER;
+        fm_connect_duplicate *d = NULL;
+        size_t nd = 0;
+        CHECK(fm_connect_find_duplicates((const fm_model *const *)models, 2, pairs, &o, &d, &nd,
+                                         &err) == FM_OK);
+        CHECK(nd == 1);
+        if (nd == 1) {
+            CHECK(d[0].decided && d[0].dropped == 1 && d[0].kept == 0);
+            CHECK(d[0].share[0] > 0.95 && d[0].share[1] < 0.1);
+        }
+        free(d);
+    }
+    fm_connect_pairs_destroy(pairs);
+    for (int k = 0; k < 2; k++)
+        fm_model_destroy(models[k]);
+}
+
 /* Pairs, near-duplicates and the plan come out the same, to the bit, on
  * 1, 2 and 5 threads (the synthetic system, plus a composite over a
  * section 20 m beside it so that one fault is given up). */
@@ -923,7 +962,7 @@ int main(void)
         FM_CASE(test_cut_short),
         FM_CASE(test_stop_short),
         FM_CASE(test_beyond_end),
-        FM_CASE(test_duplicates),
+        FM_CASE(test_duplicates), FM_CASE(test_duplicate_patch),
         FM_CASE(test_threads),
         FM_CASE(test_cfm_santa_monica),
     };
