@@ -114,6 +114,31 @@ fm_status trim_input_make(const double *uv, const double *metric, size_t n, trim
     return FM_OK;
 }
 
+double trim_input_area(const trim_input *in)
+{
+    /* a fan from the centroid, each triangle scaled by the area element of
+     * its edge's mean form */
+    double c[2] = {0, 0};
+    for (size_t i = 0; i < in->n; i++) {
+        c[0] += in->xy[2 * i] / (double)in->n;
+        c[1] += in->xy[2 * i + 1] / (double)in->n;
+    }
+    double area = 0;
+    for (size_t i = 0; i < in->n; i++) {
+        const double *a = in->xy + 2 * i, *b = in->xy + 2 * ((i + 1) % in->n);
+        double t = 0.5 * ((a[0] - c[0]) * (b[1] - c[1]) - (b[0] - c[0]) * (a[1] - c[1]));
+        double J = 1;
+        if (in->M) {
+            const double *ma = in->M + 3 * i, *mb = in->M + 3 * ((i + 1) % in->n);
+            double E = 0.5 * (ma[0] + mb[0]), F = 0.5 * (ma[1] + mb[1]),
+                   G = 0.5 * (ma[2] + mb[2]);
+            J = sqrt(fmax(E * G - F * F, 0));
+        }
+        area += t * J;
+    }
+    return fabs(area);
+}
+
 void trim_input_at(const trim_input *in, double s, double p[2])
 {
     double L = in->s[in->n];

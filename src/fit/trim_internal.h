@@ -77,6 +77,8 @@ static inline double trim_norm2(const double *M, const double d[2])
 fm_status trim_input_make(const double *uv, const double *metric, size_t n, trim_input *in,
                           const char *name, fm_error *err);
 void trim_input_free(trim_input *in);
+/* The area the loop encloses, in the metric (m^2). */
+double trim_input_area(const trim_input *in);
 /* Point at arc length s (any real, wrapped) along the closed polyline. */
 void trim_input_at(const trim_input *in, double s, double p[2]);
 

@@ -326,8 +326,11 @@ fm_status fm_trim_fit_metric(const double *uv, const double *metric, size_t n,
 
     double L = in.s[in.n];
     double window = o.corner_window > 0 ? o.corner_window : 2 * in.spacing;
-    /* Both sides of a vertex must fit in the loop with room to spare. */
-    window = fmin(window, 0.25 * L);
+    /* Both sides of a vertex must fit in the loop with room to spare, and
+     * across it: a window wider than the loop's mean width (2 area /
+     * perimeter) would take the two ends of a long thin loop (a fault far
+     * longer than wide, drawn with few points) each for one corner. */
+    window = fmin(window, fmin(0.25 * L, 2 * trim_input_area(&in) / L));
     double h0 = o.knot_spacing > 0 ? o.knot_spacing : o.knot_factor * in.spacing;
     double beta = fmax(o.smoothing_wavelength, 0.05);
 

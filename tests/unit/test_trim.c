@@ -248,6 +248,27 @@ static void check_circle(int cw)
     fm_trim_loop_destroy(loop);
 }
 
+/* A loop far longer than wide drawn with its four corners only (a
+ * 2-triangle fault 10,000 km long, 14 km deep): the two ends are not taken
+ * for one corner each, and the curves are the rectangle's sides. */
+static void test_long_thin(void)
+{
+    const double L = 1e7, W = 14000;
+    double uv[8] = {0, 0, L, 0, L, W, 0, W};
+    fm_trim_loop *loop = NULL;
+    fm_error err;
+    CHECK_EQ(fm_trim_fit(uv, 4, NULL, &loop, &err), FM_OK);
+    if (!loop)
+        return;
+    size_t nc = 0;
+    fm_trim_loop_corners(loop, &nc);
+    CHECK_EQ(nc, 4);
+    const fm_trim_stats *st = fm_trim_loop_stats(loop);
+    CHECK(st->max_curve_dev < 1);
+    CHECK_NEAR(st->area, L * W, 1e-6 * L * W);
+    fm_trim_loop_destroy(loop);
+}
+
 static void test_circle(void)
 {
     check_circle(0);
@@ -928,7 +949,7 @@ static void test_metric(void)
     fm_trim_loop_destroy(steep);
 }
 
-FM_TEST_MAIN(FM_CASE(test_rectangle), FM_CASE(test_circle), FM_CASE(test_trace),
+FM_TEST_MAIN(FM_CASE(test_rectangle), FM_CASE(test_long_thin), FM_CASE(test_circle), FM_CASE(test_trace),
              FM_CASE(test_orientation), FM_CASE(test_determinism), FM_CASE(test_refinement),
              FM_CASE(test_spike), FM_CASE(test_forced_corner), FM_CASE(test_curve_between_points),
              FM_CASE(test_degenerate), FM_CASE(test_metric))
