@@ -227,10 +227,10 @@ int segments_cross(const double *a, const double *b, const double *c, const doub
 }
 
 /* 1 if the chord (a, b) crosses a segment of d not ending at a or b.
- * Merging asks this of every node's chord, so a segment whose bounding box
- * misses the chord's (it cannot touch it) is passed over before the exact
- * tests: on a loop of thousands of nodes (fuzz_fit_mesh found a fit whose
- * outline strayed 400 km) these took seconds. */
+ * A segment whose bounding box misses the chord's (it cannot touch it) is
+ * passed over before the exact tests. Despiking asks it of sharp nodes
+ * only; merging, which asks it of every close pair, keeps a grid of the
+ * segments (domain_merge.c). */
 static int chord_crosses(const remesh_domain *d, const double *a, const double *b)
 {
     double lo0 = fmin(a[0], b[0]), hi0 = fmax(a[0], b[0]);
@@ -291,76 +291,3 @@ void domain_despike(const fm_fit_surface *s, remesh_domain *d, double min_angle)
     }
 }
 
-/* Two outline nodes closer than this fraction of the size leave an edge
- * the mesh cannot grow away from: triangles of the size meet it at slivers
- * (two corners of a trimming curve 3 m apart where a spike was taken off
- * Rose Canyon made a 2.7 degree triangle at 1 km). */
-#define MERGE_FRACTION 0.25
-/* ... and one of them goes when that moves the outline by at most this
- * fraction of the size (in 3D, from the node to its neighbours' chord):
- * 20 m at 1 km, within the trimming curves' own 25 m. */
-#define MERGE_DEVIATION 0.02
-
-/* Removes node r of loop lp; the segment that ends at r takes over up to
- * r's successor. Of two pieces of one trimming curve the parameter ranges
- * join; otherwise the longer segment's curve serves the whole (the other
- * is short: its end moves by its length at most). */
-static void loop_remove(const fm_fit_surface *s, dom_loop *lp, size_t r)
-{
-    size_t n = lp->n, p = (r + n - 1) % n, nx = (r + 1) % n;
-    dom_seg *sp = &lp->seg[p], *sr = &lp->seg[r];
-    if (sp->kind == SEG_TRIM && sr->kind == SEG_TRIM && sp->loop == sr->loop &&
-        sp->piece == sr->piece && sp->tb == sr->ta)
-        sp->tb = sr->tb;
-    else if (surface_dist(s, lp->uv + 2 * r, lp->uv + 2 * nx) >
-             surface_dist(s, lp->uv + 2 * p, lp->uv + 2 * r))
-        *sp = *sr;
-    memmove(lp->uv + 2 * r, lp->uv + 2 * (r + 1), 2 * (n - r - 1) * sizeof *lp->uv);
-    memmove(lp->level + r, lp->level + r + 1, (n - r - 1) * sizeof *lp->level);
-    memmove(lp->seg + r, lp->seg + r + 1, (n - r - 1) * sizeof *lp->seg);
-    lp->n--;
-}
-
-/* How far (3D) the outline moves when node r goes: its distance to the
- * chord of its neighbours; INFINITY when it may not go (a sea-level node,
- * or a chord that would cross the domain's other segments). */
-static double removal_cost(const fm_fit_surface *s, const remesh_domain *d, const dom_loop *lp,
-                           size_t r)
-{
-    size_t n = lp->n, p = (r + n - 1) % n, nx = (r + 1) % n;
-    if (lp->level[r] || chord_crosses(d, lp->uv + 2 * p, lp->uv + 2 * nx))
-        return INFINITY;
-    double a[3], b[3], c[3];
-    fm_fit_surface_eval(s, lp->uv[2 * p], lp->uv[2 * p + 1], a, NULL, NULL);
-    fm_fit_surface_eval(s, lp->uv[2 * r], lp->uv[2 * r + 1], b, NULL, NULL);
-    fm_fit_surface_eval(s, lp->uv[2 * nx], lp->uv[2 * nx + 1], c, NULL, NULL);
-    return fm_segment_distance3(b, a, c);
-}
-
-size_t domain_merge_close(const fm_fit_surface *s, remesh_domain *d, double h)
-{
-    size_t removed = 0;
-    for (size_t l = 0; l < d->n; l++) {
-        dom_loop *lp = &d->loops[l];
-        for (size_t i = 0; i < lp->n && lp->n > 3;) {
-            size_t j = (i + 1) % lp->n;
-            if (!(surface_dist(s, lp->uv + 2 * i, lp->uv + 2 * j) < MERGE_FRACTION * h)) {
-                i++;
-                continue;
-            }
-            double ci = removal_cost(s, d, lp, i), cj = removal_cost(s, d, lp, j);
-            if (!(fmin(ci, cj) <= MERGE_DEVIATION * h)) {
-                i++;
-                continue;
-            }
-            /* the node whose removal moves the outline less; the segment
-             * that now ends where it did is looked at again */
-            size_t r = cj < ci ? j : i;
-            loop_remove(s, lp, r);
-            removed++;
-            if (r < i || (r == i && i > 0))
-                i--;
-        }
-    }
-    return removed;
-}
