@@ -390,6 +390,7 @@ static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **c
         free(paths);
         return FM_EXIT_USAGE;
     }
+    cli.sim.quiet = cli.quiet;
     if (sim_cli_load(&cli.sim, cli.crs, paths, npaths) != 0) {
         sim_cli_free(&cli.sim);
         free(paths);
@@ -478,6 +479,7 @@ static int demo_main(remesh_cli *cli_in, int argc, char **argv)
         fprintf(stderr, "usage: faultmesh demo [options] -o DIR\n");
         return FM_EXIT_USAGE;
     }
+    cli.sim.quiet = cli.quiet;
     if (sim_cli_load(&cli.sim, cli.crs, NULL, 0) != 0) {
         sim_cli_free(&cli.sim);
         return FM_EXIT_USAGE;

@@ -107,6 +107,11 @@ int sim_cli_load(sim_cli *sc, const char *crs, char *const *paths, size_t npaths
         for (size_t i = 0; i < npaths && !sc->metadata_found; i++)
             sc->metadata_found = metadata_beside(paths[i]);
     }
+    if (!sc->metadata_found && !sc->quiet)
+        fprintf(stderr, "faultmesh: no %s beside the inputs (in the parent folder of an input "
+                        "folder): rakes come from --slip or the settings file, else %g; give "
+                        "--metadata FILE\n",
+                METADATA_FILE, FM_SLIP_DEFAULT_RAKE);
     if (sc->metadata_found && fm_metadata_read(sc->metadata_found, &sc->md, &err) != FM_OK) {
         fprintf(stderr, "faultmesh: %s\n", err.message);
         return -1;
@@ -221,9 +226,54 @@ int sim_attrs_make(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a)
     return 0;
 }
 
+/* No silent placeholders: a simulator takes a rate of 0 for a locked
+ * patch (RSQSim then makes no earthquakes on it) and a defaulted rake for
+ * a real one, so the simulator files say on stderr how many elements carry
+ * either, and why. */
+static void say_placeholders(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a)
+{
+    size_t zero_t = 0, zero_f = 0, rake_t = 0, rake_f = 0, no_md = 0;
+    size_t *per = calloc(fs->nfaults + 1, sizeof *per);
+    const int32_t *tag = fm_mesh_tags(fs->mesh);
+    for (size_t t = 0; per && t < a->ntriangles; t++)
+        per[tag[t]]++;
+    for (size_t f = 0; f < fs->nfaults; f++) {
+        size_t n = per ? per[f] : 0;
+        if (a->rate_f[f] == 0) {
+            zero_t += n;
+            zero_f++;
+        }
+        if (a->slip[f].rake_from == FM_SLIP_FROM_DEFAULT) {
+            rake_t += n;
+            rake_f++;
+            no_md += !a->slip[f].slip_sense;
+        }
+    }
+    free(per);
+    if (zero_f)
+        fprintf(stderr,
+                "faultmesh: warning: mesh.rsqsim, mesh.eqsim: %zu of %zu elements (%zu of %zu "
+                "faults) have slip rate 0: no --slip rule or settings value gives their faults "
+                "one; a simulator takes them for locked patches (report.json: attributes)\n",
+                zero_t, a->ntriangles, zero_f, fs->nfaults);
+    if (rake_f)
+        fprintf(stderr,
+                "faultmesh: warning: mesh.rsqsim, mesh.eqsim: %zu elements (%zu faults) have "
+                "the default rake %g: %s\n",
+                rake_t, rake_f, FM_SLIP_DEFAULT_RAKE,
+                !sc->metadata_found
+                    ? "no CFM metadata CSV was found beside the inputs (give --metadata FILE, "
+                      "or a --slip rule)"
+                : no_md == rake_f ? "their faults are not in the metadata"
+                                  : "their faults' slip sense is missing or not understood in "
+                                    "the metadata (names in report.json: attributes)");
+}
+
 fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
                     const char *dir, fm_output_done done, void *ctx)
 {
+    if (!sc->quiet)
+        say_placeholders(sc, fs, a);
     size_t n = strlen(dir) + 32;
     char *path = malloc(n);
     fm_sim_slip slip = {a->rake_f, a->rate_f};

@@ -16,6 +16,7 @@ typedef struct sim_cli {
     const char *metadata_path; /* --metadata; NULL: looked for beside the inputs */
     fm_eqsim_coords eqsim;     /* --eqsim-coords */
     const struct config *cfg;  /* --config: its [[fault]] rake and slip_rate come first */
+    int quiet;                 /* --quiet: no warnings */
     /* Read by sim_cli_load. */
     fm_metadata *md;
     fm_slip_table *slip;

@@ -63,6 +63,20 @@ if [ "$what" = demo ]; then
     "$exe" demo --quiet --metadata "$tmp/none.csv" -o "$tmp/x" 2>"$tmp/err.txt"; rc=$?
     [ "$rc" = 2 ] && grep -q "none.csv" "$tmp/err.txt" && echo "ok    a missing --metadata file is a usage error" \
         || { echo "FAIL: missing --metadata: exit $rc"; fail=1; }
+    # No silent placeholders: without --slip every element is at rate 0 and
+    # every rake defaulted, and stderr says so, with how many and why; with
+    # rules for every fault, nothing is said.
+    "$exe" demo --size 4000 -o "$tmp/plain" >/dev/null 2>"$tmp/err.txt"
+    n=$("$py" -c "import json; print(json.load(open('$tmp/plain/report.json'))['summary']['triangles'])")
+    if grep -q "no CFM5.3_Metadata.csv beside the inputs" "$tmp/err.txt" &&
+       grep -q "warning: mesh.rsqsim, mesh.eqsim: $n of $n elements (10 of 10 faults) have slip rate 0" "$tmp/err.txt" &&
+       grep -q "warning: mesh.rsqsim, mesh.eqsim: $n elements (10 faults) have the default rake 180: no CFM metadata CSV" "$tmp/err.txt"; then
+        echo "ok    rate 0 and defaulted rakes are said on stderr, with counts and why"
+    else echo "FAIL: placeholders not said: $(cat "$tmp/err.txt")"; fail=1; fi
+    printf 'fault,rake,slip rate\n*,90,1\n' >"$tmp/all.csv"
+    "$exe" demo --size 4000 --slip "$tmp/all.csv" -o "$tmp/ruled" >/dev/null 2>"$tmp/err.txt"
+    ! grep -q "warning: mesh.rsqsim" "$tmp/err.txt" && echo "ok    every fault ruled: no placeholder warning" \
+        || { echo "FAIL: warned with every fault ruled: $(cat "$tmp/err.txt")"; fail=1; }
     # Spherical without a real CRS is a usage error, before any meshing.
     "$exe" demo --quiet --eqsim-coords spherical -o "$tmp/nocrs" 2>"$tmp/err.txt"; rc=$?
     if [ "$rc" = 2 ] && [ ! -e "$tmp/nocrs/mesh.vtu" ] && grep -q "PROJ cannot convert" "$tmp/err.txt"; then
