@@ -217,6 +217,11 @@ void outputs_json(fm_json *j, const output_log *log);
 /* The summary's lines: counts, and each file not written with why. */
 void outputs_print(const output_log *log, FILE *fp);
 
+/* remesh_names.c: every fault's name as each output has it (number,
+ * name, TSurf file, RSQSim/EQSim section name, Exodus II name, MSH
+ * physical tag and name), CSV. */
+fm_status write_names_csv(const char *path, const fm_faultset *fs, fm_error *err);
+
 /* remesh_set.c */
 void merge_job(const remesh_cli *cli, file_job *job, run_state *rs);
 void carve_set(const remesh_cli *cli, run_state *rs);

@@ -432,7 +432,8 @@ static fm_status none_written(output_log *log, const char *dir, const fm_error *
 {
     static const char *const files[] = {"mesh.vtu",   "mesh.msh",    "mesh.stl",
                                         "mesh.obj",   "mesh.exo",    "NAME.ts",
-                                        "model.igs",  "mesh.rsqsim", "mesh.eqsim"};
+                                        "model.igs",  "mesh.rsqsim", "mesh.eqsim",
+                                        "names.csv"};
     size_t n = strlen(dir) + 32;
     char *path = malloc(n);
     for (size_t k = 0; k < sizeof files / sizeof *files; k++) {
@@ -508,7 +509,11 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
         fm_status cst = fm_cad_write_iges(igs, rs->cad, rs->ncad, rs->crs, &err);
         outputs_note(rs->outputs, igs, SIZE_MAX, OUTPUT_SET, cst == FM_OK ? NULL : &err);
         fm_status sst = sim_write(&cli->sim, &fs, sa, cli->dir, outputs_done, rs->outputs);
-        st = st != FM_OK ? st : cst != FM_OK ? cst : sst;
+        char *names = path; /* the first path's room, free again */
+        snprintf(names, n, "%s/names.csv", cli->dir);
+        fm_status nst = write_names_csv(names, &fs, &err);
+        outputs_note(rs->outputs, names, SIZE_MAX, OUTPUT_REPORT, nst == FM_OK ? NULL : &err);
+        st = st != FM_OK ? st : cst != FM_OK ? cst : sst != FM_OK ? sst : nst;
     }
     free(path);
     free(tags);

@@ -14,9 +14,12 @@
 
 #include "faultset_internal.h"
 #include "fm_atomic.h"
+#include "fm_names.h"
 
-/* Exodus keeps names of at most this many bytes (NC_MAX_NAME - 1). */
-#define EXO_NAME_MAX 255
+/* Entity names are written short (FM_EXODUS_NAME_MAX, fm_names.h): many
+ * readers keep 32 characters of a name and would see the CFM's long
+ * names collide. */
+#define EXO_NAME_MAX FM_EXODUS_NAME_MAX
 /* An info record holds 80 characters, a QA field 32. */
 #define EXO_LINE 80
 
@@ -47,7 +50,7 @@ typedef struct exo_job {
     int32_t *node;       /* per vertex: node number (1-based), 0 if unused */
     size_t nnodes;
     size_t *tstart, *torder; /* triangles grouped by fault */
-    char **names;        /* nfaults + nnodesets names cut to EXO_NAME_MAX */
+    char **names;        /* nfaults + nnodesets short names (fm_short_names) */
     char **info;         /* ninfo lines */
     size_t ninfo;
 } exo_job;
@@ -107,14 +110,16 @@ static int prepare(exo_job *j)
     if (fs_group_by(fm_mesh_tags(fs->mesh), nt, fs->nfaults, &j->tstart, &j->torder))
         return -1;
     size_t nn = fs->nfaults + fs->nnodesets;
-    j->names = calloc(nn, sizeof *j->names);
+    /* one list, so that a junction's set and a fault's never share a name */
+    const char **full = malloc((nn + 1) * sizeof *full);
+    if (!full)
+        return -1;
+    for (size_t i = 0; i < nn; i++)
+        full[i] = i < fs->nfaults ? fs->names[i] : fs->nodesets[i - fs->nfaults].name;
+    j->names = fm_short_names(full, nn, EXO_NAME_MAX);
+    free(full);
     if (!j->names)
         return -1;
-    for (size_t i = 0; i < nn; i++) {
-        const char *s = i < fs->nfaults ? fs->names[i] : fs->nodesets[i - fs->nfaults].name;
-        if (!(j->names[i] = cut_copy(s, EXO_NAME_MAX)))
-            return -1;
-    }
     size_t ncrs = fs->crs ? strlen(fs->crs) / (EXO_LINE - 5) + 2 : 0;
     j->info = calloc(ncrs + 4, sizeof *j->info);
     if (!j->info)

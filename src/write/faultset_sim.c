@@ -7,6 +7,7 @@
 #include "faultset_internal.h"
 #include "fm_sim_write.h"
 #include "fs_out.h"
+#include "fm_names.h"
 #include "sim_internal.h"
 
 #define RAD2DEG (180.0 / 3.14159265358979323846)
@@ -84,49 +85,12 @@ void fm_faultset_strike_dip(const fm_faultset *fs, double *strike, double *dip)
                           x + 3 * (size_t)tri[3 * t + 2], &strike[t], &dip[t]);
 }
 
-char *fm_section_name(const char *name)
-{
-    size_t n = strlen(name);
-    char *s = malloc(n + 2);
-    if (!s)
-        return NULL;
-    size_t k = 0;
-    int run = 0;
-    for (size_t i = 0; i < n; i++) {
-        char c = name[i];
-        int ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                 c == '.' || c == '_' || c == '-';
-        if (ok) {
-            s[k++] = c;
-            run = 0;
-        } else if (!run) {
-            s[k++] = '_';
-            run = 1;
-        }
-    }
-    if (!k)
-        s[k++] = '_';
-    s[k] = 0;
-    return s;
-}
-
 char **sim_section_names(const fm_faultset *fs)
 {
-    char **sect = calloc(fs->nfaults + 1, sizeof *sect);
-    for (size_t f = 0; sect && f < fs->nfaults; f++)
-        if (!(sect[f] = fm_section_name(fs->names[f]))) {
-            sim_section_names_free(sect, f);
-            return NULL;
-        }
-    return sect;
+    return fm_short_names(fs->names, fs->nfaults, FM_SECTION_NAME_MAX);
 }
 
-void sim_section_names_free(char **sect, size_t n)
-{
-    for (size_t f = 0; sect && f < n; f++)
-        free(sect[f]);
-    free(sect);
-}
+void sim_section_names_free(char **sect, size_t n) { fm_short_names_free(sect, n); }
 
 int sim_corners(const fm_faultset *fs, size_t t, int32_t v[3])
 {

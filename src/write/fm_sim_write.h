@@ -39,10 +39,6 @@ int fm_element_orient(const double *a, const double *b, const double *c, double 
 /* Strike and dip of every triangle of the set (arrays of ntriangles). */
 void fm_faultset_strike_dip(const fm_faultset *fs, double *strike, double *dip);
 
-/* The one-token section name of a fault name (see above), malloc'ed;
- * NULL when memory runs out. */
-char *fm_section_name(const char *name);
-
 /* Slip of each fault: rake in degrees (Aki & Richards: 0 left-lateral,
  * 180 right-lateral, 90 reverse, -90 normal) and slip rate in m/s, one
  * value per fault (nfaults). */

@@ -32,6 +32,8 @@ import os
 import re
 import sys
 
+from fm_short_names import short_names
+
 try:
     import numpy as np
     import meshio
@@ -84,8 +86,20 @@ def check_exodus(out, faults, crs, junctions, verts, groups):
     check(all(c.type == "triangle" for c in m.cells), "meshio: every block triangles")
     nc = netCDF4.Dataset(path)
     eb = chars(nc.variables["eb_names"])
-    check(eb == faults, "block names are the fault names, in order")
     ns_names = chars(nc.variables["ns_names"])
+    # junction sets: "junction I: A / B", I the index in report.json, cut
+    # by the short-name rule with the fault names
+    made = {i: j for i, j in enumerate(junctions) if j["type"] != "unjoined"}
+    full_sets = []
+    for name in ns_names[len(faults):]:
+        mt = re.match(r"junction_(\d+)_", name)
+        ji = int(mt.group(1)) if mt else -1
+        full_sets.append("junction %d: %s / %s" % (ji, *made[ji]["faults"]) if ji in made else "")
+    short = short_names(faults + full_sets, 32)
+    check(all(len(n) <= 32 for n in eb + ns_names) and len(set(eb)) == len(eb) and
+          len(set(ns_names)) == len(ns_names),
+          "block and node set names at most 32 characters, unique")
+    check(eb == short[:len(faults)], "block names are the fault names by the short-name rule, in order")
     pts = np.asarray(m.points)
     block_nodes = []
     for i, name in enumerate(faults):
@@ -106,12 +120,12 @@ def check_exodus(out, faults, crs, junctions, verts, groups):
     check(all(etype == "TRI3" for etype in
               (nc.variables["connect%d" % (i + 1)].elem_type for i in range(len(faults)))),
           "every block TRI3")
-    check(ns_names[:len(faults)] == faults, "node sets 1..%d are the faults, named" % len(faults))
+    check(ns_names[:len(faults)] == short[:len(faults)],
+          "node sets 1..%d are the faults, named" % len(faults))
     bad = [faults[i] for i in range(len(faults))
            if set((np.asarray(nc.variables["node_ns%d" % (i + 1)][:]) - 1).tolist()) != block_nodes[i]]
     check(not bad, "each fault's node set = the nodes of its block (%d differ)" % len(bad))
     # junctions made, from report.json
-    made = {i: j for i, j in enumerate(junctions) if j["type"] != "unjoined"}
     sets = ns_names[len(faults):]
     fidx = {n: i for i, n in enumerate(faults)}
     edges = []
@@ -122,9 +136,9 @@ def check_exodus(out, faults, crs, junctions, verts, groups):
     bad_names, bad_nodes, no_edge, total, covered = [], [], [], 0, {}
     with_set = set()
     for k, name in enumerate(sets):
-        mt = re.fullmatch(r"junction (\d+): (.*) / (.*)", name)
+        mt = re.match(r"junction_(\d+)_", name)
         ji = int(mt.group(1)) if mt else -1
-        if ji not in made or name != ("junction %d: %s / %s" % (ji, *made[ji]["faults"]))[:255]:
+        if ji not in made or name != short[len(faults) + k]:
             bad_names.append(name)
             continue
         with_set.add(ji)
@@ -137,8 +151,8 @@ def check_exodus(out, faults, crs, junctions, verts, groups):
         if not common:
             no_edge.append(name)
         covered.setdefault((a, b), set()).update(common)
-    check(not bad_names, "every junction node set is named 'junction I: A / B' after a junction "
-          "report.json marks made (%s)" % bad_names[:2])
+    check(not bad_names, "every junction node set is named 'junction I: A / B' (short) after a "
+          "junction report.json marks made (%s)" % bad_names[:2])
     check(not bad_nodes, "every junction node set's nodes are nodes of both faults' blocks "
           "(%d sets, %d nodes; bad: %s)" % (len(sets), total, bad_nodes[:3]))
     check(not no_edge, "every junction node set holds an edge of both faults (%s)" % no_edge[:3])

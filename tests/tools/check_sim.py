@@ -48,6 +48,8 @@ import math
 import os
 import re
 import sys
+
+from fm_short_names import short_names
 import warnings
 
 # pyproj warns that grids it would rank higher are not installed: that is
@@ -146,10 +148,6 @@ def expected_slip(name, md, rules):
     elif rake <= -180:
         rake += 360
     return rake, rate
-
-
-def token(name):
-    return re.sub(r"[^A-Za-z0-9._-]+", "_", name) or "_"
 
 
 def strike_dip(n):
@@ -264,8 +262,31 @@ def main():
               "RSQSim: every normal points up (vertical: strike in [0, 180)); %d vertical"
               % int(np.sum(rvert)))
         check(np.array_equal(sect, fid[order] + 1), "RSQSim: sect_num = fault index + 1")
-        check(all(s == token(names[k - 1]) for s, k in zip(sname, sect)),
-              "RSQSim: sect_name = the fault name as one token")
+        short = short_names(names, 50)
+        check(all(s == short[k - 1] for s, k in zip(sname, sect)),
+              "RSQSim: sect_name = the fault name by the short-name rule (50)")
+        check(max(len(s) for s in short) <= 50 and len(set(short)) == len(short),
+              "RSQSim: section names at most 50 characters, unique")
+        # as rsqsim-python-tools reads it: genfromtxt, the name as U50
+        g = np.genfromtxt(os.path.join(d, "mesh.rsqsim"), dtype=None, encoding="utf-8",
+                          names=["x1", "y1", "z1", "x2", "y2", "z2", "x3", "y3", "z3", "rake",
+                                 "slip_rate", "fault_num", "fault_name"],
+                          converters={12: lambda b: b}, autostrip=True)
+        got = {}
+        for num, nm in zip(np.atleast_1d(g["fault_num"]), np.atleast_1d(g["fault_name"])):
+            got.setdefault(int(num), set()).add(str(np.str_(nm)[:50]))
+        check(all(got.get(k + 1) == {short[k]} for k in range(nf)) and
+              len({next(iter(v)) for v in got.values()}) == len(got),
+              "RSQSim read as rsqsim-python-tools does (U50): one distinct name per section")
+        # names.csv leads from each short name back to the full one
+        with open(os.path.join(d, "names.csv"), newline="") as fp:
+            rows = list(csv.DictReader(fp))
+        check(len(rows) == nf and
+              all(r["number"] == str(k + 1) and r["name"] == names[k] and
+                  r["section_name"] == short[k] and
+                  r["exodus_name"] == short_names(names, 32)[k] and
+                  os.path.isfile(os.path.join(d, r["tsurf_file"])) for k, r in enumerate(rows)),
+              "names.csv: number, full name, TSurf file, section and Exodus names of every fault")
         check(np.array_equal(rrake, rk[fid[order]]) and
               np.allclose(rrate, rt[fid[order]], rtol=1e-15, atol=0),
               "RSQSim: rake (deg) and slip rate (m/s) as the rules give")
@@ -366,7 +387,7 @@ def main():
         ti += ntri
         vv = np.array([v[1:5] for v in s["v"]]) if s["v"] else np.zeros((0, 4))
         idx = {v[0]: j for j, v in enumerate(s["v"])}
-        ok = (sid == k + 1 and int(f[13]) == k + 1 and nm == token(names[k]) and nv == len(s["v"])
+        ok = (sid == k + 1 and int(f[13]) == k + 1 and nm == short_names(names, 50)[k] and nv == len(s["v"])
               and ntri == len(s["t"]) and int(f[4]) == 0 and np.all(fid[mine] == k))
         ok = ok and float(f[5]) == vv[:, 0].min() and float(f[6]) == vv[:, 0].max() and \
             float(f[7]) == vv[:, 1].min() and float(f[8]) == vv[:, 1].max() and \

@@ -19,7 +19,7 @@ blocked=$(basename "$first")
 # mesh.vtu and one fault's NAME.ts are folders: both fail, all else is written
 mkdir -p "$tmp/o/mesh.vtu" "$tmp/o/$blocked"
 expect_rc 1 "two outputs blocked" "$exe" remesh --size 4000 -o "$tmp/o" "$tmp/in"
-for f in mesh.msh mesh.stl mesh.obj mesh.exo model.igs mesh.rsqsim mesh.eqsim report.html \
+for f in mesh.msh mesh.stl mesh.obj mesh.exo model.igs mesh.rsqsim mesh.eqsim names.csv report.html \
          report.json; do
     [ -f "$tmp/o/$f" ] && ok || bad "$f not written after mesh.vtu failed"
 done
@@ -47,7 +47,7 @@ r="$tmp/o/report.json"
 # nothing blocked: every file listed as written, every fault ok
 expect_rc 0 "all written" "$exe" remesh --quiet --size 4000 -o "$tmp/all" "$tmp/in"
 [ "$(json "$tmp/all/report.json" "(r['outputs']['written'], r['outputs']['not_written'])")" = \
-  "($((n + 9)), 0)" ] && ok || bad "outputs: $(json "$tmp/all/report.json" "r['outputs']")"
+  "($((n + 10)), 0)" ] && ok || bad "outputs: $(json "$tmp/all/report.json" "r['outputs']")"
 
 # a 1 mm fault far from the others: its face alone is left out of model.igs
 python3 - "$first" "$tmp/tiny.ts" <<'EOF'
@@ -106,8 +106,8 @@ if mount -t tmpfs -o size=200k tmpfs "$disk" 2>/dev/null; then
     done
     written=$(ls "$disk/o" | wc -l)
     said=$(grep -c "^faultmesh: not written: " "$tmp/err")
-    [ $((written + said)) = $((n + 10)) ] && ok ||
-        bad "full disk: $written present + $said not written != $((n + 10)) files"
+    [ $((written + said)) = $((n + 11)) ] && ok ||
+        bad "full disk: $written present + $said not written != $((n + 11)) files"
     umount "$disk"
 else
     echo "(full disk not tried: no tmpfs may be mounted here)"

@@ -11,6 +11,7 @@
 
 #include "fm_atomic.h"
 #include "fm_metadata.h"
+#include "fm_names.h"
 #include "fm_sim_write.h"
 #include "fm_test.h"
 
@@ -239,6 +240,49 @@ static void test_orient(void)
     free(n);
 }
 
+/* Short names: at most max bytes, unique, the same for a long name
+ * whatever its neighbours (unless they collide), one token. */
+static void test_short_names(void)
+{
+    const char *names[] = {
+        "SAFS-SAFZ-MULT-San_Andreas_fault_Coachella_Valley_strand-CFM5_500m", /* 66 */
+        "SAFS-SAFZ-MULT-San_Andreas_fault_Coachella_Valley_strand-CFM4_500m", /* same 45 */
+        "short name",
+        "short_name", /* the same token */
+        "exactly_fifty_characters_long_name_xxxxxxxxxxxxxxx"};
+    CHECK_EQ(strlen(names[4]), 50);
+    char **s = fm_short_names(names, 5, FM_SECTION_NAME_MAX);
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    for (int i = 0; i < 5; i++) {
+        CHECK(strlen(s[i]) <= FM_SECTION_NAME_MAX);
+        CHECK(strpbrk(s[i], " \t\"") == NULL);
+        for (int j = 0; j < i; j++)
+            CHECK(strcmp(s[i], s[j]) != 0);
+    }
+    CHECK_EQ(strlen(s[0]), 50);
+    CHECK(strncmp(s[0], names[0], 45) == 0 && s[0][45] == '~');
+    CHECK(strncmp(s[1], names[1], 45) == 0 && s[1][45] == '~');
+    CHECK_STR(s[2], "short_name");
+    CHECK(strncmp(s[3], "short_name~", 11) == 0 && strlen(s[3]) == 15);
+    CHECK_STR(s[4], names[4]);
+    /* a long name's short form alone is the same as among the others */
+    char **one = fm_short_names(&names[1], 1, FM_SECTION_NAME_MAX);
+    CHECK(one && strcmp(one[0], s[1]) == 0);
+    fm_short_names_free(one, 1);
+    /* Exodus: 32 */
+    char **e = fm_short_names(names, 5, FM_EXODUS_NAME_MAX);
+    for (int i = 0; e && i < 5; i++) {
+        CHECK(strlen(e[i]) <= FM_EXODUS_NAME_MAX);
+        for (int j = 0; j < i; j++)
+            CHECK(strcmp(e[i], e[j]) != 0);
+    }
+    fm_short_names_free(e, 5);
+    fm_short_names_free(s, 5);
+    CHECK(fm_short_names(names, 5, 5) == NULL);
+}
+
 /* ---- writers ---- */
 
 /* Two faults: a plane dipping 45 degrees to the south with triangles of
@@ -360,5 +404,6 @@ static void test_eqsim(void)
 }
 
 FM_TEST_MAIN(FM_CASE(test_metadata_read), FM_CASE(test_csv_errors), FM_CASE(test_sense_rake),
-             FM_CASE(test_slip_assign), FM_CASE(test_orient), FM_CASE(test_rsqsim),
+             FM_CASE(test_slip_assign), FM_CASE(test_orient), FM_CASE(test_short_names),
+             FM_CASE(test_rsqsim),
              FM_CASE(test_eqsim))
