@@ -8,6 +8,7 @@
 
 #include "fm_atomic.h"
 #include "faultset_internal.h"
+#include "fm_reproject.h"
 #include "fm_sim_write.h"
 #include "fs_out.h"
 #include "sim_internal.h"
@@ -95,146 +96,19 @@ static void put_int(fs_out *o, uint64_t v)
     fs_out_u64(o, v);
 }
 
-/* The operation from the mesh's CRS to WGS 84 used for the whole set.
- * proj_create_crs_to_crs would choose per point among the candidates whose
- * area of use holds it, so neighbouring nodes on either side of a border
- * (a coastline, a state line) could get datum shifts metres apart. One
- * operation for all keeps the geometry whole: the first that PROJ ranks
- * for the set's extent among those it can run with the grids installed. */
-typedef struct sim_proj {
-    PJ_CONTEXT *ctx;
-    PJ *op;          /* normalised: x = lon, y = lat */
-    char name[256];  /* the operation's name */
-    char accuracy[32];
-    char *pipeline;  /* its PROJ string (malloc'ed), for the file's metadata */
-} sim_proj;
-
-static void sim_proj_free(sim_proj *sp)
-{
-    proj_destroy(sp->op);
-    if (sp->ctx)
-        proj_context_destroy(sp->ctx);
-    free(sp->pipeline);
-    memset(sp, 0, sizeof *sp);
-}
-
-/* Longitude/latitude box of the set's x/y box through the source CRS's
- * own geographic CRS (no datum change: only to rank operations). */
-static int extent_lonlat(PJ_CONTEXT *ctx, PJ *src, const double bb[4], double ll[4])
-{
-    PJ *geo = proj_crs_get_geodetic_crs(ctx, src);
-    PJ *P = geo ? proj_create_crs_to_crs_from_pj(ctx, src, geo, NULL, NULL) : NULL;
-    PJ *N = P ? proj_normalize_for_visualization(ctx, P) : NULL;
-    int ok = N != NULL;
-    ll[0] = ll[1] = INFINITY;
-    ll[2] = ll[3] = -INFINITY;
-    for (int i = 0; ok && i <= 4; i++)
-        for (int j = 0; ok && j <= 4; j++) {
-            double x = bb[0] + (bb[2] - bb[0]) * i / 4, y = bb[1] + (bb[3] - bb[1]) * j / 4;
-            PJ_COORD c = proj_trans(N, PJ_FWD, proj_coord(x, y, 0, HUGE_VAL));
-            if (!isfinite(c.xy.x) || !isfinite(c.xy.y) || c.xy.x == HUGE_VAL) {
-                ok = 0;
-                break;
-            }
-            ll[0] = fmin(ll[0], c.xy.x);
-            ll[1] = fmin(ll[1], c.xy.y);
-            ll[2] = fmax(ll[2], c.xy.x);
-            ll[3] = fmax(ll[3], c.xy.y);
-        }
-    proj_destroy(N);
-    proj_destroy(P);
-    proj_destroy(geo);
-    return ok ? 0 : -1;
-}
-
-static fm_status sim_proj_make(sim_proj *sp, const char *crs, const double bb[4],
-                               const char *path, fm_error *err)
-{
-    memset(sp, 0, sizeof *sp);
-    if (!crs || !crs[0])
-        return fm_error_set(err, FM_ERR_INVALID, path, 0,
-                            "spherical coordinates need the mesh's CRS (none given)");
-    if (!(sp->ctx = proj_context_create()))
-        return fm_error_set(err, FM_ERR_NOMEM, path, 0, "PROJ: cannot create a context");
-    /* Results must not depend on what a CDN serves today: only the grids
-     * installed locally (proj-data) are used. */
-    proj_context_set_enable_network(sp->ctx, 0);
-    proj_log_level(sp->ctx, PJ_LOG_NONE);
-    PJ *src = proj_create(sp->ctx, crs), *dst = proj_create(sp->ctx, "EPSG:4326");
-    PJ_OPERATION_FACTORY_CONTEXT *fc = NULL;
-    PJ_OBJ_LIST *ops = NULL;
-    double ll[4];
-    if (src && dst && extent_lonlat(sp->ctx, src, bb, ll) == 0 &&
-        (fc = proj_create_operation_factory_context(sp->ctx, NULL))) {
-        proj_operation_factory_context_set_grid_availability_use(
-            sp->ctx, fc, PROJ_GRID_AVAILABILITY_DISCARD_OPERATION_IF_MISSING_GRID);
-        proj_operation_factory_context_set_spatial_criterion(
-            sp->ctx, fc, PROJ_SPATIAL_CRITERION_PARTIAL_INTERSECTION);
-        proj_operation_factory_context_set_area_of_interest(sp->ctx, fc, ll[0], ll[1], ll[2],
-                                                            ll[3]);
-        ops = proj_create_operations(sp->ctx, src, dst, fc);
-    }
-    int n = ops ? proj_list_get_count(ops) : 0;
-    for (int i = 0; i < n && !sp->op; i++) {
-        PJ *op = proj_list_get(sp->ctx, ops, i);
-        if (op && proj_coordoperation_is_instantiable(sp->ctx, op)) {
-            sp->op = proj_normalize_for_visualization(sp->ctx, op);
-            const char *nm = proj_get_name(op);
-            snprintf(sp->name, sizeof sp->name, "%s", nm ? nm : "unnamed");
-            double acc = proj_coordoperation_get_accuracy(sp->ctx, op);
-            if (acc >= 0)
-                snprintf(sp->accuracy, sizeof sp->accuracy, "%g m", acc);
-            else
-                snprintf(sp->accuracy, sizeof sp->accuracy, "unknown");
-        }
-        proj_destroy(op);
-    }
-    proj_list_destroy(ops);
-    proj_operation_factory_context_destroy(fc);
-    proj_destroy(src);
-    proj_destroy(dst);
-    const char *ps = sp->op ? proj_as_proj_string(sp->ctx, sp->op, PJ_PROJ_5, NULL) : NULL;
-    if (ps && (sp->pipeline = malloc(strlen(ps) + 1)))
-        strcpy(sp->pipeline, ps);
-    if (!sp->op || !sp->pipeline) {
-        fm_status st = fm_error_set(err, FM_ERR_INVALID, path, 0,
-                                    "PROJ cannot convert from CRS '%s' to WGS 84 (EPSG:4326)%s%s",
-                                    crs, proj_context_errno(sp->ctx) ? ": " : "",
-                                    proj_context_errno(sp->ctx)
-                                        ? proj_context_errno_string(sp->ctx,
-                                                                    proj_context_errno(sp->ctx))
-                                        : "");
-        sim_proj_free(sp);
-        return st;
-    }
-    return FM_OK;
-}
-
 fm_status fm_eqsim_check_crs(const char *crs, fm_error *err)
 {
     if (!crs || !crs[0])
         return fm_error_set(err, FM_ERR_INVALID, NULL, 0,
                             "spherical EQSim coordinates need a CRS (--crs)");
-    PJ_CONTEXT *ctx = proj_context_create();
-    if (!ctx)
-        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "PROJ: cannot create a context");
-    proj_context_set_enable_network(ctx, 0);
-    proj_log_level(ctx, PJ_LOG_NONE);
-    PJ *P = proj_create_crs_to_crs(ctx, crs, "EPSG:4326", NULL);
-    fm_status st = FM_OK;
-    if (!P)
-        st = fm_error_set(err, FM_ERR_INVALID, NULL, 0,
-                          "PROJ cannot convert from CRS '%s' to WGS 84 (EPSG:4326)", crs);
-    proj_destroy(P);
-    proj_context_destroy(ctx);
-    return st;
+    return fm_reproject_check(crs, "EPSG:4326", err);
 }
 
 /* Horizontal position of every used vertex in the file's coordinates:
  * lat (or y) and lon (or x). */
 static fm_status convert_vertices(const fm_faultset *fs, fm_eqsim_coords coords,
                                   const unsigned char *used, double *lat, double *lon,
-                                  sim_proj *sp, const char *path, fm_error *err)
+                                  fm_reproject **rp, const char *path, fm_error *err)
 {
     size_t nv = fm_mesh_nvertices(fs->mesh);
     const double *x = fm_mesh_vertices(fs->mesh);
@@ -253,16 +127,18 @@ static fm_status convert_vertices(const fm_faultset *fs, fm_eqsim_coords coords,
             bb[2] = fmax(bb[2], x[3 * v]);
             bb[3] = fmax(bb[3], x[3 * v + 1]);
         }
-    fm_status st = sim_proj_make(sp, fs->crs, bb, path, err);
+    if (!fs->crs || !fs->crs[0])
+        return fm_error_set(err, FM_ERR_INVALID, path, 0,
+                            "spherical coordinates need the mesh's CRS (none given)");
+    *rp = fm_reproject_create(fs->crs, "EPSG:4326", bb, path, err);
+    fm_status st = *rp ? FM_OK : err ? err->code : FM_ERR_INVALID;
     for (size_t v = 0; v < nv && st == FM_OK; v++) {
         if (!used[v]) {
             lat[v] = lon[v] = 0;
             continue;
         }
-        PJ_COORD c = proj_trans(sp->op, PJ_FWD, proj_coord(x[3 * v], x[3 * v + 1], 0, HUGE_VAL));
-        lon[v] = c.xy.x;
-        lat[v] = c.xy.y;
-        if (!isfinite(lat[v]) || !isfinite(lon[v]) || fabs(lat[v]) > 90)
+        if (fm_reproject_point(*rp, x[3 * v], x[3 * v + 1], &lon[v], &lat[v]) ||
+            fabs(lat[v]) > 90)
             st = fm_error_set(err, FM_ERR_NUMERIC, path, 0,
                               "PROJ cannot convert vertex %zu (%.3f, %.3f) from '%s' to WGS 84",
                               v, x[3 * v], x[3 * v + 1], fs->crs);
@@ -455,7 +331,7 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
     const int32_t *tri = fm_mesh_triangles(fs->mesh);
     size_t *start = NULL, *order = NULL;
     section_work w = {0};
-    sim_proj sp = {0};
+    fm_reproject *rp = NULL;
     double *lat = malloc((nv + 1) * sizeof *lat), *lon = malloc((nv + 1) * sizeof *lon);
     unsigned char *used = calloc(nv + 1, 1);
     size_t *nvsec = calloc(fs->nfaults + 1, sizeof *nvsec);
@@ -496,7 +372,7 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
         nvtotal += nvsec[f];
     }
     if (st == FM_OK)
-        st = convert_vertices(fs, coords, used, lat, lon, &sp, path, err);
+        st = convert_vertices(fs, coords, used, lat, lon, &rp, path, err);
     double blat[2] = {INFINITY, -INFINITY}, blon[2] = {INFINITY, -INFINITY},
            bz[2] = {INFINITY, -INFINITY};
     for (size_t v = 0; st == FM_OK && v < nv; v++)
@@ -527,9 +403,9 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
                              "degrees on WGS 84 (EPSG:4326), converted with PROJ %s from %.200s\n",
                           pi.version, fs->crs);
             fs_out_printf(o, "110 PROJ operation (one for every vertex): %s, accuracy %s\n",
-                          sp.name, sp.accuracy);
+                          fm_reproject_name(rp), fm_reproject_accuracy(rp));
             fs_out_str(o, "110 PROJ pipeline: ");
-            fs_out_str(o, sp.pipeline);
+            fs_out_str(o, fm_reproject_pipeline(rp));
             fs_out_char(o, '\n');
             fs_out_str(o, "110 Strike from true north, dip: from the converted corners in "
                           "earth-centred coordinates (depth as height over the ellipsoid), seen "
@@ -698,6 +574,6 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
     free(w.verts);
     free(w.das);
     free(w.trace);
-    sim_proj_free(&sp);
+    fm_reproject_destroy(rp);
     return st;
 }
