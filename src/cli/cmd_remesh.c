@@ -12,6 +12,7 @@
 #include "fm_atomic.h"
 #include "fm_clock.h"
 #include "fm_synth.h"
+#include "fm_reproject.h"
 #include "remesh_run.h"
 
 static void told(void *user, size_t done, size_t total)
@@ -166,7 +167,13 @@ static int settle_crs(const remesh_cli *cli, const file_job *jobs, size_t njobs,
     }
     fm_error err;
     fm_error_clear(&err);
-    if (cli->sim.eqsim == FM_EQSIM_SPHERICAL && fm_eqsim_check_crs(crs, &err) != FM_OK) {
+    if (cli->crs_out && fm_reproject_check(crs, cli->crs_out, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: --crs-out: %s\n", err.message);
+        return -1;
+    }
+    /* EQSim's latitudes and longitudes come from the outputs' CRS */
+    const char *out = cli->crs_out ? cli->crs_out : crs;
+    if (cli->sim.eqsim == FM_EQSIM_SPHERICAL && fm_eqsim_check_crs(out, &err) != FM_OK) {
         fprintf(stderr, "faultmesh: %s; give --crs, or --eqsim-coords utm\n", err.message);
         return -1;
     }
@@ -391,7 +398,7 @@ static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **c
         return FM_EXIT_USAGE;
     }
     cli.sim.quiet = cli.quiet;
-    if (sim_cli_load(&cli.sim, cli.crs, paths, npaths) != 0) {
+    if (sim_cli_load(&cli.sim, cli.crs_out ? cli.crs_out : cli.crs, paths, npaths) != 0) {
         sim_cli_free(&cli.sim);
         free(paths);
         return FM_EXIT_USAGE;
@@ -480,7 +487,7 @@ static int demo_main(remesh_cli *cli_in, int argc, char **argv)
         return FM_EXIT_USAGE;
     }
     cli.sim.quiet = cli.quiet;
-    if (sim_cli_load(&cli.sim, cli.crs, NULL, 0) != 0) {
+    if (sim_cli_load(&cli.sim, cli.crs_out ? cli.crs_out : cli.crs, NULL, 0) != 0) {
         sim_cli_free(&cli.sim);
         return FM_EXIT_USAGE;
     }

@@ -31,6 +31,9 @@ void remesh_usage(FILE *fp)
             "                        (default: the one the input TSurf files name, e.g.\n"
             "                        NAME EPSG:26711 in their coordinate-system block,\n"
             "                        else EPSG:26711, the CFM's UTM 11N NAD27)\n"
+            "  --crs-out STRING      write every output in this CRS (any PROJ CRS, e.g.\n"
+            "                        EPSG:32611, UTM 11N WGS 84): nodes and CAD control\n"
+            "                        points converted by one PROJ operation for the set\n"
             "  -j, --jobs N          threads (default: all cores); the output is the same\n"
             "                        for any N\n"
             "  --no-connect          mesh every fault on its own (default: faults that meet\n"
@@ -118,6 +121,10 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
         if (!val)
             return -1;
         cli->crs = val;
+    } else if (!strcmp(a, "--crs-out")) {
+        if (!val || !val[0])
+            return -1;
+        cli->crs_out = val;
     } else if (!strcmp(a, "--jobs") || !strcmp(a, "-j")) {
         size_t n;
         if (fm_parse_size(a, val, &n) || n < 1 || n > 1024)
@@ -200,6 +207,7 @@ void cli_defaults(remesh_cli *cli)
     fm_remesh_options_default(&cli->mesh);
     cli->msh = FM_MSH_41;
     cli->crs = NULL;
+    cli->crs_out = NULL;
     cli->connect = 1;
     cli->carve = 1;
     cli->html = 1;

@@ -497,6 +497,10 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
     if (cli->mesh.top == FM_TOP_EXTEND)
         fm_json_kv_number(&j, "top_extend_m", cli->mesh.top_extend);
     fm_json_kv_string(&j, "crs", rs->crs);
+    /* --crs-out: the CRS of every output file (the figures here stay in
+     * the input's) */
+    if (cli->crs_out)
+        fm_json_kv_string(&j, "crs_out", cli->crs_out);
     /* where it came from: --crs, the inputs' coordinate-system block, or
      * the CFM's default */
     fm_json_kv_string(&j, "crs_source", rs->crs_source);

@@ -34,6 +34,7 @@ typedef struct remesh_cli {
     int msh_version_given;
     fm_msh_tags msh_tags;
     const char *crs; /* --crs, or NULL: from the inputs, else EPSG:26711 */
+    const char *crs_out; /* --crs-out: the outputs' CRS; NULL: the input's */
     int quiet;
     int verbose;  /* a line per fault */
     progress *prog; /* stderr; NULL: none */

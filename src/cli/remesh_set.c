@@ -9,6 +9,7 @@
 #include "fm_check.h"
 #include "fm_closest.h"
 #include "fm_faultset_write.h"
+#include "fm_reproject.h"
 #include "fm_sort.h"
 #include "fm_tsurf.h"
 #include "remesh_run.h"
@@ -426,6 +427,30 @@ static int junction_sets_make(const run_state *rs, junction_sets *js)
     return rc;
 }
 
+/* The set in CRS `to`: a copy of its mesh with every node converted by
+ * one PROJ operation chosen for the set's extent (*rp, for the CAD
+ * surfaces too). */
+static fm_status convert_set(const run_state *rs, const char *to, const char *dir,
+                             fm_mesh **out, fm_reproject **rp, fm_error *err)
+{
+    *out = NULL;
+    *rp = NULL;
+    size_t nv = fm_mesh_nvertices(rs->set);
+    const double *x = fm_mesh_vertices(rs->set);
+    double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (size_t v = 0; v < nv; v++) {
+        bb[0] = fmin(bb[0], x[3 * v]);
+        bb[1] = fmin(bb[1], x[3 * v + 1]);
+        bb[2] = fmax(bb[2], x[3 * v]);
+        bb[3] = fmax(bb[3], x[3 * v + 1]);
+    }
+    if (!(*rp = fm_reproject_create(rs->crs, to, bb, dir, err)))
+        return err ? err->code : FM_ERR_INVALID;
+    if (!(*out = fm_mesh_clone(rs->set)))
+        return fm_error_set(err, FM_ERR_NOMEM, dir, 0, "out of memory");
+    return fm_reproject_points(*rp, fm_mesh_vertices_mut(*out), nv, 3, dir, err);
+}
+
 /* Every file of the set as not written, for one reason (the set could not
  * be prepared). */
 static fm_status none_written(output_log *log, const char *dir, const fm_error *why)
@@ -465,13 +490,18 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
     if (st == FM_OK)
         st = fm_msh_tags_make(cli->msh_tags, (const char *const *)rs->names, rs->nfaults, tags,
                               &pnames, &err);
-    fm_faultset fs = {.mesh = rs->set,
+    /* --crs-out: the set converted node by node, by one operation */
+    fm_mesh *converted = NULL;
+    fm_reproject *rp = NULL;
+    if (st == FM_OK && cli->crs_out)
+        st = convert_set(rs, cli->crs_out, cli->dir, &converted, &rp, &err);
+    fm_faultset fs = {.mesh = converted ? converted : rs->set,
                       .names = (const char *const *)rs->names,
                       .nfaults = rs->nfaults,
                       .physical_tags = tags,
                       .physical_names = (const char *const *)pnames,
                       .msh_dense_nodes = cli->msh_tags == FM_MSH_TAGS_TANDEM,
-                      .crs = rs->crs,
+                      .crs = cli->crs_out ? cli->crs_out : rs->crs,
                       .nodesets = js.set,
                       .nnodesets = js.n};
     if (st == FM_OK && sim_attrs_make(&cli->sim, &fs, sa) != 0)
@@ -506,7 +536,7 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
                                    .done_ctx = rs->outputs};
         st = fm_faultset_write_all(&fs, &out, cli->jobs, &err);
         const char *igs = path + 5 * n;
-        fm_status cst = fm_cad_write_iges(igs, rs->cad, rs->ncad, rs->crs, &err);
+        fm_status cst = fm_cad_write_iges_reprojected(igs, rs->cad, rs->ncad, fs.crs, rp, &err);
         outputs_note(rs->outputs, igs, SIZE_MAX, OUTPUT_SET, cst == FM_OK ? NULL : &err);
         fm_status sst = sim_write(&cli->sim, &fs, sa, cli->dir, outputs_done, rs->outputs);
         char *names = path; /* the first path's room, free again */
@@ -519,5 +549,7 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
     free(tags);
     fm_faultset_free_file_names(pnames, rs->nfaults);
     free_junction_sets(&js);
+    fm_mesh_destroy(converted);
+    fm_reproject_destroy(rp);
     return st;
 }

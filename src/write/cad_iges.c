@@ -8,6 +8,7 @@
 
 #include "fm_cad_write.h"
 #include "fm_iges.h"
+#include "fm_reproject.h"
 
 struct fm_cad_face {
     char *name;
@@ -177,6 +178,41 @@ static fm_status resolve_time(const char *path, long long *t, fm_error *err)
 fm_status fm_cad_write_iges(const char *path, const fm_cad_face *const *faces, size_t n,
                             const char *crs, fm_error *err)
 {
+    return fm_cad_write_iges_reprojected(path, faces, n, crs, NULL, err);
+}
+
+/* Each face's control points converted by rp: copies, one block. */
+static double *converted_ctrl(const fm_cad_face *const *faces, size_t n, const fm_reproject *rp,
+                              const char *path, fm_error *err)
+{
+    size_t total = 0;
+    for (size_t i = 0; i < n; i++)
+        total += 3 * faces[i]->nu * faces[i]->nv;
+    double *c = malloc((total + 1) * sizeof *c);
+    if (!c) {
+        fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        return NULL;
+    }
+    size_t w = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t k = 3 * faces[i]->nu * faces[i]->nv;
+        memcpy(c + w, faces[i]->ctrl, k * sizeof *c);
+        w += k;
+    }
+    if (fm_reproject_points(rp, c, total / 3, 3, path, err) != FM_OK) {
+        free(c);
+        return NULL;
+    }
+    return c;
+}
+
+fm_status fm_cad_write_iges_reprojected(const char *path, const fm_cad_face *const *faces,
+                                        size_t n, const char *crs, const fm_reproject *rp,
+                                        fm_error *err)
+{
+    double *ctrl = rp ? converted_ctrl(faces, n, rp, path, err) : NULL;
+    if (rp && !ctrl)
+        return err ? err->code : FM_ERR_NUMERIC;
     size_t ncurves = 0, nloops = 0;
     for (size_t i = 0; i < n; i++) {
         ncurves += faces[i]->ncurves;
@@ -189,9 +225,10 @@ fm_status fm_cad_write_iges(const char *path, const fm_cad_face *const *faces, s
         free(out);
         free(cv);
         free(lp);
+        free(ctrl);
         return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
     }
-    size_t cw = 0, lw = 0;
+    size_t cw = 0, lw = 0, pw = 0;
     for (size_t i = 0; i < n; i++) {
         const fm_cad_face *f = faces[i];
         fm_iges_face *g = &out[i];
@@ -201,7 +238,8 @@ fm_status fm_cad_write_iges(const char *path, const fm_cad_face *const *faces, s
         g->surface.nv = f->nv;
         g->surface.knots_u = f->knots_u;
         g->surface.knots_v = f->knots_v;
-        g->surface.ctrl = f->ctrl;
+        g->surface.ctrl = ctrl ? ctrl + pw : f->ctrl;
+        pw += 3 * f->nu * f->nv;
         g->surface.u0 = f->dom[0];
         g->surface.u1 = f->dom[1];
         g->surface.v0 = f->dom[2];
@@ -246,5 +284,6 @@ fm_status fm_cad_write_iges(const char *path, const fm_cad_face *const *faces, s
     free(out);
     free(cv);
     free(lp);
+    free(ctrl);
     return rc;
 }

@@ -47,6 +47,17 @@ void fm_cad_face_destroy(fm_cad_face *f);
 fm_status fm_cad_write_iges(const char *path, const fm_cad_face *const *faces, size_t n,
                             const char *crs, fm_error *err);
 
+/* The same, every control point's x and y converted by rp (crs then names
+ * the target CRS). A B-spline surface maps to another through its control
+ * points exactly only under an affine map; a conversion between projected
+ * CRSs is nearly affine over a control cell (a few kilometres), so the
+ * surface follows its converted nodes closely, not exactly (the meshes are
+ * converted node by node). */
+struct fm_reproject;
+fm_status fm_cad_write_iges_reprojected(const char *path, const fm_cad_face *const *faces,
+                                        size_t n, const char *crs,
+                                        const struct fm_reproject *rp, fm_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -21,7 +21,8 @@ group per fault) and OUTDIR/report.json:
           pylith: i + 1, a label of [A-Za-z0-9_] starting with a letter,
           distinct); the elementary tag of every triangle is its fault
           index + 1; the $Comments section names the CRS.
-  CRS     report.json options.crs, VTU field data "crs", STL header, OBJ
+  CRS     report.json options.crs (crs_out when --crs-out was given), VTU
+          field data "crs", STL header, OBJ
           comment, the TSurf blocks' NAME and the Exodus info records all
           give the same CRS (--crs: and equal it).
 
@@ -248,7 +249,8 @@ def check_msh(out, faults, crs, conv, verts, groups):
 def check_crs(out, crs, faults):
     print("-- crs", crs)
     rep = json.load(open(os.path.join(out, "report.json")))
-    check(rep["options"]["crs"] == crs, "report.json options.crs")
+    check(rep["options"].get("crs_out", rep["options"]["crs"]) == crs,
+          "report.json options.crs (crs_out when given)")
     vtu = meshio.read(os.path.join(out, "mesh.vtu"))
     got = vtu.field_data.get("crs")
     got = "".join(chr(c) for c in np.asarray(got).ravel() if c) if got is not None else None
@@ -279,7 +281,8 @@ def main():
     out, conv = args[0], args[1]
     want_crs = args[args.index("--crs") + 1] if "--crs" in args else None
     rep = json.load(open(os.path.join(out, "report.json")))
-    crs = rep["options"]["crs"]
+    # the outputs' CRS: --crs-out's when given, else the input's
+    crs = rep["options"].get("crs_out", rep["options"]["crs"])
     if want_crs is not None:
         check(crs == want_crs, "report.json CRS %r is %r" % (crs, want_crs))
     check(rep["options"].get("msh_tags") == conv, "report.json msh_tags %s" % conv)

@@ -31,6 +31,38 @@ if [ "$what" = demo ]; then
     # --crs is what every output records
     run "$tmp/crs" -j 2 --crs EPSG:32611 || bad "demo --crs"
     "$py" "$tools/check_fe_formats.py" "$tmp/crs" default --crs EPSG:32611 || bad "check --crs"
+    # --crs-out: every output in the target CRS, each node where pyproj
+    # (written apart from faultmesh) puts the input's; z unchanged; the
+    # CRS recorded everywhere; EQSim and RSQSim in it too
+    "$fm" demo --quiet --size 3000 --crs EPSG:26711 --eqsim-coords utm -o "$tmp/in26711" >/dev/null ||
+        bad "demo --crs EPSG:26711"
+    "$fm" demo --quiet --size 3000 --crs EPSG:26711 --crs-out EPSG:32611 --eqsim-coords utm \
+        -o "$tmp/out32611" >/dev/null || bad "demo --crs-out EPSG:32611"
+    "$py" "$tools/check_fe_formats.py" "$tmp/out32611" default --crs EPSG:32611 || bad "check --crs-out"
+    "$py" - "$tmp/in26711" "$tmp/out32611" <<'PY' || bad "--crs-out: nodes not where pyproj puts them"
+import sys, meshio, numpy as np, pyproj
+a = meshio.read(sys.argv[1] + "/mesh.vtu")
+b = meshio.read(sys.argv[2] + "/mesh.vtu")
+t = pyproj.Transformer.from_crs("EPSG:26711", "EPSG:32611", always_xy=True)
+x, y = t.transform(a.points[:, 0], a.points[:, 1])
+d = np.hypot(x - b.points[:, 0], y - b.points[:, 1])
+moved = np.hypot(a.points[:, 0] - b.points[:, 0], a.points[:, 1] - b.points[:, 1])
+print("--crs-out: %d nodes moved %.1f m on average, %.2e m at most from pyproj's" %
+      (len(d), moved.mean(), d.max()))
+ra = np.loadtxt(sys.argv[1] + "/mesh.rsqsim", usecols=range(9))
+rb = np.loadtxt(sys.argv[2] + "/mesh.rsqsim", usecols=range(9))
+rx, ry = t.transform(ra[:, 0::3].ravel(), ra[:, 1::3].ravel())
+dr = np.hypot(rx - rb[:, 0::3].ravel(), ry - rb[:, 1::3].ravel())
+ok = d.max() <= 1e-3 and moved.mean() > 100 and np.array_equal(a.points[:, 2], b.points[:, 2]) \
+    and dr.max() <= 1e-3 and np.array_equal(ra[:, 2::3], rb[:, 2::3])
+sys.exit(0 if ok else 1)
+PY
+    grep -q '"crs_out": "EPSG:32611"' "$tmp/out32611/report.json" || bad "report.json lacks crs_out"
+    grep -q "CRS: EPSG:32611" "$tmp/out32611/model.igs" || bad "model.igs does not name the target CRS"
+    "$fm" demo --quiet --crs EPSG:26711 --crs-out EPSG:999999 -o "$tmp/badcrs" >/dev/null 2>"$tmp/err"
+    rc=$?
+    [ "$rc" = 1 ] && grep -q "crs-out: PROJ cannot convert" "$tmp/err" && [ ! -e "$tmp/badcrs/mesh.vtu" ] ||
+        bad "--crs-out EPSG:999999: exit $rc, $(cat "$tmp/err")"
     # Tandem reads MSH 2.2 only
     "$fm" demo --quiet -o "$tmp/bad" --msh-tags tandem --msh-version 4.1 > /dev/null 2>&1
     [ $? -eq 2 ] || bad "--msh-tags tandem --msh-version 4.1 is a usage error"
