@@ -205,7 +205,7 @@ int main(int argc, char **argv)
         rake[f] = 180;
         rate[f] = 1e-9;
     }
-    g_slip = (fm_sim_slip){rake, rate};
+    g_slip = (fm_sim_slip){rake, rate, NULL, NULL};
     fm_error err;
     if (fm_mkdir_p(out, &err) != FM_OK) {
         fprintf(stderr, "bench_write: %s\n", err.message);

@@ -16,6 +16,7 @@ packages=(
   python3-netcdf4            # meshio's Exodus II reader in the tests
   python3-pyproj             # independent lat/lon conversion in the EQSim test (check_sim.py)
   libcairo2-dev              # cairo: the pictures of report.html, drawn to PNG
+  libjson-c-dev              # json-c: the deformation model's GeoJSON fault sections
   pkg-config                 # how CMake finds cairo and fontconfig (only recommended by
                              # the -dev packages, which --no-install-recommends skips)
   python3-scipy              # k-d trees of the CAD model check (check_cad.py); without it

@@ -159,8 +159,8 @@ static void json_quality(fm_json *j, const fault_result *r, double H)
     fm_json_end_object(j);
 }
 
-static void json_fault(fm_json *j, const run_state *rs, const fault_result *r, double H,
-                       const sim_attrs *sa)
+static void json_fault(fm_json *j, const remesh_cli *cli, const run_state *rs,
+                       const fault_result *r, double H, const sim_attrs *sa)
 {
     fm_json_begin_object(j);
     fm_json_kv_string(j, "file", r->file ? r->file : "");
@@ -256,7 +256,7 @@ static void json_fault(fm_json *j, const run_state *rs, const fault_result *r, d
         json_loss_fault(j, rs, r);
     }
     if (sa && r->set_index < sa->nfaults)
-        sim_json_fault(j, sa, r->set_index);
+        sim_json_fault(j, &cli->sim, sa, r->set_index);
     fm_json_end_object(j);
 }
 
@@ -509,13 +509,13 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
     fm_json_key(&j, "faults");
     fm_json_begin_array(&j);
     for (size_t i = 0; i < rs->nres; i++)
-        json_fault(&j, rs, &rs->res[i], rs->res[i].mesh.size, sa);
+        json_fault(&j, cli, rs, &rs->res[i], rs->res[i].mesh.size, sa);
     fm_json_end_array(&j);
     run_totals t;
     run_totals_of(rs, &t);
     json_connect(&j, cli, rs, &t);
     if (sa)
-        sim_json_summary(&j, &cli->sim, sa);
+        sim_json_summary(&j, &cli->sim, sa, (const char *const *)rs->names);
     if (rs->outputs)
         outputs_json(&j, rs->outputs);
     fm_json_key(&j, "summary");

@@ -504,8 +504,12 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
                       .crs = cli->crs_out ? cli->crs_out : rs->crs,
                       .nodesets = js.set,
                       .nnodesets = js.n};
-    if (st == FM_OK && sim_attrs_make(&cli->sim, &fs, sa) != 0)
+    int made = st == FM_OK ? sim_attrs_make(&cli->sim, &fs, sa) : 0;
+    if (made == -1)
         st = fm_error_set(&err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    else if (made)
+        st = fm_error_set(&err, FM_ERR_INVALID, cli->dir, 0,
+                          "the element attributes could not be made (--kinematics, above)");
     /* the element attributes, and which sheet of its fault a triangle is on
      * (the repair stage's sheets: the parts of a branching fault) */
     fm_vtu_array cells[sizeof sa->cells / sizeof *sa->cells + 1];

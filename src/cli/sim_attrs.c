@@ -24,6 +24,16 @@ int sim_cli_option(int argc, char **argv, int *i, sim_cli *sc)
         if (!val)
             return -1;
         sc->metadata_path = val;
+    } else if (!strcmp(a, "--kinematics")) {
+        if (!val || sc->nkin == SIM_MAX_KINEMATICS)
+            return -1;
+        sc->kin_paths[sc->nkin++] = val;
+    } else if (!strcmp(a, "--kinematics-distance")) {
+        if (fm_parse_double(a, val, &sc->kin_distance) || !(sc->kin_distance > 0))
+            return -1;
+    } else if (!strcmp(a, "--kinematics-fallback")) {
+        if (fm_parse_double(a, val, &sc->kin_fallback_rate) || !(sc->kin_fallback_rate >= 0))
+            return -1;
     } else if (!strcmp(a, "--eqsim-coords")) {
         if (val && !strcmp(val, "spherical")) {
             sc->eqsim = FM_EQSIM_SPHERICAL;
@@ -116,6 +126,15 @@ int sim_cli_load(sim_cli *sc, const char *crs, char *const *paths, size_t npaths
         fprintf(stderr, "faultmesh: %s\n", err.message);
         return -1;
     }
+    if (sc->nkin && fm_sections_read(sc->kin_paths, sc->nkin, &sc->sections, &err) != FM_OK) {
+        fprintf(stderr, "faultmesh: --kinematics: %s\n", err.message);
+        return -1;
+    }
+    if (sc->nkin && !fm_sections_count(sc->sections)) {
+        fprintf(stderr, "faultmesh: --kinematics: no complete fault section (trace, dip, rake, "
+                        "depths) in %s\n", sc->kin_paths[0]);
+        return -1;
+    }
     /* without --crs the CRS comes from the inputs, checked once read */
     if (crs && sc->eqsim == FM_EQSIM_SPHERICAL && fm_eqsim_check_crs(crs, &err) != FM_OK) {
         fprintf(stderr, "faultmesh: %s; give --crs, or --eqsim-coords utm\n", err.message);
@@ -127,6 +146,8 @@ int sim_cli_load(sim_cli *sc, const char *crs, char *const *paths, size_t npaths
 void sim_cli_free(sim_cli *sc)
 {
     fm_metadata_destroy(sc->md);
+    fm_sections_destroy(sc->sections);
+    sc->sections = NULL;
     fm_slip_table_destroy(sc->slip);
     free(sc->metadata_found);
     sc->md = NULL;
@@ -136,6 +157,7 @@ void sim_cli_free(sim_cli *sc)
 
 void sim_attrs_free(sim_attrs *a)
 {
+    sim_kinematics_free(a);
     free(a->slip);
     free(a->rake_f);
     free(a->rate_f);
@@ -219,6 +241,11 @@ int sim_attrs_make(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a)
         a->mean_strike[f] = s >= 360 ? 0 : s;
     }
     free(sums);
+    int kr = sim_kinematics_apply(sc, fs, a);
+    if (kr) {
+        sim_attrs_free(a);
+        return kr;
+    }
     a->cells[0] = (fm_vtu_array){"strike", FM_VTU_FLOAT64, 1, a->strike};
     a->cells[1] = (fm_vtu_array){"dip", FM_VTU_FLOAT64, 1, a->dip};
     a->cells[2] = (fm_vtu_array){"rake", FM_VTU_FLOAT64, 1, a->rake_t};
@@ -233,28 +260,32 @@ int sim_attrs_make(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a)
 static void say_placeholders(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a)
 {
     size_t zero_t = 0, zero_f = 0, rake_t = 0, rake_f = 0, no_md = 0;
-    size_t *per = calloc(fs->nfaults + 1, sizeof *per);
+    /* per fault: 1 once counted for a zero rate, 2 for a defaulted rake */
+    unsigned char *seen = calloc(fs->nfaults + 1, 1);
     const int32_t *tag = fm_mesh_tags(fs->mesh);
-    for (size_t t = 0; per && t < a->ntriangles; t++)
-        per[tag[t]]++;
-    for (size_t f = 0; f < fs->nfaults; f++) {
-        size_t n = per ? per[f] : 0;
-        if (a->rate_f[f] == 0) {
-            zero_t += n;
-            zero_f++;
+    for (size_t t = 0; seen && t < a->ntriangles; t++) {
+        size_t f = (size_t)tag[t];
+        if (a->rate_t[t] == 0) {
+            zero_t++;
+            zero_f += !(seen[f] & 1);
+            seen[f] |= 1;
         }
-        if (a->slip[f].rake_from == FM_SLIP_FROM_DEFAULT) {
-            rake_t += n;
-            rake_f++;
-            no_md += !a->slip[f].slip_sense;
+        if (sim_kinematics_rake_default(a, t, f)) {
+            rake_t++;
+            if (!(seen[f] & 2)) {
+                rake_f++;
+                no_md += !a->slip[f].slip_sense;
+            }
+            seen[f] |= 2;
         }
     }
-    free(per);
+    free(seen);
     if (zero_f)
         fprintf(stderr,
                 "faultmesh: warning: mesh.rsqsim, mesh.eqsim: %zu of %zu elements (%zu of %zu "
-                "faults) have slip rate 0: no --slip rule or settings value gives their faults "
-                "one; a simulator takes them for locked patches (report.json: attributes)\n",
+                "faults) have slip rate 0: no --slip rule, settings value or --kinematics "
+                "section gives them one; a simulator takes them for locked patches "
+                "(report.json: attributes)\n",
                 zero_t, a->ntriangles, zero_f, fs->nfaults);
     if (rake_f)
         fprintf(stderr,
@@ -272,11 +303,23 @@ static void say_placeholders(const sim_cli *sc, const fm_faultset *fs, const sim
 fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
                     const char *dir, fm_output_done done, void *ctx)
 {
+    if (!sc->quiet && a->kin) {
+        double A = 0, M = 0;
+        size_t none = 0;
+        for (size_t f = 0; f < a->nfaults; f++) {
+            A += a->k_area[f];
+            M += a->k_matched[f];
+            none += a->k_matched[f] == 0;
+        }
+        fprintf(stderr, "faultmesh: --kinematics: %.1f%% of the area took a section; %zu of %zu "
+                        "faults took none (report.json: simulator.kinematics)\n",
+                A > 0 ? 100 * M / A : 0, none, a->nfaults);
+    }
     if (!sc->quiet)
         say_placeholders(sc, fs, a);
     size_t n = strlen(dir) + 32;
     char *path = malloc(n);
-    fm_sim_slip slip = {a->rake_f, a->rate_f};
+    fm_sim_slip slip = {a->rake_f, a->rate_f, a->rake_t, a->rate_t};
     fm_status first = FM_OK;
     for (int k = 0; k < 2; k++) {
         const char *name = k ? "mesh.eqsim" : "mesh.rsqsim";
@@ -298,7 +341,7 @@ fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a
     return first;
 }
 
-void sim_json_fault(fm_json *j, const sim_attrs *a, size_t f)
+void sim_json_fault(fm_json *j, const sim_cli *sc, const sim_attrs *a, size_t f)
 {
     const fm_fault_slip *s = &a->slip[f];
     fm_json_key(j, "attributes");
@@ -334,10 +377,12 @@ void sim_json_fault(fm_json *j, const sim_attrs *a, size_t f)
         fm_json_string(j, w);
     }
     fm_json_end_array(j);
+    sim_kinematics_json_fault(j, sc, a, f);
     fm_json_end_object(j);
 }
 
-void sim_json_summary(fm_json *j, const sim_cli *sc, const sim_attrs *a)
+void sim_json_summary(fm_json *j, const sim_cli *sc, const sim_attrs *a,
+                      const char *const *names)
 {
     size_t rake_default = 0, rate_default = 0, rake_md = 0, rake_csv = 0, rate_csv = 0;
     size_t rake_set = 0, rate_set = 0;
@@ -368,5 +413,6 @@ void sim_json_summary(fm_json *j, const sim_cli *sc, const sim_attrs *a)
     fm_json_kv_int(j, "slip_rate_default", (int64_t)rate_default);
     fm_json_kv_int(j, "rake_from_settings", (int64_t)rake_set);
     fm_json_kv_int(j, "slip_rate_from_settings", (int64_t)rate_set);
+    sim_kinematics_json_summary(j, sc, a, names);
     fm_json_end_object(j);
 }

@@ -9,7 +9,10 @@
 #include "fm_faultset_write.h"
 #include "fm_json.h"
 #include "fm_metadata.h"
+#include "fm_sections.h"
 #include "fm_sim_write.h"
+
+#define SIM_MAX_KINEMATICS 4
 
 typedef struct sim_cli {
     const char *slip_path;     /* --slip */
@@ -17,6 +20,12 @@ typedef struct sim_cli {
     fm_eqsim_coords eqsim;     /* --eqsim-coords */
     const struct config *cfg;  /* --config: its [[fault]] rake and slip_rate come first */
     int quiet;                 /* --quiet: no warnings */
+    const char *kin_paths[SIM_MAX_KINEMATICS]; /* --kinematics files (merged) */
+    size_t nkin;
+    double kin_distance;       /* --kinematics-distance, m (0: the default) */
+    double kin_fallback_rate;  /* --kinematics-fallback: mm/yr of an element without a
+                                  section (default 0) */
+    struct fm_sections *sections; /* read by sim_cli_load */
     /* Read by sim_cli_load. */
     fm_metadata *md;
     fm_slip_table *slip;
@@ -30,6 +39,13 @@ typedef struct sim_cli {
     "  --metadata FILE       CFM metadata CSV whose Slip Sense gives each fault's rake\n"     \
     "                        (default: CFM5.3_Metadata.csv in the parent folder of an\n"      \
     "                        input folder, if there is one)\n"                                \
+    "  --kinematics FILE     deformation model fault sections (GeoJSON, e.g. NSHM23's\n"     \
+    "                        NSHM23_FSD_v3.geojson and, again, its geologic deformation\n"   \
+    "                        model): each element's slip rate and rake from the nearest\n" \
+    "                        section (--slip and the settings file still override)\n"      \
+    "  --kinematics-distance M  farthest an element takes a section from (default 3000)\n"  \
+    "  --kinematics-fallback MM_YR  slip rate of an element without a section (default 0;\n"\
+    "                        its rake then from the slip sense)\n"                           \
     "  --eqsim-coords spherical|utm\n"                                                        \
     "                        EQSim geometry in WGS 84 lat/lon via PROJ (default) or in\n"     \
     "                        the mesh's own metres (rectangular)\n"
@@ -55,6 +71,15 @@ typedef struct sim_attrs {
     double *rake_t, *rate_t;        /* per triangle: degrees, m/s */
     double *mean_strike, *mean_dip; /* per fault (area-weighted; strike axial) */
     fm_vtu_array cells[4];          /* strike, dip, rake, slip_rate */
+    /* --kinematics (NULL without): per triangle the section it took; per
+     * fault its area, the area that took a section, the part of that whose
+     * rake disagrees with the slip sense, the rates taken (mm/yr); per
+     * fault the sections taken and their areas (CSR over ksec_start) */
+    struct fm_element_kinematics *kin;
+    double *k_area, *k_matched, *k_disagree, *k_rmin, *k_rmax;
+    size_t *ksec_start;
+    int32_t *ksec_id;
+    double *ksec_area;
 } sim_attrs;
 
 /* -1 when memory runs out (sim_attrs_free also then). */
@@ -66,9 +91,22 @@ void sim_attrs_free(sim_attrs *a);
 fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
                     const char *dir, fm_output_done done, void *ctx);
 
+/* sim_kinematics.c: each element's rake and rate from the sections
+ * (under the --slip rules and the settings file, over the fallback); 0,
+ * -1 when memory runs out, -2 after printing why it failed. */
+int sim_kinematics_apply(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a);
+void sim_kinematics_free(sim_attrs *a);
+/* Whether triangle t of fault f carries the default rake. */
+int sim_kinematics_rake_default(const sim_attrs *a, size_t t, size_t f);
+/* report.json: fault f's "kinematics" (in its attributes), and the run's. */
+void sim_kinematics_json_fault(fm_json *j, const sim_cli *sc, const sim_attrs *a, size_t f);
+void sim_kinematics_json_summary(fm_json *j, const sim_cli *sc, const sim_attrs *a,
+                                 const char *const *names);
+
 /* Fault f's "attributes" object of report.json. */
-void sim_json_fault(fm_json *j, const sim_attrs *a, size_t f);
+void sim_json_fault(fm_json *j, const sim_cli *sc, const sim_attrs *a, size_t f);
 /* The report's "simulator" object (files, metadata, defaults used). */
-void sim_json_summary(fm_json *j, const sim_cli *sc, const sim_attrs *a);
+void sim_json_summary(fm_json *j, const sim_cli *sc, const sim_attrs *a,
+                      const char *const *names);
 
 #endif

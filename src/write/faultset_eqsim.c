@@ -544,8 +544,9 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
                 put_int(o, tbase + i + 1);
                 for (int k = 0; k < 3; k++)
                     put_int(o, vbase + (size_t)w.local[c[k]] + 1);
-                put_num(o, slip->rake[f]);
-                put_num(o, slip->slip_rate[f]);
+                size_t t = order[start[f] + i];
+                put_num(o, slip->rake_t ? slip->rake_t[t] : slip->rake[f]);
+                put_num(o, slip->slip_rate_t ? slip->slip_rate_t[t] : slip->slip_rate[f]);
                 put_num(o, 0);
                 put_num(o, st_deg);
                 put_num(o, dip_deg);

@@ -120,6 +120,15 @@ fm_status sim_check_slip(const fm_faultset *fs, const fm_sim_slip *slip, const c
                                 "fault %zu: rake %g or slip rate %g m/s is not a finite "
                                 "number (rate >= 0)",
                                 f, slip->rake[f], slip->slip_rate[f]);
+    size_t nt = fm_mesh_ntriangles(fs->mesh);
+    for (size_t t = 0; t < nt && (slip->rake_t || slip->slip_rate_t); t++)
+        if ((slip->rake_t && !isfinite(slip->rake_t[t])) ||
+            (slip->slip_rate_t && !(isfinite(slip->slip_rate_t[t]) && slip->slip_rate_t[t] >= 0)))
+            return fm_error_set(err, FM_ERR_NUMERIC, path, 0,
+                                "triangle %zu: rake %g or slip rate %g m/s is not a finite "
+                                "number (rate >= 0)",
+                                t, slip->rake_t ? slip->rake_t[t] : 0,
+                                slip->slip_rate_t ? slip->slip_rate_t[t] : 0);
     return FM_OK;
 }
 
@@ -156,9 +165,10 @@ fm_status fm_faultset_write_rsqsim(const char *path, const fm_faultset *fs,
                         fs_out_double(o, x[3 * (size_t)v[k] + (size_t)d]);
                         fs_out_char(o, ' ');
                     }
-                fs_out_double(o, slip->rake[f]);
+                size_t t = order[i];
+                fs_out_double(o, slip->rake_t ? slip->rake_t[t] : slip->rake[f]);
                 fs_out_char(o, ' ');
-                fs_out_double(o, slip->slip_rate[f]);
+                fs_out_double(o, slip->slip_rate_t ? slip->slip_rate_t[t] : slip->slip_rate[f]);
                 fs_out_char(o, ' ');
                 fs_out_u64(o, f + 1);
                 fs_out_char(o, ' ');

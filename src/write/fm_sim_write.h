@@ -18,8 +18,8 @@
  *
  * Section = fault: section number = fault index + 1 (EQSim wants positive
  * ids; the same number as the default MSH physical tag), section name =
- * the fault name with every run of bytes other than A-Z a-z 0-9 . _ -
- * made one '_' (one token, safe for Fortran list-directed reads). */
+ * the fault's short name (fm_names.h: one token of at most 50 bytes,
+ * unique, safe for Fortran list-directed reads and rsqsim-python-tools). */
 #ifndef FM_SIM_WRITE_H
 #define FM_SIM_WRITE_H
 
@@ -45,6 +45,9 @@ void fm_faultset_strike_dip(const fm_faultset *fs, double *strike, double *dip);
 typedef struct fm_sim_slip {
     const double *rake;
     const double *slip_rate; /* m/s */
+    /* Per triangle of the set, in place of its fault's values (a
+     * deformation model gives each element its own); NULL: the fault's. */
+    const double *rake_t, *slip_rate_t;
 } fm_sim_slip;
 
 /* RSQSim triangular fault file: per triangle, faults in index order and

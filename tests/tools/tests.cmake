@@ -322,4 +322,11 @@ if(FM_SYSTEM_PYTHON)
     COMMAND bash ${FM_TOOLS}/sim_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_sim_500m_1000 cfm ${FM_CFM_DIR})
   set_tests_properties(cfm_sim_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
+  # slip rate and rake per element from NSHM23 (issue 19, item 1): the
+  # published values of well-known faults, >= 75 % of the area at a rate
+  add_test(NAME cfm_kinematics_500m_1000
+    COMMAND bash ${FM_TOOLS}/kinematics_cfm_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_kinematics ${FM_CFM_DIR}/CFM5.3/500m
+            ${FM_CFM_DIR}/../kinematics)
+  set_tests_properties(cfm_kinematics_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
 endif()

@@ -311,7 +311,7 @@ static void test_rsqsim(void)
     const char *names[] = {"South dipping", "Vertical/one"};
     fm_faultset fs = {.mesh = m, .names = names, .nfaults = 2, .crs = "EPSG:26711"};
     double rake[2] = {90, 180}, rate[2] = {1e-10, 2.5e-10};
-    fm_sim_slip slip = {rake, rate};
+    fm_sim_slip slip = {rake, rate, NULL, NULL};
     char path[512];
     tmp_path(path, sizeof path, "set.rsqsim");
     fm_error err;
@@ -344,7 +344,7 @@ static void test_eqsim(void)
     const char *names[] = {"South dipping", "Vertical"};
     fm_faultset fs = {.mesh = m, .names = names, .nfaults = 2, .crs = "EPSG:26711"};
     double rake[2] = {90, 180}, rate[2] = {1e-10, 2e-10};
-    fm_sim_slip slip = {rake, rate};
+    fm_sim_slip slip = {rake, rate, NULL, NULL};
     char path[512];
     fm_error err;
     tmp_path(path, sizeof path, "set.eqsim");
