@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "fm_atomic.h"
 #include "fm_faultset_write.h"
@@ -58,6 +59,24 @@ typedef struct paths {
     char dir[4096], vtu[4200], msh[4200], stl[4200], obj[4200], exo[4200];
 } paths;
 
+/* Empties dir (files, and the empty folders a test puts in the way), so
+ * that no earlier run's file passes for this run's. */
+static void empty_dir(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    char path[8400];
+    for (struct dirent *e; (e = readdir(d));) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
+            continue;
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        if (remove(path) != 0)
+            rmdir(path);
+    }
+    closedir(d);
+}
+
 static void make_paths(paths *p, const char *name)
 {
     snprintf(p->dir, sizeof p->dir, "%s/%s", FM_TMP_DIR, name);
@@ -67,6 +86,7 @@ static void make_paths(paths *p, const char *name)
     snprintf(p->obj, sizeof p->obj, "%s/mesh.obj", p->dir);
     snprintf(p->exo, sizeof p->exo, "%s/mesh.exo", p->dir);
     CHECK_EQ(fm_mkdir_p(p->dir, NULL), FM_OK);
+    empty_dir(p->dir);
 }
 
 static void test_same_bytes(void)
