@@ -226,27 +226,28 @@ int segments_cross(const double *a, const double *b, const double *c, const doub
     return 1;
 }
 
+int chord_crosses_segment(const double *a, const double *b, const double box[4],
+                          const double *c, const double *e)
+{
+    if ((c[0] < box[0] && e[0] < box[0]) || (c[0] > box[1] && e[0] > box[1]) ||
+        (c[1] < box[2] && e[1] < box[2]) || (c[1] > box[3] && e[1] > box[3]))
+        return 0;
+    if (pt_same(a, c) || pt_same(a, e) || pt_same(b, c) || pt_same(b, e))
+        return 0;
+    return segments_cross(a, b, c, e);
+}
+
 /* 1 if the chord (a, b) crosses a segment of d not ending at a or b.
- * A segment whose bounding box misses the chord's (it cannot touch it) is
- * passed over before the exact tests. Despiking asks it of sharp nodes
- * only; merging, which asks it of every close pair, keeps a grid of the
- * segments (domain_merge.c). */
+ * Despiking asks it of sharp nodes only; merging, which asks it of every
+ * close pair, keeps a grid of the segments (domain_merge.c). */
 static int chord_crosses(const remesh_domain *d, const double *a, const double *b)
 {
-    double lo0 = fmin(a[0], b[0]), hi0 = fmax(a[0], b[0]);
-    double lo1 = fmin(a[1], b[1]), hi1 = fmax(a[1], b[1]);
+    double box[4] = {fmin(a[0], b[0]), fmax(a[0], b[0]), fmin(a[1], b[1]), fmax(a[1], b[1])};
     for (size_t l = 0; l < d->n; l++) {
         const dom_loop *lp = &d->loops[l];
-        for (size_t i = 0; i < lp->n; i++) {
-            const double *c = lp->uv + 2 * i, *e = lp->uv + 2 * ((i + 1) % lp->n);
-            if ((c[0] < lo0 && e[0] < lo0) || (c[0] > hi0 && e[0] > hi0) ||
-                (c[1] < lo1 && e[1] < lo1) || (c[1] > hi1 && e[1] > hi1))
-                continue;
-            if (pt_same(a, c) || pt_same(a, e) || pt_same(b, c) || pt_same(b, e))
-                continue;
-            if (segments_cross(a, b, c, e))
+        for (size_t i = 0; i < lp->n; i++)
+            if (chord_crosses_segment(a, b, box, lp->uv + 2 * i, lp->uv + 2 * ((i + 1) % lp->n)))
                 return 1;
-        }
     }
     return 0;
 }

@@ -52,8 +52,6 @@ typedef struct seg_grid {
     const live_loop *live;
 } seg_grid;
 
-static int pt_same(const double *a, const double *b) { return a[0] == b[0] && a[1] == b[1]; }
-
 /* Segment (loop, node) as it is now: its two ends; 0 if it is gone. */
 static int segment(const seg_grid *g, uint32_t loop, uint32_t node, const double **a,
                    const double **b)
@@ -163,14 +161,8 @@ static int crosses_list(const seg_grid *g, int32_t k, const double *a, const dou
 {
     for (; k >= 0; k = g->e[k].next) {
         const double *c, *e;
-        if (!segment(g, g->e[k].loop, g->e[k].node, &c, &e))
-            continue;
-        if ((c[0] < box[0] && e[0] < box[0]) || (c[0] > box[1] && e[0] > box[1]) ||
-            (c[1] < box[2] && e[1] < box[2]) || (c[1] > box[3] && e[1] > box[3]))
-            continue;
-        if (pt_same(a, c) || pt_same(a, e) || pt_same(b, c) || pt_same(b, e))
-            continue;
-        if (segments_cross(a, b, c, e))
+        if (segment(g, g->e[k].loop, g->e[k].node, &c, &e) &&
+            chord_crosses_segment(a, b, box, c, e))
             return 1;
     }
     return 0;

@@ -64,6 +64,11 @@ int domain_split_sags(const fm_fit_surface *s, const fm_trim_loop *const *loops,
 
 /* 1 if segments (a, b) and (c, d) cross, touch or overlap (exact). */
 int segments_cross(const double *a, const double *b, const double *c, const double *d);
+/* Whether chord a-b crosses segment c-e that does not end at a or b; box
+ * is the chord's {x0, x1, y0, y1}, which a segment wholly beside it misses
+ * before any exact test. */
+int chord_crosses_segment(const double *a, const double *b, const double box[4],
+                          const double *c, const double *e);
 
 /* Removes nodes where a loop turns back on itself (3D angle below
  * min_angle degrees: a trimming curve that overshoots a corner and

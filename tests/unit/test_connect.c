@@ -733,6 +733,22 @@ static void test_cfm_santa_monica(void)
     fm_model_destroy(b);
 }
 
+/* The n meshes fitted into models (the meshes destroyed); -1 (checked)
+ * when one cannot be, the others then destroyed. */
+static int fit_all(fm_mesh **meshes, const char *const *names, int n, fm_model **models)
+{
+    int bad = 0;
+    for (int k = 0; k < n; k++) {
+        models[k] = bad ? NULL : fit_mesh(names[k], meshes[k]);
+        fm_mesh_destroy(meshes[k]);
+        bad |= models[k] == NULL;
+    }
+    CHECK(!bad);
+    for (int k = 0; bad && k < n; k++)
+        fm_model_destroy(models[k]);
+    return bad ? -1 : 0;
+}
+
 /* A composite over two section faults 20 m beside it, and a fault that
  * crosses all three: the composite (or, keeping the larger, the sections)
  * is given up, the crossing fault is no duplicate. */
@@ -744,13 +760,8 @@ static void test_duplicates(void)
                           vertical_plane(90.0, 5000, -6000, 500)};
     const char *names[4] = {"composite", "section west", "section east", "crossing"};
     fm_model *models[4];
-    for (int k = 0; k < 4; k++) {
-        models[k] = fit_mesh(names[k], meshes[k]);
-        fm_mesh_destroy(meshes[k]);
-        CHECK(models[k] != NULL);
-        if (!models[k])
-            return;
-    }
+    if (fit_all(meshes, names, 4, models))
+        return;
     fm_error err;
     double share[2], area[2];
     CHECK(fm_connect_overlap(models[1], models[0], 50, share, area, &err) == FM_OK);
@@ -798,13 +809,8 @@ static void test_duplicate_patch(void)
                           plane_part(-8000, -6000, 20, -2000, 250)};
     const char *names[2] = {"large", "patch"};
     fm_model *models[2];
-    for (int k = 0; k < 2; k++) {
-        models[k] = fit_mesh(names[k], meshes[k]);
-        fm_mesh_destroy(meshes[k]);
-        CHECK(models[k] != NULL);
-        if (!models[k])
-            return;
-    }
+    if (fit_all(meshes, names, 2, models))
+        return;
     fm_error err;
     fm_connect_pairs *pairs = NULL;
     CHECK(fm_connect_find_pairs((const fm_model *const *)models, 2, NULL, &pairs, &err) == FM_OK);
