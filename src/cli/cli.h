@@ -52,4 +52,11 @@ long fm_input_list_for(const char *cmd, const char *outdir, char *const *args, s
 int fm_parse_double(const char *opt, const char *s, double *out);
 int fm_parse_size(const char *opt, const char *s, size_t *out);
 
+/* args.c: a command's arguments (argv[0] its name) in the plain form the
+ * commands parse, from GNU conventions (--name=value, -j2, -oDIR, bundled
+ * short flags, --); malloc'ed (fm_cli_free_args). 0; 1 after saying what
+ * is wrong (a usage error); -1 when memory runs out. */
+int fm_cli_normalize_args(int argc, char **argv, int *out_argc, char ***out_argv);
+void fm_cli_free_args(int argc, char **argv);
+
 #endif

@@ -45,7 +45,13 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         if (!strcmp(cmd, commands[i].name)) {
-            int rc = commands[i].run(argc - 1, argv + 1);
+            int n;
+            char **args;
+            int bad = fm_cli_normalize_args(argc - 1, argv + 1, &n, &args);
+            if (bad)
+                return bad < 0 ? FM_EXIT_FAILURES : FM_EXIT_USAGE;
+            int rc = commands[i].run(n, args);
+            fm_cli_free_args(n, args);
             fm_report_cleanup(); /* the font caches of report.html's pictures */
             return rc;
         }

@@ -119,6 +119,11 @@ add_test(NAME outputs
   COMMAND bash ${FM_TOOLS}/outputs_test.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/outputs)
 set_tests_properties(outputs PROPERTIES TIMEOUT 600)
+# gnu_options: --name=value, -j2, -oDIR, bundled short flags and -- (issue 22)
+add_test(NAME gnu_options
+  COMMAND bash ${FM_TOOLS}/gnu_options_test.sh $<TARGET_FILE:faultmesh_cli>
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/gnu_options)
+set_tests_properties(gnu_options PROPERTIES TIMEOUT 600)
 add_test(NAME remesh_progress
   COMMAND bash ${FM_TOOLS}/remesh_progress_check.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_progress)
