@@ -50,6 +50,9 @@ long fm_input_list_for(const char *cmd, const char *outdir, char *const *args, s
 /* Parses a non-negative number option value; prints and returns -1 on
  * error. */
 int fm_parse_double(const char *opt, const char *s, double *out);
+int fm_parse_positive(const char *opt, const char *s, double *out);
+/* Says that opt needs a value; -1. */
+int fm_cli_missing(const char *opt);
 int fm_parse_size(const char *opt, const char *s, size_t *out);
 
 /* args.c: a command's arguments (argv[0] its name) in the plain form the

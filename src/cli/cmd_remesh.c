@@ -372,10 +372,10 @@ static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **c
         }
         int c = mesh_option(argc, argv, &i, &cli);
         if (c < 0 || (c == 0 && a[0] == '-' && a[1])) {
+            /* a bad value was said where it was read */
             if (c == 0)
-                fprintf(stderr, "faultmesh remesh: unknown option '%s'\n", a);
-            else
-                fprintf(stderr, "faultmesh remesh: bad or missing value for '%s'\n", a);
+                fprintf(stderr, "faultmesh: unknown option '%s' (see faultmesh remesh --help)\n",
+                        a);
             free(paths);
             return FM_EXIT_USAGE;
         }
@@ -393,7 +393,8 @@ static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **c
         return FM_EXIT_USAGE;
     }
     if (!cli.dir || npaths == 0) {
-        remesh_usage(stderr);
+        fprintf(stderr, "faultmesh: remesh needs %s (see faultmesh remesh --help)\n",
+                !cli.dir ? "-o DIR, the output folder" : "an input FILE or DIR");
         free(paths);
         return FM_EXIT_USAGE;
     }

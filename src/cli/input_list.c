@@ -227,6 +227,11 @@ static int within(const char *path, const char *dir)
 int fm_output_guard(const char *outdir, char *const *args, size_t nargs, char *const *files,
                     long nfiles)
 {
+    struct stat ob;
+    if (stat(outdir, &ob) == 0 && !S_ISDIR(ob.st_mode)) {
+        fprintf(stderr, "faultmesh: -o %s is a file, not a folder\n", outdir);
+        return -1;
+    }
     char *out = resolve(outdir);
     if (!out) {
         fprintf(stderr, "faultmesh: %s: cannot tell where the output folder is: %s\n", outdir,
@@ -295,30 +300,50 @@ long fm_input_list_for(const char *cmd, const char *outdir, char *const *args, s
     return n;
 }
 
-int fm_parse_double(const char *opt, const char *s, double *out)
+int fm_cli_missing(const char *opt)
 {
+    fprintf(stderr, "faultmesh: %s needs a value\n", opt);
+    return -1;
+}
+
+/* A decimal number (strtod also takes hexadecimal, inf and nan) in
+ * [lo, 1e12] (above lo when open); -1 after saying what it needs. */
+static int parse_number(const char *opt, const char *s, double lo, int open, const char *need,
+                        double *out)
+{
+    if (!s)
+        return fm_cli_missing(opt);
     char *end;
     errno = 0;
-    double v = s ? strtod(s, &end) : 0.0;
-    /* decimal only: strtod also takes hexadecimal (0x10), inf and nan */
-    int decimal = s && s[strspn(s, "0123456789.eE+-")] == '\0';
-    if (!s || !decimal || end == s || *end || errno || !(v >= 0.0) || v > 1e12) {
-        fprintf(stderr, "faultmesh: %s needs a non-negative number, got '%s'\n", opt,
-                s ? s : "");
+    double v = strtod(s, &end);
+    int decimal = s[strspn(s, "0123456789.eE+-")] == '\0';
+    if (!decimal || end == s || *end || errno || !(open ? v > lo : v >= lo) || v > 1e12) {
+        fprintf(stderr, "faultmesh: %s needs %s, got '%s'\n", opt, need, s);
         return -1;
     }
     *out = v;
     return 0;
 }
 
+int fm_parse_double(const char *opt, const char *s, double *out)
+{
+    return parse_number(opt, s, 0, 0, "a non-negative number", out);
+}
+
+int fm_parse_positive(const char *opt, const char *s, double *out)
+{
+    return parse_number(opt, s, 0, 1, "a positive number", out);
+}
+
 int fm_parse_size(const char *opt, const char *s, size_t *out)
 {
+    if (!s)
+        return fm_cli_missing(opt);
     char *end;
     errno = 0;
-    unsigned long long v = s ? strtoull(s, &end, 10) : 0;
-    if (!s || end == s || *end || errno || s[0] == '-') {
-        fprintf(stderr, "faultmesh: %s needs a non-negative integer, got '%s'\n", opt,
-                s ? s : "");
+    unsigned long long v = strtoull(s, &end, 10);
+    if (end == s || *end || errno || s[0] == '-') {
+        fprintf(stderr, "faultmesh: %s needs a non-negative integer, got '%s'\n", opt, s);
         return -1;
     }
     *out = (size_t)v;

@@ -73,10 +73,10 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
         return sc;
     if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
         if (!val)
-            return -1;
+            return fm_cli_missing(a);
         cli->dir = val;
     } else if (!strcmp(a, "--size")) {
-        if (fm_parse_double(a, val, &cli->mesh.size) || !(cli->mesh.size > 0))
+        if (fm_parse_positive(a, val, &cli->mesh.size))
             return -1;
     } else if (!strcmp(a, "--top")) {
         if (val && !strcmp(val, "cut")) {
@@ -116,19 +116,24 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
         }
     } else if (!strcmp(a, "--config")) {
         if (!val)
-            return -1; /* read before the other options (load_config) */
+            return fm_cli_missing(a); /* read before the other options (load_config) */
     } else if (!strcmp(a, "--crs")) {
         if (!val)
-            return -1;
+            return fm_cli_missing(a);
         cli->crs = val;
     } else if (!strcmp(a, "--crs-out")) {
         if (!val || !val[0])
-            return -1;
+            return fm_cli_missing(a);
         cli->crs_out = val;
     } else if (!strcmp(a, "--jobs") || !strcmp(a, "-j")) {
         size_t n;
-        if (fm_parse_size(a, val, &n) || n < 1 || n > 1024)
+        if (fm_parse_size(a, val, &n))
             return -1;
+        if (n < 1 || n > 1024) {
+            fprintf(stderr, "faultmesh: %s needs a whole number from 1 to 1024, got '%s'\n", a,
+                    val);
+            return -1;
+        }
         cli->jobs = (int)n;
     } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
         cli->quiet = 1;
@@ -151,17 +156,17 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
         if (fm_parse_size(a, val, &cli->max_triangles))
             return -1;
     } else if (!strcmp(a, "--join")) {
-        if (fm_parse_double(a, val, &cli->join) || !(cli->join > 0))
+        if (fm_parse_positive(a, val, &cli->join))
             return -1;
     } else if (!strcmp(a, "--keep-duplicate")) {
         if (!val) {
-            return -1;
+            return fm_cli_missing(a);
         } else if (!strcmp(val, "smaller")) {
             cli->keep = FM_CONNECT_KEEP_SMALLER;
         } else if (!strcmp(val, "larger")) {
             cli->keep = FM_CONNECT_KEEP_LARGER;
         } else {
-            fprintf(stderr, "faultmesh remesh: --keep-duplicate takes smaller or larger, not '%s'\n",
+            fprintf(stderr, "faultmesh: --keep-duplicate takes smaller or larger, not '%s'\n",
                     val);
             return -1;
         }

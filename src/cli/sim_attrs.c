@@ -18,21 +18,25 @@ int sim_cli_option(int argc, char **argv, int *i, sim_cli *sc)
     const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
     if (!strcmp(a, "--slip")) {
         if (!val)
-            return -1;
+            return fm_cli_missing(a);
         sc->slip_path = val;
     } else if (!strcmp(a, "--metadata")) {
         if (!val)
-            return -1;
+            return fm_cli_missing(a);
         sc->metadata_path = val;
     } else if (!strcmp(a, "--kinematics")) {
-        if (!val || sc->nkin == SIM_MAX_KINEMATICS)
+        if (!val)
+            return fm_cli_missing(a);
+        if (sc->nkin == SIM_MAX_KINEMATICS) {
+            fprintf(stderr, "faultmesh: --kinematics at most %d times\n", SIM_MAX_KINEMATICS);
             return -1;
+        }
         sc->kin_paths[sc->nkin++] = val;
     } else if (!strcmp(a, "--kinematics-distance")) {
-        if (fm_parse_double(a, val, &sc->kin_distance) || !(sc->kin_distance > 0))
+        if (fm_parse_positive(a, val, &sc->kin_distance))
             return -1;
     } else if (!strcmp(a, "--kinematics-fallback")) {
-        if (fm_parse_double(a, val, &sc->kin_fallback_rate) || !(sc->kin_fallback_rate >= 0))
+        if (fm_parse_double(a, val, &sc->kin_fallback_rate))
             return -1;
     } else if (!strcmp(a, "--eqsim-coords")) {
         if (val && !strcmp(val, "spherical")) {

@@ -1,7 +1,8 @@
 #!/bin/bash
 # GNU option conventions (issue 22): --name=value, -j2, -oDIR, bundled
 # short flags and -- give the same run as the plain forms; a flag given a
-# value is a usage error (exit 2, one line).
+# value, a missing -o, an output that is a file, a bad or missing value
+# and an unknown option are usage errors: exit 2, one line, one prefix.
 # usage: gnu_options_test.sh FAULTMESH TMPDIR
 set -u
 exe=$1 tmp=$2
@@ -32,6 +33,25 @@ expect_rc 2 "--quiet=yes" "$exe" remesh --quiet=yes --size 4000 -o "$tmp/x" "$tm
     ok || bad "--quiet=yes: $(cat "$tmp/err")"
 # a value-taking option still checks its value
 expect_rc 2 "--size=abc" "$exe" remesh --quiet --size=abc -o "$tmp/x" "$tmp/in"
+
+# usage errors: exit 2, one line with one prefix, saying what is wrong
+one_line() { # description pattern
+    [ "$(wc -l <"$tmp/err")" = 1 ] && grep -q "^faultmesh: $2" "$tmp/err" && ok ||
+        bad "$1: $(cat "$tmp/err")"
+}
+expect_rc 2 "no -o" "$exe" remesh --quiet "$tmp/in"
+one_line "no -o" "remesh needs -o DIR"
+touch "$tmp/afile"
+expect_rc 2 "-o a file" "$exe" remesh --quiet -o "$tmp/afile" "$tmp/in"
+one_line "-o a file" "-o .*afile is a file, not a folder"
+expect_rc 2 "--size -5" "$exe" remesh --quiet --size -5 -o "$tmp/x" "$tmp/in"
+one_line "--size -5" "--size needs a positive number, got '-5'"
+expect_rc 2 "--size 0" "$exe" remesh --quiet --size 0 -o "$tmp/x" "$tmp/in"
+one_line "--size 0" "--size needs a positive number, got '0'"
+expect_rc 2 "--size last" "$exe" remesh --quiet -o "$tmp/x" "$tmp/in" --size
+one_line "--size last" "--size needs a value"
+expect_rc 2 "unknown option" "$exe" remesh --quiet --sise 4000 -o "$tmp/x" "$tmp/in"
+one_line "unknown option" "unknown option '--sise'"
 
 echo "gnu_options_test: $pass passed, $fail failed"
 [ "$fail" = 0 ]
