@@ -223,7 +223,7 @@ int fm_cmd_fit(int argc, char **argv)
             return FM_EXIT_OK;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
             cli.dir = val;
-            rc = val ? 0 : FM_EXIT_USAGE;
+            rc = val ? 0 : (fm_cli_missing(a), FM_EXIT_USAGE);
             i++;
         } else if (!strcmp(a, "--extend")) {
             rc = fm_parse_double(a, val, &cli.model.fit.extend) ? FM_EXIT_USAGE : 0;
@@ -235,20 +235,20 @@ int fm_cmd_fit(int argc, char **argv)
             rc = fm_parse_double(a, val, &cli.model.fit.smoothing) ? FM_EXIT_USAGE : 0;
             i++;
         } else if (!strcmp(a, "--degree")) {
-            rc = fm_parse_double(a, val, &d) || d < 2 || d > 5 || d != floor(d) ? FM_EXIT_USAGE : 0;
-            if (rc)
-                fprintf(stderr, "faultmesh fit: --degree must be 2, 3, 4 or 5\n");
+            rc = !val ? (fm_cli_missing(a), FM_EXIT_USAGE) : 0;
+            char *end = NULL;
+            d = val ? strtod(val, &end) : 0;
+            if (!rc && (end == val || *end || d < 2 || d > 5 || d != floor(d))) {
+                fprintf(stderr, "faultmesh: --degree needs 2, 3, 4 or 5, got '%s'\n", val);
+                rc = FM_EXIT_USAGE;
+            }
             cli.model.fit.degree = (int)d;
             i++;
         } else if (!strcmp(a, "--target-rms")) {
-            rc = fm_parse_double(a, val, &cli.model.fit.target_rms) || cli.model.fit.target_rms <= 0
-                     ? FM_EXIT_USAGE
-                     : 0;
+            rc = fm_parse_positive(a, val, &cli.model.fit.target_rms) ? FM_EXIT_USAGE : 0;
             i++;
         } else if (!strcmp(a, "--target-max")) {
-            rc = fm_parse_double(a, val, &cli.model.fit.target_max) || cli.model.fit.target_max <= 0
-                     ? FM_EXIT_USAGE
-                     : 0;
+            rc = fm_parse_positive(a, val, &cli.model.fit.target_max) ? FM_EXIT_USAGE : 0;
             i++;
         } else if (!strcmp(a, "--trim-tol")) {
             rc = fm_parse_double(a, val, &cli.model.trim.tolerance) ? FM_EXIT_USAGE : 0;
@@ -262,14 +262,15 @@ int fm_cmd_fit(int argc, char **argv)
         } else if ((consumed = fm_cli_repair_option(argc, argv, &i, &cli.repair)) != 0) {
             rc = consumed < 0 ? FM_EXIT_USAGE : 0;
         } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "faultmesh fit: unknown option '%s'\n", a);
+            fprintf(stderr, "faultmesh: unknown option '%s' (see faultmesh fit --help)\n", a);
             rc = FM_EXIT_USAGE;
         } else {
             paths[npaths++] = argv[i];
         }
     }
     if (!rc && (!cli.dir || npaths == 0)) {
-        fit_usage(stderr);
+        fprintf(stderr, "faultmesh: fit needs %s (see faultmesh fit --help)\n",
+                !cli.dir ? "-o DIR, the output folder" : "an input FILE or DIR");
         rc = FM_EXIT_USAGE;
     }
     char **files = NULL;

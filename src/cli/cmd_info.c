@@ -339,7 +339,7 @@ int fm_cmd_info(int argc, char **argv)
             if (consumed < 0)
                 rc = FM_EXIT_USAGE;
         } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "faultmesh info: unknown option '%s'\n", a);
+            fprintf(stderr, "faultmesh: unknown option '%s' (see faultmesh info --help)\n", a);
             rc = FM_EXIT_USAGE;
         } else {
             paths[npaths++] = argv[i];

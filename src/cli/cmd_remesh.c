@@ -476,7 +476,11 @@ static int demo_main(remesh_cli *cli_in, int argc, char **argv)
         }
         int c = mesh_option(argc, argv, &i, &cli);
         if (c <= 0) {
-            fprintf(stderr, "faultmesh demo: bad argument '%s'\n", a);
+            /* a bad value was said where it was read */
+            if (c == 0)
+                fprintf(stderr, "faultmesh: demo: unexpected argument '%s' (see faultmesh demo "
+                                "--help)\n",
+                        a);
             return FM_EXIT_USAGE;
         }
     }
@@ -484,7 +488,8 @@ static int demo_main(remesh_cli *cli_in, int argc, char **argv)
     if (settle_msh(&cli))
         return FM_EXIT_USAGE;
     if (!cli.dir) {
-        fprintf(stderr, "usage: faultmesh demo [options] -o DIR\n");
+        fprintf(stderr, "faultmesh: demo needs -o DIR, the output folder (see faultmesh demo "
+                        "--help)\n");
         return FM_EXIT_USAGE;
     }
     cli.sim.quiet = cli.quiet;

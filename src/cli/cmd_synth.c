@@ -28,14 +28,16 @@ int fm_cmd_synth(int argc, char **argv)
             return FM_EXIT_OK;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
             if (!val) {
-                synth_usage(stderr);
+                fm_cli_missing(a);
                 return FM_EXIT_USAGE;
             }
             dir = val;
             i++;
         } else if (!strcmp(a, "--spacing")) {
-            if (fm_parse_double(a, val, &opt.spacing) || opt.spacing < 20.0 || opt.spacing > 20000.0) {
-                fprintf(stderr, "faultmesh synth: --spacing must be between 20 and 20000 m\n");
+            if (fm_parse_double(a, val, &opt.spacing))
+                return FM_EXIT_USAGE;
+            if (opt.spacing < 20.0 || opt.spacing > 20000.0) {
+                fprintf(stderr, "faultmesh: --spacing needs 20 to 20000 (m), got '%s'\n", val);
                 return FM_EXIT_USAGE;
             }
             i++;
@@ -46,8 +48,9 @@ int fm_cmd_synth(int argc, char **argv)
             opt.seed = (unsigned)seed;
             i++;
         } else {
-            fprintf(stderr, "faultmesh synth: unexpected argument '%s'\n", a);
-            synth_usage(stderr);
+            fprintf(stderr, "faultmesh: synth: unexpected argument '%s' (see faultmesh synth "
+                            "--help)\n",
+                    a);
             return FM_EXIT_USAGE;
         }
     }
