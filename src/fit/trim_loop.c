@@ -6,6 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* A window this many times the loop's mean width is cut to it. */
+#define THIN_LOOP 8.0
+
 void fm_trim_options_default(fm_trim_options *opt)
 {
     memset(opt, 0, sizeof *opt);
@@ -327,10 +330,16 @@ fm_status fm_trim_fit_metric(const double *uv, const double *metric, size_t n,
     double L = in.s[in.n];
     double window = o.corner_window > 0 ? o.corner_window : 2 * in.spacing;
     /* Both sides of a vertex must fit in the loop with room to spare, and
-     * across it: a window wider than the loop's mean width (2 area /
-     * perimeter) would take the two ends of a long thin loop (a fault far
-     * longer than wide, drawn with few points) each for one corner. */
-    window = fmin(window, fmin(0.25 * L, 2 * trim_input_area(&in) / L));
+     * across it: a window many times the loop's mean width (2 area /
+     * perimeter) takes the two ends of a long thin loop (a fault far longer
+     * than wide, drawn with few points: 10,000 km by 14 km in 2 triangles)
+     * each for one corner, so it is cut to that width. A loop merely
+     * narrower than the window (a small sheet of a dozen points) keeps it:
+     * there a smaller window finds stair-steps as corners. */
+    window = fmin(window, 0.25 * L);
+    double width = 2 * trim_input_area(&in) / L;
+    if (window > THIN_LOOP * width)
+        window = width;
     double h0 = o.knot_spacing > 0 ? o.knot_spacing : o.knot_factor * in.spacing;
     double beta = fmax(o.smoothing_wavelength, 0.05);
 
