@@ -125,12 +125,16 @@ static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t 
             continue;
         fault_result *r = res[f];
         char msg[512];
-        snprintf(msg, sizeof msg,
-                 "near-duplicate of %s (%.0f%% of its area within %.0f m of it); that one is "
-                 "kept (the %s of the two)",
-                 d ? res[d->kept]->name : "another fault", d ? 100 * d->share[0] : 0,
-                 po.duplicates.tolerance,
-                 po.duplicates.keep == FM_CONNECT_KEEP_LARGER ? "larger" : "smaller");
+        if (d)
+            snprintf(msg, sizeof msg,
+                     "near-duplicate of %s: %.0f%% of its area lies within %.0f m of the faults "
+                     "it pairs with (%.0f%% within %.0f m of that one, which is kept: the %s of "
+                     "the two)",
+                     res[d->kept]->name, 100 * d->cover, po.duplicates.tolerance,
+                     100 * d->share[0], po.duplicates.tolerance,
+                     d->area[1] > d->area[0] ? "larger" : "smaller");
+        else
+            snprintf(msg, sizeof msg, "near-duplicate of another fault");
         r->status = "dropped";
         r->error = strdup(msg);
     }

@@ -548,6 +548,7 @@ fm_status fm_connect_find_duplicates(const fm_model *const *models, size_t n,
         d->share[1] = share[!swap];
         d->area[0] = ar[swap];
         d->area[1] = ar[!swap];
+        d->cover = ar[swap] > 0 ? cover[swap ? fp[k].b : fp[k].a] / ar[swap] : 0;
         d->decided = 0;
     }
     free(fp);

@@ -224,6 +224,8 @@ typedef struct fm_connect_duplicate {
     double share[2];      /* share of the dropped [0] and kept [1] fault's area within
                              the tolerance of the other */
     double area[2];       /* sampled trimmed areas (m^2), dropped [0] and kept [1] */
+    double cover;         /* share of the dropped fault's area within the tolerance of
+                             any fault it is paired with */
     int decided;          /* 1: this pair gave up `dropped`; 0: an earlier pair had
                              already given up one of the two */
 } fm_connect_duplicate;
