@@ -296,9 +296,10 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     html_job hj = {cli, &rs, FM_OK, {0}};
     pthread_t html_thread;
     int html_async = 0;
-    if (cli->html && cli->jobs > 1)
+    int html = cli->html && (cli->formats & FMT_HTML);
+    if (html && cli->jobs > 1)
         html_async = pthread_create(&html_thread, NULL, html_worker, &hj) == 0;
-    if (cli->html && !html_async) {
+    if (html && !html_async) {
         progress_begin(cli->prog, "report.html", 0, NULL, 0);
         html_worker(&hj);
         progress_end(cli->prog);
@@ -309,7 +310,7 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     write_set(cli, &rs, &sa);
     if (html_async)
         pthread_join(html_thread, NULL);
-    if (cli->html)
+    if (html)
         note_report(&outputs, "report.html", hj.st == FM_OK ? NULL : &hj.err);
     for (long i = 0; i < nfiles; i++)
         release_job(&jobs[i]);

@@ -161,6 +161,7 @@ static void fault_options(const remesh_cli *cli, fault_result *r)
     }
     r->join = r->fc.has_join ? r->fc.join : cli->join;
     r->connect = cli->connect && !(r->fc.has_connect && !r->fc.connect);
+    r->want_cad = (cli->formats & FMT_IGS) != 0;
 }
 
 /* Repairs and fits one fault (one TSurf object). Its surface reaches as
@@ -336,7 +337,7 @@ static fm_status mesh_object(const char *path, const fm_mesh *orig,
                        ? fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory")
                        : fm_remesh_model_joined(model, per, &mo, fault, ids, r->join_failed, jerr,
                                                 &r->ms, bounds, err);
-    if (st == FM_OK) {
+    if (st == FM_OK && r->want_cad) {
         /* which sheets have triangles (tag = sheet) */
         unsigned char *meshed = calloc(r->sheets + 1, 1);
         const int32_t *tag = fm_mesh_tags(*fault);

@@ -57,12 +57,47 @@ void remesh_usage(FILE *fp)
             "                        connect, exclude, rake, slip_rate by name pattern\n"
             "                        (options beside it override it; see the README)\n"
             "  --no-report-html      skip DIR/report.html\n"
+            "  --formats LIST        the outputs to write, comma-separated, of vtu, msh,\n"
+            "                        stl, obj, exo, ts (NAME.ts), igs (model.igs), rsqsim,\n"
+            "                        eqsim, html (report.html), names (names.csv); default\n"
+            "                        all; report.json is always written\n"
             "  -q, --quiet           errors only (no progress, no summary)\n"
             "  -v, --verbose         a line per fault and per stage as well\n"
             "                        (default: a progress bar on a terminal, log lines\n"
             "                        otherwise, on stderr; the summary on stdout)\n"
             SIM_CLI_HELP);
     fputs(fm_cli_repair_help, fp);
+}
+
+static const char *const format_names[] = {"vtu", "msh",    "stl",   "obj",  "exo",  "ts",
+                                           "igs", "rsqsim", "eqsim", "html", "names"};
+
+int formats_parse(const char *list, unsigned *out)
+{
+    unsigned f = 0;
+    const char *p = list;
+    while (*p) {
+        size_t n = strcspn(p, ",");
+        int found = 0;
+        for (size_t k = 0; k < sizeof format_names / sizeof *format_names && !found; k++)
+            if (n == strlen(format_names[k]) && !strncmp(p, format_names[k], n)) {
+                f |= 1u << k;
+                found = 1;
+            }
+        if (!found) {
+            fprintf(stderr, "faultmesh: --formats: '%.*s' is not one of vtu, msh, stl, obj, exo, "
+                            "ts, igs, rsqsim, eqsim, html, names\n",
+                    (int)n, p);
+            return -1;
+        }
+        p += n + (p[n] == ',');
+    }
+    if (!f) {
+        fprintf(stderr, "faultmesh: --formats needs at least one format\n");
+        return -1;
+    }
+    *out = f;
+    return 0;
 }
 
 int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
@@ -149,6 +184,11 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     } else if (!strcmp(a, "--no-report-html")) {
         cli->html = 0;
         return 1;
+    } else if (!strcmp(a, "--formats")) {
+        if (!val)
+            return fm_cli_missing(a);
+        if (formats_parse(val, &cli->formats))
+            return -1;
     } else if (!strcmp(a, "--keep-crossings")) {
         cli->carve = 0;
         return 1;
@@ -216,6 +256,7 @@ void cli_defaults(remesh_cli *cli)
     cli->connect = 1;
     cli->carve = 1;
     cli->html = 1;
+    cli->formats = FMT_ALL;
     cli->join = 1000;
     cli->max_triangles = FM_DEFAULT_MAX_TRIANGLES;
     cli->keep = FM_CONNECT_KEEP_SMALLER;
@@ -285,6 +326,22 @@ int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninp
             }
             else if (is_on_by_default(e->key) || !on)
                 continue; /* the default */
+        } else if (e->type == CFG_ARRAY && !strcmp(e->key, "formats")) {
+            unsigned all = 0;
+            for (size_t k = 0; k < e->nitems; k++) {
+                unsigned f;
+                if (formats_parse(e->items[k], &f)) {
+                    fprintf(stderr, "%s:%ld: formats: see above\n", c->path, e->line);
+                    return -1;
+                }
+                all |= f;
+            }
+            if (!all) {
+                fprintf(stderr, "%s:%ld: formats needs at least one format\n", c->path, e->line);
+                return -1;
+            }
+            cli->formats = all;
+            continue;
         } else if (e->type == CFG_ARRAY) {
             fprintf(stderr, "%s:%ld: %s takes one value, not a list\n", c->path, e->line, e->key);
             return -1;

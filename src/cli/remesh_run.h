@@ -47,7 +47,18 @@ typedef struct remesh_cli {
     sim_cli sim;          /* --slip, --metadata, --eqsim-coords */
     int html;             /* write report.html (default 1) */
     size_t max_triangles; /* refuse a fault or run expected to need more (0: no limit) */
+    unsigned formats;     /* --formats: the outputs written (FMT_* bits; report.json always) */
 } remesh_cli;
+
+/* The outputs --formats chooses among, by name: vtu msh stl obj exo ts igs
+ * rsqsim eqsim html names (names.csv). */
+enum {
+    FMT_VTU = 1 << 0, FMT_MSH = 1 << 1, FMT_STL = 1 << 2, FMT_OBJ = 1 << 3,
+    FMT_EXO = 1 << 4, FMT_TS = 1 << 5, FMT_IGS = 1 << 6, FMT_RSQSIM = 1 << 7,
+    FMT_EQSIM = 1 << 8, FMT_HTML = 1 << 9, FMT_NAMES = 1 << 10, FMT_ALL = (1 << 11) - 1
+};
+/* The bits of a comma-separated list of names; -1 after naming a bad one. */
+int formats_parse(const char *list, unsigned *out);
 
 /* Triangles a run may be expected to make by default: what a 24 GB
  * machine holds through the whole pipeline (about 0.75 kB per triangle
@@ -89,6 +100,7 @@ typedef struct fault_result {
     double carved_area;         /* their area, m^2 */
     size_t set_index;           /* its fault index in the set written, SIZE_MAX if none */
     const fm_mesh *orig;        /* as read, NULL if not (valid until the jobs are released) */
+    int want_cad;               /* model.igs is written: make its faces */
     fm_cad_face **cad;          /* its faces in model.igs */
     size_t ncad;
 } fault_result;

@@ -529,24 +529,33 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
         for (int k = 0; k < 6; k++)
             snprintf(path + (size_t)k * n, n, "%s/%s.%s", cli->dir, k < 5 ? "mesh" : "model",
                      ext[k]);
-        fm_faultset_outputs out = {.vtu = path,
-                                   .msh = path + n,
-                                   .stl = path + 2 * n,
-                                   .obj = path + 3 * n,
-                                   .exo = path + 4 * n,
+        unsigned fm = cli->formats;
+        fm_faultset_outputs out = {.vtu = fm & FMT_VTU ? path : NULL,
+                                   .msh = fm & FMT_MSH ? path + n : NULL,
+                                   .stl = fm & FMT_STL ? path + 2 * n : NULL,
+                                   .obj = fm & FMT_OBJ ? path + 3 * n : NULL,
+                                   .exo = fm & FMT_EXO ? path + 4 * n : NULL,
                                    .msh_version = cli->msh,
-                                   .tsurf_dir = cli->dir,
+                                   .tsurf_dir = fm & FMT_TS ? cli->dir : NULL,
                                    .done = outputs_done,
                                    .done_ctx = rs->outputs};
-        st = fm_faultset_write_all(&fs, &out, cli->jobs, &err);
-        const char *igs = path + 5 * n;
-        fm_status cst = fm_cad_write_iges_reprojected(igs, rs->cad, rs->ncad, fs.crs, rp, &err);
-        outputs_note(rs->outputs, igs, SIZE_MAX, OUTPUT_SET, cst == FM_OK ? NULL : &err);
-        fm_status sst = sim_write(&cli->sim, &fs, sa, cli->dir, outputs_done, rs->outputs);
-        char *names = path; /* the first path's room, free again */
-        snprintf(names, n, "%s/names.csv", cli->dir);
-        fm_status nst = write_names_csv(names, &fs, &err);
-        outputs_note(rs->outputs, names, SIZE_MAX, OUTPUT_REPORT, nst == FM_OK ? NULL : &err);
+        fm_status cst = FM_OK, sst = FM_OK, nst = FM_OK;
+        if (fm & (FMT_ALL & ~(FMT_IGS | FMT_RSQSIM | FMT_EQSIM | FMT_HTML | FMT_NAMES)))
+            st = fm_faultset_write_all(&fs, &out, cli->jobs, &err);
+        if (fm & FMT_IGS) {
+            const char *igs = path + 5 * n;
+            cst = fm_cad_write_iges_reprojected(igs, rs->cad, rs->ncad, fs.crs, rp, &err);
+            outputs_note(rs->outputs, igs, SIZE_MAX, OUTPUT_SET, cst == FM_OK ? NULL : &err);
+        }
+        if (fm & (FMT_RSQSIM | FMT_EQSIM))
+            sst = sim_write(&cli->sim, &fs, sa, cli->dir, (fm & FMT_RSQSIM) != 0,
+                            (fm & FMT_EQSIM) != 0, outputs_done, rs->outputs);
+        if (fm & FMT_NAMES) {
+            char *names = path; /* the first path's room, free again */
+            snprintf(names, n, "%s/names.csv", cli->dir);
+            nst = write_names_csv(names, &fs, &err);
+            outputs_note(rs->outputs, names, SIZE_MAX, OUTPUT_REPORT, nst == FM_OK ? NULL : &err);
+        }
         st = st != FM_OK ? st : cst != FM_OK ? cst : sst != FM_OK ? sst : nst;
     }
     free(path);

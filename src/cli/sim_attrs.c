@@ -305,7 +305,7 @@ static void say_placeholders(const sim_cli *sc, const fm_faultset *fs, const sim
 }
 
 fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
-                    const char *dir, fm_output_done done, void *ctx)
+                    const char *dir, int rsqsim, int eqsim, fm_output_done done, void *ctx)
 {
     if (!sc->quiet && a->kin) {
         double A = 0, M = 0;
@@ -326,6 +326,8 @@ fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a
     fm_sim_slip slip = {a->rake_f, a->rate_f, a->rake_t, a->rate_t};
     fm_status first = FM_OK;
     for (int k = 0; k < 2; k++) {
+        if (!(k ? eqsim : rsqsim))
+            continue;
         const char *name = k ? "mesh.eqsim" : "mesh.rsqsim";
         fm_error err;
         fm_error_clear(&err);

@@ -86,10 +86,10 @@ typedef struct sim_attrs {
 int sim_attrs_make(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a);
 void sim_attrs_free(sim_attrs *a);
 
-/* DIR/mesh.rsqsim and DIR/mesh.eqsim, each tried, each told to done;
- * the first failure's status. */
+/* DIR/mesh.rsqsim and DIR/mesh.eqsim (those asked for), each tried, each
+ * told to done; the first failure's status. */
 fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
-                    const char *dir, fm_output_done done, void *ctx);
+                    const char *dir, int rsqsim, int eqsim, fm_output_done done, void *ctx);
 
 /* sim_kinematics.c: each element's rake and rate from the sections
  * (under the --slip rules and the settings file, over the fallback); 0,

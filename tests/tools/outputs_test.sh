@@ -49,6 +49,22 @@ expect_rc 0 "all written" "$exe" remesh --quiet --size 4000 -o "$tmp/all" "$tmp/
 [ "$(json "$tmp/all/report.json" "(r['outputs']['written'], r['outputs']['not_written'])")" = \
   "($((n + 10)), 0)" ] && ok || bad "outputs: $(json "$tmp/all/report.json" "r['outputs']")"
 
+# --formats: only the files asked for (and report.json), each accounted
+# for, every fault ok; the settings file's formats list the same
+expect_rc 0 "--formats rsqsim,names" "$exe" remesh --quiet --size 4000 --formats rsqsim,names \
+    -o "$tmp/some" "$tmp/in"
+[ "$(ls "$tmp/some" | tr '\n' ' ')" = "mesh.rsqsim names.csv report.json " ] && ok ||
+    bad "--formats rsqsim,names wrote: $(ls "$tmp/some" | tr '\n' ' ')"
+[ "$(json "$tmp/some/report.json" "(r['outputs']['written'], sum(f['status'] == 'ok' for f in r['faults']))")" = "(2, $n)" ] &&
+    ok || bad "--formats: report.json $(json "$tmp/some/report.json" "r['outputs']")"
+printf 'formats = ["vtu", "eqsim"]\nsize = 4000\n' >"$tmp/formats.toml"
+expect_rc 0 "formats in the settings file" "$exe" remesh --quiet --config "$tmp/formats.toml" \
+    -o "$tmp/some2" "$tmp/in"
+[ "$(ls "$tmp/some2" | tr '\n' ' ')" = "mesh.eqsim mesh.vtu report.json " ] && ok ||
+    bad "settings formats wrote: $(ls "$tmp/some2" | tr '\n' ' ')"
+expect_rc 2 "--formats rsq" "$exe" remesh --quiet --formats rsq -o "$tmp/x" "$tmp/in"
+grep -q "'rsq' is not one of" "$tmp/err" && ok || bad "--formats rsq: $(cat "$tmp/err")"
+
 # a 1 mm fault far from the others: its face alone is left out of model.igs
 python3 - "$first" "$tmp/tiny.ts" <<'EOF'
 import sys
