@@ -284,6 +284,8 @@ static int run(const remesh_cli *cli, char **files, long nfiles)
     if (plan && cli->carve)
         carve_set(cli, &rs);
     measure_loss(cli, &rs);
+    if (compact_set(&rs))
+        fprintf(stderr, "faultmesh: out of memory: the outputs keep points of no triangle\n");
     progress_end(cli->prog);
     double t4 = fm_clock_seconds();
     rs.time[0] = t1 - t0;

@@ -239,6 +239,8 @@ fm_status write_names_csv(const char *path, const fm_faultset *fs, fm_error *err
 void merge_job(const remesh_cli *cli, file_job *job, run_state *rs);
 void carve_set(const remesh_cli *cli, run_state *rs);
 
+/* The set without vertices no triangle uses; -1 when memory runs out. */
+int compact_set(run_state *rs);
 /* Junction jn as meshed: the plan's type, unless one of its faults failed
  * or came out empty (*why is then that fault's error, *which the fault),
  * or the mesher could not fit its curve into one of its sheets or the

@@ -272,6 +272,54 @@ void carve_set(const remesh_cli *cli, run_state *rs)
     carve_sheets(rs, H);
 }
 
+/* The set without vertices no triangle uses (what the last guard's
+ * carving left, or a shared node no fault kept), so that no output holds
+ * a point of no element; the shared nodes' vertices follow. -1 when
+ * memory runs out (the set is then left as it was). */
+int compact_set(run_state *rs)
+{
+    size_t nv = fm_mesh_nvertices(rs->set), nt = fm_mesh_ntriangles(rs->set);
+    int32_t *map = malloc((nv + 1) * sizeof *map);
+    fm_mesh *out = fm_mesh_create();
+    if (!map || !out) {
+        free(map);
+        fm_mesh_destroy(out);
+        return -1;
+    }
+    const int32_t *T = fm_mesh_triangles(rs->set), *tag = fm_mesh_tags(rs->set);
+    for (size_t v = 0; v < nv; v++)
+        map[v] = -1;
+    for (size_t k = 0; k < 3 * nt; k++)
+        map[T[k]] = 0;
+    size_t used = 0;
+    for (size_t v = 0; v < nv; v++)
+        if (map[v] == 0)
+            map[v] = (int32_t)used++;
+    if (used == nv) {
+        free(map);
+        fm_mesh_destroy(out);
+        return 0;
+    }
+    if (fm_mesh_reserve(out, used, nt) != FM_OK) {
+        free(map);
+        fm_mesh_destroy(out);
+        return -1;
+    }
+    const double *X = fm_mesh_vertices(rs->set);
+    for (size_t v = 0; v < nv; v++)
+        if (map[v] >= 0)
+            fm_mesh_add_vertex(out, X[3 * v], X[3 * v + 1], X[3 * v + 2]);
+    for (size_t t = 0; t < nt; t++)
+        fm_mesh_add_triangle(out, map[T[3 * t]], map[T[3 * t + 1]], map[T[3 * t + 2]], tag[t]);
+    for (size_t k = 0; rs->node_vertex && rs->plan && k < fm_connect_plan_nnodes(rs->plan); k++)
+        if (rs->node_vertex[k] >= 0)
+            rs->node_vertex[k] = map[rs->node_vertex[k]];
+    fm_mesh_destroy(rs->set);
+    rs->set = out;
+    free(map);
+    return 0;
+}
+
 /* Junction i as meshed: the plan's type, unless one of its faults failed
  * or came out empty (*why is then that fault's error and *which the
  * fault) or the mesher could not fit its curve into one of its sheets

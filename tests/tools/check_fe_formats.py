@@ -252,6 +252,9 @@ def check_crs(out, crs, faults):
     check(rep["options"].get("crs_out", rep["options"]["crs"]) == crs,
           "report.json options.crs (crs_out when given)")
     vtu = meshio.read(os.path.join(out, "mesh.vtu"))
+    used = np.unique(np.concatenate([c.data.ravel() for c in vtu.cells]))
+    check(len(used) == len(vtu.points), "VTU: every point is a corner of some triangle "
+          "(%d points, %d used)" % (len(vtu.points), len(used)))
     got = vtu.field_data.get("crs")
     got = "".join(chr(c) for c in np.asarray(got).ravel() if c) if got is not None else None
     check(got == crs, "VTU field data crs (%r)" % got)
