@@ -17,11 +17,39 @@ static const char *base_name(const char *path)
     return s ? s + 1 : path;
 }
 
+/* msg with every whole occurrence of path written as its file name (the
+ * reasons name the input as given, often an absolute path); malloc'ed,
+ * NULL for a NULL msg or when memory runs out. */
+static char *names_only(const char *msg, const char *path)
+{
+    if (!msg)
+        return NULL;
+    const char *base = base_name(path);
+    size_t n = path ? strlen(path) : 0, b = base ? strlen(base) : 0;
+    char *out = malloc(strlen(msg) + 1);
+    if (!out)
+        return NULL;
+    size_t w = 0;
+    for (const char *p = msg; *p;) {
+        if (n > b && !strncmp(p, path, n)) {
+            memcpy(out + w, base, b);
+            w += b;
+            p += n;
+        } else {
+            out[w++] = *p++;
+        }
+    }
+    out[w] = 0;
+    return out;
+}
+
 static fm_status add_faults(fm_report *rep, const run_state *rs, fm_error *err)
 {
     fm_status st = FM_OK;
     for (size_t i = 0; st == FM_OK && i < rs->nres; i++) {
         const fault_result *r = &rs->res[i];
+        char *reason = names_only(r->error, r->file);
+        char *join_error = names_only(r->join_error, r->file);
         int ok = r->status && !strcmp(r->status, "ok");
         char w[FM_MAX_WARNINGS][160];
         const char *warn[3] = {w[0], w[1], w[2]};
@@ -29,10 +57,10 @@ static fm_status add_faults(fm_report *rep, const run_state *rs, fm_error *err)
             .name = r->name,
             .file = base_name(r->file),
             .status = r->status ? r->status : "error",
-            .reason = r->error,
+            .reason = reason ? reason : r->error ? "(out of memory)" : NULL,
             .warnings = warn,
             .nwarnings = ok ? (size_t)fault_warnings(r, w) : 0,
-            .join_error = r->join_error,
+            .join_error = join_error ? join_error : r->join_error ? "(out of memory)" : NULL,
             .tag = r->set_index == SIZE_MAX ? -1 : (int32_t)r->set_index,
             .original = r->orig,
             .sheets = r->sheets,
@@ -45,6 +73,8 @@ static fm_status add_faults(fm_report *rep, const run_state *rs, fm_error *err)
                                                             : NULL,
         };
         st = fm_report_add_fault(rep, &f, err);
+        free(reason);
+        free(join_error);
     }
     return st;
 }

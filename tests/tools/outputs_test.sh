@@ -49,6 +49,13 @@ expect_rc 0 "all written" "$exe" remesh --quiet --size 4000 -o "$tmp/all" "$tmp/
 [ "$(json "$tmp/all/report.json" "(r['outputs']['written'], r['outputs']['not_written'])")" = \
   "($((n + 10)), 0)" ] && ok || bad "outputs: $(json "$tmp/all/report.json" "r['outputs']")"
 
+# report.html names files, never the input's absolute path, also in the
+# reason a fault failed (the input here is given as an absolute path)
+mkdir -p "$tmp/withbad" && cp "$tmp/in"/*.ts "$(dirname "$0")/../data/bad/trgl_four_ids.ts" "$tmp/withbad/"
+expect_rc 1 "a bad fault among good ones" "$exe" remesh --quiet --size 4000 -o "$tmp/html" "$tmp/withbad"
+grep -q "trgl_four_ids.ts:10" "$tmp/html/report.html" && ok || bad "report.html lacks the failure"
+! grep -q "$tmp" "$tmp/html/report.html" && ok || bad "report.html holds an absolute path"
+
 # --formats: only the files asked for (and report.json), each accounted
 # for, every fault ok; the settings file's formats list the same
 expect_rc 0 "--formats rsqsim,names" "$exe" remesh --quiet --size 4000 --formats rsqsim,names \
