@@ -31,7 +31,8 @@ static void fit_usage(FILE *fp)
             "  --target-max M       ... or this largest vertex distance (m)\n"
             "  --trim-tol M         outline tolerance (averaged deviation), metres (default 50)\n"
             "  --trim-max-dev M     refine the outline where one point is farther (default 50)\n"
-            "  --corner-angle DEG   outline corners turn at least this much (default 30)\n");
+            "  --corner-angle DEG   outline corners turn at least this much (default 30)\n"
+            "  -h, --help           this text\n");
     fputs(fm_cli_repair_help, fp);
 }
 

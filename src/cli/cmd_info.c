@@ -27,7 +27,8 @@ static void info_usage(FILE *fp)
             "components, boundary loops and holes, non-manifold edges, welded\n"
             "duplicates, z range, edge lengths and minimum angles.\n\n"
             "options:\n"
-            "  --json                     machine-readable output on stdout\n");
+            "  --json                     machine-readable output on stdout\n"
+            "  -h, --help                 this text\n");
     fputs(fm_cli_repair_help, fp);
 }
 

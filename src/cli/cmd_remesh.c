@@ -477,8 +477,9 @@ static int demo_main(remesh_cli *cli_in, int argc, char **argv)
         const char *a = argv[i];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             printf("usage: faultmesh demo [options] -o DIR\n"
-                   "Generates the synthetic fault system in DIR/input and remeshes it into DIR\n"
-                   "(same outputs and options as `faultmesh remesh`).\n");
+                   "Generates the synthetic fault system in DIR/input and remeshes it into DIR:\n"
+                   "the same outputs and options as `faultmesh remesh`, which follow.\n\n");
+            remesh_usage(stdout);
             return FM_EXIT_OK;
         }
         int c = mesh_option(argc, argv, &i, &cli);

@@ -13,7 +13,8 @@ static void synth_usage(FILE *fp)
                 "options:\n"
                 "  -o, --output DIR   output folder (created if missing)\n"
                 "  --spacing M        nominal triangle size in metres (default 500)\n"
-                "  --seed N           seed of the noise and irregular triangulation (default 1)\n");
+                "  --seed N           seed of the noise and irregular triangulation (default 1)\n"
+                "  -h, --help         this text\n");
 }
 
 int fm_cmd_synth(int argc, char **argv)

@@ -13,7 +13,9 @@ static const struct {
 } commands[] = {
     {"info", fm_cmd_info, "read, repair and describe TSurf files"},
     {"fit", fm_cmd_fit, "fit trimmed B-spline models (JSON, IGES, VTU)"},
-    {"remesh", fm_cmd_remesh, "mesh faults at a chosen size (VTU, MSH, STL, OBJ, TSurf)"},
+    {"remesh", fm_cmd_remesh,
+     "mesh faults at a chosen size, connected (VTU, MSH, STL, OBJ, Exodus II, TSurf, IGES,\n"
+     "           RSQSim, EQSim, names.csv, report.json, report.html)"},
     {"demo", fm_cmd_demo, "remesh the synthetic fault system (the embedded default)"},
     {"synth", fm_cmd_synth, "generate the synthetic fault system (TSurf)"},
 };
@@ -23,8 +25,9 @@ static void usage(FILE *fp)
     fprintf(fp, "usage: faultmesh COMMAND [options] ...\n\ncommands:\n");
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         fprintf(fp, "  %-8s %s\n", commands[i].name, commands[i].summary);
-    fprintf(fp, "\n`faultmesh COMMAND --help` describes a command's options.\n"
-                "Exit status: 0 success, 1 some inputs failed, 2 bad usage.\n");
+    fprintf(fp, "\n`faultmesh COMMAND --help` describes a command's options;\n"
+                "`faultmesh --version` prints the version.\n"
+                "Exit status: 0 success, 1 some inputs or outputs failed, 2 bad usage.\n");
 }
 
 int main(int argc, char **argv)

@@ -124,6 +124,10 @@ add_test(NAME gnu_options
   COMMAND bash ${FM_TOOLS}/gnu_options_test.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/gnu_options)
 set_tests_properties(gnu_options PROPERTIES TIMEOUT 600)
+# help: every option the parsers know is in some --help (issue 22)
+add_test(NAME help
+  COMMAND bash ${FM_TOOLS}/help_test.sh $<TARGET_FILE:faultmesh_cli> ${CMAKE_SOURCE_DIR}/src/cli
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/help)
 add_test(NAME remesh_progress
   COMMAND bash ${FM_TOOLS}/remesh_progress_check.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_progress)
