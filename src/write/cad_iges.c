@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "fm_cad_write.h"
+#include "faultset_internal.h"
 #include "fm_iges.h"
 #include "fm_reproject.h"
 
@@ -159,21 +160,6 @@ fm_status fm_cad_face_create(const char *name, const fm_fit_surface *s, const do
     return FM_OK;
 }
 
-static fm_status resolve_time(const char *path, long long *t, fm_error *err)
-{
-    *t = 0;
-    const char *env = getenv("SOURCE_DATE_EPOCH");
-    if (!env || !*env)
-        return FM_OK;
-    char *endp;
-    errno = 0;
-    long long v = strtoll(env, &endp, 10);
-    if (*endp || errno || v < 0)
-        return fm_error_set(err, FM_ERR_INVALID, path, 0,
-                            "SOURCE_DATE_EPOCH is not a number of seconds: %s", env);
-    *t = v;
-    return FM_OK;
-}
 
 fm_status fm_cad_write_iges(const char *path, const fm_cad_face *const *faces, size_t n,
                             const char *crs, fm_error *err)
@@ -278,7 +264,7 @@ fm_status fm_cad_write_iges_reprojected(const char *path, const fm_cad_face *con
     fm_iges_options_default(&opt);
     opt.description = desc;
     opt.product_id = "faultmesh fault model";
-    fm_status rc = resolve_time(path, &opt.time, err);
+    fm_status rc = fs_source_date(path, &opt.time, err);
     if (rc == FM_OK)
         rc = fm_iges_write(path, out, n, &opt, err);
     free(out);

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <exodusII.h>
 #include <netcdf.h>
@@ -51,6 +52,7 @@ typedef struct exo_job {
     size_t nnodes;
     size_t *tstart, *torder; /* triangles grouped by fault */
     char **names;        /* nfaults + nnodesets short names (fm_short_names) */
+    char qa_date[16], qa_time[16]; /* SOURCE_DATE_EPOCH's, else the epoch's (UTC) */
     char **info;         /* ninfo lines */
     size_t ninfo;
 } exo_job;
@@ -218,7 +220,7 @@ static int put_all(int exo, const exo_job *j)
                          (int64_t)fm_mesh_ntriangles(fs->mesh), (int64_t)nf, (int64_t)ns, 0);
     if (rc < 0)
         return rc;
-    char *qa[1][4] = {{"faultmesh", FM_VERSION_STRING, "", ""}};
+    char *qa[1][4] = {{"faultmesh", FM_VERSION_STRING, (char *)j->qa_date, (char *)j->qa_time}};
     if ((rc = ex_put_qa(exo, 1, qa)) < 0 || (rc = ex_put_info(exo, (int)j->ninfo, j->info)) < 0)
         return rc;
 
@@ -317,6 +319,14 @@ fm_status fm_faultset_write_exodus(const char *path, const fm_faultset *fs, fm_e
     if (st != FM_OK)
         return st;
     exo_job j = {.fs = fs};
+    long long when;
+    if ((st = fs_source_date(path, &when, err)) != FM_OK)
+        return st;
+    time_t tt = (time_t)when;
+    struct tm tm;
+    gmtime_r(&tt, &tm);
+    strftime(j.qa_date, sizeof j.qa_date, "%Y-%m-%d", &tm);
+    strftime(j.qa_time, sizeof j.qa_time, "%H:%M:%S", &tm);
     if (prepare(&j)) {
         release(&j);
         return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");

@@ -57,4 +57,8 @@ void fs_tsurf_scratch_free(fs_tsurf_scratch *sc);
 fm_status fs_tsurf_write_fault(const fs_tsurf_plan *pl, size_t f, fs_tsurf_scratch *sc,
                                fm_error *err);
 
+/* The time a file records: SOURCE_DATE_EPOCH when set, else 0 (1970-01-01
+ * 00:00:00 UTC), so that the same input gives the same bytes. */
+fm_status fs_source_date(const char *path, long long *t, fm_error *err);
+
 #endif

@@ -14,7 +14,8 @@ group per fault) and OUTDIR/report.json:
           holding exactly the nodes of its block; one node set per
           junction report.json marks made, named "junction I: A / B", whose
           nodes are nodes of both A's and B's blocks and hold at least one
-          edge of both; info records give the CRS; QA record "faultmesh".
+          edge of both; info records give the CRS; QA record "faultmesh"
+          with a date and time (SOURCE_DATE_EPOCH's, else the epoch's).
   MSH     meshio and Gmsh read it; the physical tags and names of the
           convention (default: fault i -> i + 1 named after it; tandem: all
           3 "fault", MSH 2.2, node tags 1..n; seissol: all 103 "fault";
@@ -177,6 +178,10 @@ def check_exodus(out, faults, crs, junctions, verts, groups):
     qa = [chars_row for chars_row in nc.variables["qa_records"][0]]
     qa0 = b"".join(np.asarray(qa[0]).tolist()).decode()
     check(qa0 == "faultmesh", "QA record names faultmesh (%r)" % qa0)
+    qd = [b"".join(np.asarray(qa[k]).tolist()).decode() for k in (2, 3)]
+    check(re.fullmatch(r"\d{4}-\d\d-\d\d", qd[0]) is not None and
+          re.fullmatch(r"\d\d:\d\d:\d\d", qd[1]) is not None,
+          "QA record date and time filled (%s %s)" % tuple(qd))
     check(np.allclose(pts, verts[np.asarray(nc.variables["node_num_map"][:]) - 1], rtol=0, atol=0),
           "node_num_map gives each node's vertex (OBJ line), coordinates exact")
     nc.close()
