@@ -1,6 +1,6 @@
 /* faultmesh command-line tool: shared pieces of the subcommands.
  *
- * Exit codes (documented in the README): 0 all inputs processed, 1 some
+ * Exit codes (documented in the README and docs/guide.md): 0 all inputs processed, 1 some
  * inputs failed (reported, the others still processed), 2 bad usage. */
 #ifndef FM_CLI_H
 #define FM_CLI_H

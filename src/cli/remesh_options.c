@@ -60,7 +60,7 @@ void remesh_usage(FILE *fp)
             "  --config FILE         settings from a TOML file: the options as keys, and\n"
             "                        [[fault]] sections with per-fault size, top, join,\n"
             "                        connect, exclude, rake, slip_rate by name pattern\n"
-            "                        (options beside it override it; see the README)\n"
+            "                        (options beside it override it; see docs/guide.md)\n"
             "  --no-report-html      skip DIR/report.html\n"
             "  --formats LIST        the outputs to write, comma-separated, of vtu, msh,\n"
             "                        stl, obj, exo, ts (NAME.ts), igs (model.igs), rsqsim,\n"

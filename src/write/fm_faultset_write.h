@@ -113,7 +113,7 @@ fm_status fm_faultset_write_msh(const char *path, const fm_faultset *fs, fm_msh_
                                 fm_error *err);
 
 /* Physical tags and names of the finite-element codes' conventions
- * (README, "MSH tag conventions"):
+ * (docs/formats.md, "Gmsh MSH tag conventions"):
  *   DEFAULT  fault i: tag i + 1, name = the fault name;
  *   TANDEM   every fault tag 3, name "fault" (Tandem: 1 free surface,
  *            3 fault, 5 Dirichlet), to be written as MSH 2.2 with dense

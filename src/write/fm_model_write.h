@@ -1,6 +1,6 @@
 /* faultmesh write: the files of a fitted fault model (fm_model.h).
  *
- *  - JSON (*.model.json): the complete model, documented in the README:
+ *  - JSON (*.model.json): the complete model, documented in docs/guide.md (fit):
  *    per sheet the reference frame, the B-spline surface (degree, knots,
  *    3D control points), the trimming loops (B-spline pieces in (u, v)),
  *    and the fit report. Coordinates in full precision.

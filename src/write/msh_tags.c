@@ -1,5 +1,5 @@
 /* The physical tags and names that Tandem, SeisSol and PyLith expect of a
- * Gmsh mesh (see fm_faultset_write.h and README for the sources). */
+ * Gmsh mesh (see fm_faultset_write.h and docs/formats.md for the sources). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -5,7 +5,7 @@ Re-reads every TSurf file with a separate, deliberately plain implementation
 (Python, exact rational arithmetic where a decision depends on it) and
 compares: file vertices and triangles, parts, welded vertices, triangles
 after cleaning, area, components, non-manifold edges, boundary loops and
-holes, z range. Definitions follow the README's description of `info`:
+holes, z range. Definitions follow docs/guide.md's description of `info`:
 exact welding of identical coordinates, removal of zero-area and duplicate
 triangles, then of fragments (< 10 triangles and < 0.1 % of the largest
 component's area), edge-connected components, and boundary loops of the

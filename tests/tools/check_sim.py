@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Independent check of the simulator outputs of `faultmesh remesh`/`demo`.
 
-Written from the formats' documented semantics (README: "RSQSim fault
+Written from the formats' documented semantics (docs/formats.md: "RSQSim fault
 file", "EQSim input geometry", "Element attributes"), not from the writer:
 
 RSQSim (mesh.rsqsim): one triangle per line, `x1 y1 z1 x2 y2 z2 x3 y3 z3
@@ -30,7 +30,7 @@ VTU cell arrays strike, dip (grid north) recomputed from the geometry
   within 0.1 degree; rake, slip_rate equal to the RSQSim values.
 report.json: per fault "attributes" agree with all of the above.
 
-Rules for rake and slip rate, re-implemented from the README: a --slip
+Rules for rake and slip rate, re-implemented from docs/formats.md: a --slip
 rule (exact name first, else the first glob in file order; the name as it
 is or without a trailing _<digits>m), else the rake of the metadata's Slip
 Sense code, else 180 degrees; slip rate mm/yr from the rule, else 0;

@@ -1,4 +1,4 @@
-"""The short-name rule of faultmesh's outputs (README, "Names"), written
+"""The short-name rule of faultmesh's outputs (docs/formats.md, "Names"), written
 here from its text, for the checkers: a name's one-token form, cut with a
 hash suffix where it is too long or taken."""
 
@@ -7,7 +7,7 @@ KEEP = set(b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-")
 
 
 def token(name):
-    """The one-token form of a name (README, "Names"): kept bytes stay,
+    """The one-token form of a name (docs/formats.md, "Names"): kept bytes stay,
     each run of others becomes one '_'."""
     b = name.encode("utf-8")
     out = bytearray()
@@ -20,7 +20,7 @@ def token(name):
 
 
 def short_names(names, limit):
-    """Short names by the README's rule, written here from its text."""
+    """Short names by the rule of docs/formats.md, written here from its text."""
     out = []
     for name in names:
         t = token(name)
