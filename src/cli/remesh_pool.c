@@ -102,7 +102,9 @@ void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
             count++;
             weight += bytes ? bytes[i] : 1;
         }
-    static const char *stage[3] = {"read and fit", "mesh", "mesh again"};
+    /* a third round meshes again the faults a dropped shared curve changed */
+    static const char *stage[3] = {"read and fit", "mesh",
+                                   "mesh again (faults whose shared curves were dropped)"};
     progress_begin(cli->prog, stage[phase], count, "files", weight);
     pool p = {cli, plan, phase, flt, jobs, order, bytes};
     fm_parallel_for(n, cli->jobs, run_one, &p, NULL, NULL, 0, 0);
