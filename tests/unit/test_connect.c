@@ -749,6 +749,22 @@ static int fit_all(fm_mesh **meshes, const char *const *names, int n, fm_model *
     return bad ? -1 : 0;
 }
 
+/* The near-duplicates among n models under either rule (keep: 1 keeps
+ * the larger), checked to succeed. */
+static fm_connect_duplicate *find_duplicates(fm_model **models, size_t n,
+                                             const fm_connect_pairs *pairs, int keep, size_t *nd)
+{
+    fm_connect_duplicate_options o;
+    fm_connect_duplicate_options_default(&o);
+    o.keep = keep ? FM_CONNECT_KEEP_LARGER : FM_CONNECT_KEEP_SMALLER;
+    fm_connect_duplicate *d = NULL;
+    fm_error err;
+    *nd = 0;
+    CHECK(fm_connect_find_duplicates((const fm_model *const *)models, n, pairs, &o, &d, nd,
+                                     &err) == FM_OK);
+    return d;
+}
+
 /* A composite over two section faults 20 m beside it, and a fault that
  * crosses all three: the composite (or, keeping the larger, the sections)
  * is given up, the crossing fault is no duplicate. */
@@ -774,13 +790,8 @@ static void test_duplicates(void)
     fm_connect_pairs *pairs = NULL;
     CHECK(fm_connect_find_pairs((const fm_model *const *)models, 4, NULL, &pairs, &err) == FM_OK);
     for (int keep = 0; keep < 2 && pairs; keep++) {
-        fm_connect_duplicate_options o;
-        fm_connect_duplicate_options_default(&o);
-        o.keep = keep ? FM_CONNECT_KEEP_LARGER : FM_CONNECT_KEEP_SMALLER;
-        fm_connect_duplicate *d = NULL;
         size_t nd = 0;
-        CHECK(fm_connect_find_duplicates((const fm_model *const *)models, 4, pairs, &o, &d, &nd,
-                                         &err) == FM_OK);
+        fm_connect_duplicate *d = find_duplicates(models, 4, pairs, keep, &nd);
         int dropped[4] = {0, 0, 0, 0};
         for (size_t k = 0; k < nd; k++) {
             CHECK(d[k].dropped != 3 && d[k].kept != 3);
@@ -815,13 +826,8 @@ static void test_duplicate_patch(void)
     fm_connect_pairs *pairs = NULL;
     CHECK(fm_connect_find_pairs((const fm_model *const *)models, 2, NULL, &pairs, &err) == FM_OK);
     for (int keep = 0; keep < 2 && pairs; keep++) {
-        fm_connect_duplicate_options o;
-        fm_connect_duplicate_options_default(&o);
-        o.keep = keep ? FM_CONNECT_KEEP_LARGER : FM_CONNECT_KEEP_SMALLER;
-        fm_connect_duplicate *d = NULL;
         size_t nd = 0;
-        CHECK(fm_connect_find_duplicates((const fm_model *const *)models, 2, pairs, &o, &d, &nd,
-                                         &err) == FM_OK);
+        fm_connect_duplicate *d = find_duplicates(models, 2, pairs, keep, &nd);
         CHECK(nd == 1);
         if (nd == 1) {
             CHECK(d[0].decided && d[0].dropped == 1 && d[0].kept == 0);
