@@ -287,14 +287,7 @@ int compact_set(run_state *rs)
         return -1;
     }
     const int32_t *T = fm_mesh_triangles(rs->set), *tag = fm_mesh_tags(rs->set);
-    for (size_t v = 0; v < nv; v++)
-        map[v] = -1;
-    for (size_t k = 0; k < 3 * nt; k++)
-        map[T[k]] = 0;
-    size_t used = 0;
-    for (size_t v = 0; v < nv; v++)
-        if (map[v] == 0)
-            map[v] = (int32_t)used++;
+    size_t used = fm_used_vertices(T, nt, nv, map);
     if (used == nv) {
         free(map);
         fm_mesh_destroy(out);

@@ -73,6 +73,10 @@ fm_status fm_mesh_compute_stats(const fm_mesh *m, fm_mesh_stats *st);
 
 /* Geometry helpers used by several stages. */
 double fm_triangle_area(const double *a, const double *b, const double *c);
+
+/* map[v] for the nv vertices: its index among the vertices nt triangles
+ * use (in order), or -1 when none uses it; returns how many are used. */
+size_t fm_used_vertices(const int32_t *tri, size_t nt, size_t nv, int32_t *map);
 /* Smallest interior angle in degrees (0 for a degenerate triangle). */
 double fm_triangle_min_angle(const double *a, const double *b, const double *c);
 /* Angle at p between q - p and r - p, degrees (atan2 of |cross| and dot:

@@ -161,3 +161,16 @@ fm_keyed *fm_mesh_sides(const fm_mesh *m, size_t *n)
     *n = 3 * nt;
     return side;
 }
+
+size_t fm_used_vertices(const int32_t *tri, size_t nt, size_t nv, int32_t *map)
+{
+    for (size_t v = 0; v < nv; v++)
+        map[v] = -1;
+    for (size_t k = 0; k < 3 * nt; k++)
+        map[tri[k]] = 0;
+    size_t used = 0;
+    for (size_t v = 0; v < nv; v++)
+        if (map[v] == 0)
+            map[v] = (int32_t)used++;
+    return used;
+}

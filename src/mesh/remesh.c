@@ -161,14 +161,7 @@ fm_status fm_remesh_sheet_joined(const fm_fit_surface *s, const fm_trim_loop *co
     int32_t *map = malloc(np * sizeof *map + 1);
     if (!map)
         goto nomem;
-    for (size_t i = 0; i < np; i++)
-        map[i] = -1;
-    for (size_t k = 0; k < 3 * nt; k++)
-        map[tri[k]] = 0;
-    size_t nout = 0;
-    for (size_t i = 0; i < np; i++)
-        if (map[i] == 0)
-            map[i] = (int32_t)nout++;
+    size_t nout = fm_used_vertices(tri, nt, np, map);
     double *uvo = uv_out ? malloc(2 * nout * sizeof *uvo + 1) : NULL;
     int64_t *ido = node_out ? malloc(nout * sizeof *ido + 1) : NULL;
     if ((uv_out && !uvo) || (node_out && !ido) || fm_mesh_reserve(mesh, nout, nt) != FM_OK) {
