@@ -260,6 +260,23 @@ static double near_3d(const double p[3], const double *xyz, size_t n, size_t seg
     return best;
 }
 
+/* The diagonal of sheet's bounding box (m). */
+static double sheet_diagonal(const fm_surface *s, size_t sheet)
+{
+    const fm_mesh *mesh = fm_surface_sheet_mesh(s, sheet);
+    const double *X = fm_mesh_vertices(mesh);
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t v = 0; v < fm_mesh_nvertices(mesh); v++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], X[3 * v + k]);
+            hi[k] = fmax(hi[k], X[3 * v + k]);
+        }
+    double d2 = 0;
+    for (int k = 0; k < 3; k++)
+        d2 += hi[k] > lo[k] ? (hi[k] - lo[k]) * (hi[k] - lo[k]) : 0;
+    return sqrt(d2);
+}
+
 static fm_status measure_outline(const fm_surface *s, size_t sheet, const double *uv,
                                  const loop_samples *ls, sheet_model *sm)
 {
@@ -509,8 +526,20 @@ static fm_status build_sheet(const char *name, const fm_surface *s, size_t sheet
         st = sample_trimmed(s, sheet, uv, ls, opt->sample_levels, opt->measure_samples, sm);
         if (st == FM_OK)
             st = measure_outline(s, sheet, uv, ls, sm);
-        if (st != FM_OK)
+        if (st != FM_OK) {
             fm_error_set(err, st, name, 0, "sheet %zu: %s", sheet, fm_status_string(st));
+        } else {
+            /* A fitted outline farther from the original's than the sheet
+             * is across is no fit of it (a crumpled surface: its outline
+             * runs thousands of kilometres, and meshing it would take
+             * minutes for nothing); the CFM's farthest is under 100 m. */
+            double d = sheet_diagonal(s, sheet);
+            if (sm->report.outline_max > d)
+                st = fm_error_set(err, FM_ERR_NUMERIC, name, 0,
+                                  "sheet %zu: the fit failed: its outline strays %.0f m from the "
+                                  "original's, which is %.0f m across",
+                                  sheet, sm->report.outline_max, d);
+        }
     }
     loop_samples_free(ls, sm->nloops);
     free(uv);

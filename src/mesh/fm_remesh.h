@@ -87,6 +87,7 @@ typedef struct fm_remesh_stats {
     double clamp_max;          /* largest such move (m) */
     size_t flips, smoothed;    /* optimisation moves accepted */
     size_t collapsed;          /* short edges collapsed */
+    size_t slivers;            /* boundary nodes merged away to remove slivers of no width */
     int cut;                   /* 1: the top was cut, 0: wholly below (or keep) */
     int empty;                 /* 1: nothing of the sheet lies below sea level */
     double extended;           /* FM_TOP_EXTEND: largest up-dip extension (m) */

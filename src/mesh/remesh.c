@@ -29,6 +29,10 @@ void fm_remesh_model_options_default(fm_model_options *opt)
     opt->measure_samples = 0;
 }
 
+/* A triangle with an angle under this lies on a line: no triangle of a
+ * mesh meant for a simulator (slivers.c). */
+#define SLIVER_DEG 1.0
+
 static fm_status build_domain(const fm_fit_surface *s, const fm_trim_loop *const *loops,
                               size_t nloops, const fm_remesh_options *opt,
                               remesh_domain *dom, fm_remesh_stats *st, fm_error *err)
@@ -155,6 +159,8 @@ fm_status fm_remesh_sheet_joined(const fm_fit_surface *s, const fm_trim_loop *co
     st->flips = orr.flips;
     st->smoothed = orr.smoothed;
     st->collapsed = orr.collapsed;
+    st->slivers = mesh_collapse_slivers(uv, xyz, tri, &nt, fd.shared, fd.shared ? fd.npoints : 0,
+                                        SLIVER_DEG);
 
     /* Only nodes used by triangles go out (input points outside the
      * domain are not). */

@@ -168,6 +168,14 @@ typedef struct opt_curves {
     size_t ninput;
 } opt_curves;
 
+/* slivers.c: every triangle with an angle under min_angle_deg (3D) whose
+ * widest corner m is not a shared node (shared[v] >= 0 for v < nshared)
+ * and lies on a boundary edge m-p: m merged into p when every other
+ * triangle of m keeps its orientation in uv (those of both go), round
+ * after round. tri compacted; the number of merges. */
+size_t mesh_collapse_slivers(const double *uv, const double *xyz, int32_t *tri, size_t *nt,
+                             const int64_t *shared, size_t nshared, double min_angle_deg);
+
 /* The optimisation stage: flips and smoothing in 3D with nodes on the
  * surface. fixed[i] != 0: node i does not move freely; constrained edges
  * are the pairs in cons (ncons of them, the domain on their left). With

@@ -334,6 +334,7 @@ fm_status fm_remesh_model_joined(const fm_model *m, const fm_remesh_sheet_curves
         sum.smoothed += s.smoothed;
         sum.collapsed += s.collapsed;
         sum.flaps_kept += s.flaps_kept;
+        sum.slivers += s.slivers;
         sum.cut |= s.cut;
         sum.empty &= s.empty;
         sum.extended = fmax(sum.extended, s.extended);
