@@ -242,17 +242,18 @@ static size_t merge_loop(const fm_fit_surface *s, remesh_domain *d, size_t l, do
     size_t n = lp->n;
     live_loop lv = {l, malloc(n * sizeof(size_t)), malloc(n * sizeof(size_t)), calloc(n, 1), n};
     seg_grid g = {0};
+    /* the list before the grid, which enters the loop's segments through it */
+    for (size_t i = 0; lv.nxt && lv.prv && lv.alive && i < n; i++) {
+        lv.nxt[i] = (i + 1) % n;
+        lv.prv[i] = (i + n - 1) % n;
+        lv.alive[i] = 1;
+    }
     if (!lv.nxt || !lv.prv || !lv.alive || grid_build(&g, d, &lv)) {
         free(lv.nxt);
         free(lv.prv);
         free(lv.alive);
         grid_free(&g);
         return SIZE_MAX;
-    }
-    for (size_t i = 0; i < n; i++) {
-        lv.nxt[i] = (i + 1) % n;
-        lv.prv[i] = (i + n - 1) % n;
-        lv.alive[i] = 1;
     }
     size_t removed = 0, c = 0;
     int oom = 0;
