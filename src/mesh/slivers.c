@@ -13,21 +13,10 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "fm_mesh.h"
 #include "fm_predicates.h"
 #include "fm_sort.h"
 #include "remesh_internal.h"
-
-#define DEG (3.14159265358979323846 / 180.0)
-
-static double angle_at(const double *a, const double *b, const double *c)
-{
-    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    double x[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                   u[0] * v[1] - u[1] * v[0]};
-    return atan2(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]),
-                 u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
-}
 
 /* Triangles of each edge: sorted keys. */
 static fm_keyed *edges_of(const int32_t *tri, size_t nt, size_t *ne)
@@ -93,10 +82,10 @@ size_t mesh_collapse_slivers(const double *uv, const double *xyz, int32_t *tri, 
             const int32_t *v = tri + 3 * t;
             double ang[3];
             for (int k = 0; k < 3; k++)
-                ang[k] = angle_at(xyz + 3 * (size_t)v[k], xyz + 3 * (size_t)v[(k + 1) % 3],
-                                  xyz + 3 * (size_t)v[(k + 2) % 3]);
+                ang[k] = fm_angle_at(xyz + 3 * (size_t)v[k], xyz + 3 * (size_t)v[(k + 1) % 3],
+                                     xyz + 3 * (size_t)v[(k + 2) % 3]);
             int far = ang[0] > ang[1] ? (ang[0] > ang[2] ? 0 : 2) : (ang[1] > ang[2] ? 1 : 2);
-            if (fmin(ang[(far + 1) % 3], ang[(far + 2) % 3]) >= min_angle_deg * DEG)
+            if (fmin(ang[(far + 1) % 3], ang[(far + 2) % 3]) >= min_angle_deg)
                 continue;
             /* m, the node across the long side, lies on it */
             int32_t m = v[far];
