@@ -18,8 +18,7 @@ typedef struct pool {
     size_t nsingles, ntasks;
     fs_tsurf_plan plan;
     const fm_error *plan_err; /* the TSurf files cannot be written: why */
-    fm_status *status;        /* per task: FM_OK when written */
-    fm_error **failed;        /* per failed task: its error (NULL if memory ran out) */
+    fm_error *errs;           /* per task: code FM_OK when written, else why not */
 
     pthread_mutex_t mu;
     size_t next; /* next task to hand out */
@@ -78,14 +77,8 @@ static void *worker(void *arg)
         fm_error e;
         fm_error_clear(&e);
         fm_status st = run_task(p, i, &sc, &have_scratch, &e);
-        if (st != FM_OK) {
-            e.code = st;
-            /* each task has slots of its own: no lock */
-            p->status[i] = st;
-            p->failed[i] = malloc(sizeof e);
-            if (p->failed[i])
-                *p->failed[i] = e;
-        }
+        e.code = st;
+        p->errs[i] = e; /* each task has a slot of its own: no lock */
     }
     fs_tsurf_scratch_free(&sc);
     return NULL;
@@ -111,8 +104,7 @@ static fm_status account(pool *p, fm_error *err)
     if (p->ntasks > p->nsingles)
         path = malloc(strlen(p->out->tsurf_dir) + FM_STEM_MAX + 40);
     for (size_t i = 0; i < p->ntasks; i++) {
-        fm_error oom;
-        const fm_error *e = p->failed[i];
+        const fm_error *e = p->errs[i].code != FM_OK ? &p->errs[i] : NULL;
         const char *where;
         size_t fault = SIZE_MAX;
         if (i < p->nsingles) {
@@ -122,10 +114,6 @@ static fm_status account(pool *p, fm_error *err)
             if (path)
                 sprintf(path, "%s/%s", p->out->tsurf_dir, p->plan.files[fault]);
             where = path ? path : p->out->tsurf_dir;
-        }
-        if (p->status[i] != FM_OK && !e) {
-            fm_error_set(&oom, FM_ERR_NOMEM, where, 0, "out of memory");
-            e = &oom;
         }
         if (e && first == FM_OK) {
             first = e->code;
@@ -177,11 +165,8 @@ fm_status fm_faultset_write_all(const fm_faultset *fs, const fm_faultset_outputs
         if (p.plan.files)
             p.ntasks += fs->nfaults;
     }
-    p.failed = calloc(p.ntasks + 1, sizeof *p.failed);
-    p.status = calloc(p.ntasks + 1, sizeof *p.status);
-    if (!p.failed || !p.status) {
-        free(p.failed);
-        free(p.status);
+    p.errs = calloc(p.ntasks + 1, sizeof *p.errs);
+    if (!p.errs) {
         fs_tsurf_plan_free(&p.plan);
         fm_error_set(&e, FM_ERR_NOMEM, where, 0, "out of memory");
         if (err)
@@ -212,10 +197,7 @@ fm_status fm_faultset_write_all(const fm_faultset *fs, const fm_faultset_outputs
                 *err = *p.plan_err;
         }
     }
-    for (size_t i = 0; i < p.ntasks; i++)
-        free(p.failed[i]);
-    free(p.failed);
-    free(p.status);
+    free(p.errs);
     fs_tsurf_plan_free(&p.plan);
     pthread_mutex_destroy(&p.mu);
     return st;
