@@ -160,7 +160,6 @@ fm_status fm_cad_face_create(const char *name, const fm_fit_surface *s, const do
     return FM_OK;
 }
 
-
 fm_status fm_cad_write_iges(const char *path, const fm_cad_face *const *faces, size_t n,
                             const char *crs, fm_error *err)
 {

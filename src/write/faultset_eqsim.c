@@ -127,9 +127,6 @@ static fm_status convert_vertices(const fm_faultset *fs, fm_eqsim_coords coords,
             bb[2] = fmax(bb[2], x[3 * v]);
             bb[3] = fmax(bb[3], x[3 * v + 1]);
         }
-    if (!fs->crs || !fs->crs[0])
-        return fm_error_set(err, FM_ERR_INVALID, path, 0,
-                            "spherical coordinates need the mesh's CRS (none given)");
     *rp = fm_reproject_create(fs->crs, "EPSG:4326", bb, path, err);
     fm_status st = *rp ? FM_OK : err ? err->code : FM_ERR_INVALID;
     for (size_t v = 0; v < nv && st == FM_OK; v++) {
