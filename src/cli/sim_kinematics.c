@@ -22,13 +22,16 @@ static double angle_between(double a, double b)
 
 typedef struct sec_area {
     int32_t section;
+    size_t t; /* the triangle: equal sections sum in mesh order */
     double area;
 } sec_area;
 
 static int by_section(const void *x, const void *y)
 {
     const sec_area *a = x, *b = y;
-    return (a->section > b->section) - (a->section < b->section);
+    if (a->section != b->section)
+        return (a->section > b->section) - (a->section < b->section);
+    return (a->t > b->t) - (a->t < b->t);
 }
 
 /* Per fault, the sections its elements took with their areas (CSR). */
@@ -49,7 +52,7 @@ static int fault_sections(const fm_faultset *fs, sim_attrs *a, const double *are
     for (size_t f = 0; f < nf; f++)
         count[f + 1] += count[f];
     for (size_t t = 0; t < nt; t++)
-        all[count[tag[t]]++] = (sec_area){a->kin[t].section, area[t]};
+        all[count[tag[t]]++] = (sec_area){a->kin[t].section, t, area[t]};
     /* count[f] is now the end of fault f's run */
     size_t w = 0, begin = 0;
     for (size_t f = 0; f < nf; f++) {
