@@ -1,0 +1,110 @@
+/* faultmesh mesh: rectangular elements. Every fault of a fault set (an
+ * fm_mesh whose triangle tags are fault indices 0..nfaults-1, vertices
+ * shared where faults meet) tiled into planar rectangles of about
+ * size x size, for the simulators that read only rectangles (EQSim
+ * record 204, RSQSim's rectangular patches, Okada-based codes).
+ *
+ * Rows follow depth: the fault's depth range is cut into rows of equal
+ * down-dip width (the area-weighted dip of each depth band turns depth
+ * into distance down dip), as many as make them closest to size. Columns
+ * follow strike: the fault's contour at a row's middle depth is cut into
+ * pieces of equal length closest to size, each piece one tile. The
+ * contour stops where the fault's triangles stop: at its outline, at the
+ * sea-level cut and at every junction with another fault (an edge two
+ * faults share), so tiles of two faults end at the curve where they meet
+ * instead of running through each other. A tile's centre is the contour
+ * point half way along its piece (on the surface), its strike the
+ * piece's chord, its plane the length-weighted mean of the triangles the
+ * piece crosses, and its top and bottom edges lie at the row's depths.
+ *
+ * What rectangles cannot do is measured rather than hidden: where the
+ * tiles of two faults still meet (a tile's corner past the other fault's
+ * plane), the one losing less area is shrunk (cut back along strike or
+ * dip, or scaled about its centre) until no two tiles of different faults
+ * meet, by the exact predicates; the area each fault keeps, how far the
+ * surface departs from each tile's plane, and the gap left along each
+ * junction are given per fault and per junction. */
+#ifndef FM_TILE_H
+#define FM_TILE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fm_core.h"
+#include "fm_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fm_tile {
+    int32_t fault;     /* fault index (the triangle tag) */
+    int32_t triangle;  /* the set's triangle under the centre */
+    int32_t row;       /* 0 at the fault's top */
+    double centre[3];
+    double strike[3];  /* unit, horizontal; the tile dips to its right */
+    double dip[3];     /* unit, down dip (upward normal = dip x strike) */
+    double length;     /* along strike, m */
+    double width;      /* down dip, m */
+    double flatness;   /* farthest the fault's surface under the tile lies from its plane, m */
+    int shrunk;        /* cut back where it met another fault's tile */
+} fm_tile;
+
+typedef struct fm_tile_fault {
+    size_t ntiles;
+    double area_triangles; /* the fault's triangles, m^2 */
+    double area_tiles;     /* its tiles, m^2 */
+    double flatness_max;   /* m */
+} fm_tile_fault;
+
+/* A junction: the edges faults a < b share, and how far their tiles stay
+ * from it. */
+typedef struct fm_tile_junction {
+    int32_t a, b;
+    double length;   /* m */
+    double gap_max;  /* over the junction's sample points, the larger distance to a tile of
+                        either fault, m */
+    double gap_mean; /* length-weighted, m */
+    double over_half; /* length of junction where the gap exceeds size / 2, m */
+} fm_tile_junction;
+
+typedef struct fm_tile_stats {
+    double size;          /* the size asked for, m */
+    size_t ntiles;
+    size_t shrunk;        /* tiles cut back at another fault */
+    size_t dropped;       /* tiles given up (nothing left after cutting back) */
+    size_t meeting;       /* pairs of tiles of different faults that still meet: 0 unless a
+                             tile could not be cut back */
+    size_t unrowed;       /* faults that could not be tiled (no depth range: horizontal) */
+    double flatness_p99;  /* over tiles, m */
+    double flatness_max;  /* m */
+    double area_ratio_min, area_ratio_max; /* tiles / triangles over faults with tiles */
+} fm_tile_stats;
+
+typedef struct fm_tiles fm_tiles;
+
+/* Tiles of every fault of set at size (m, > 0). FM_ERR_INVALID for a
+ * size that is not positive and finite or a tag outside 0..nfaults-1,
+ * FM_ERR_NOMEM. The same input gives the same tiles, in fault order, row
+ * by row from the top, along each contour. */
+fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_tiles **out,
+                          fm_error *err);
+void fm_tiles_destroy(fm_tiles *t);
+
+size_t fm_tiles_count(const fm_tiles *t);
+const fm_tile *fm_tiles_get(const fm_tiles *t, size_t i);
+size_t fm_tiles_nfaults(const fm_tiles *t);
+const fm_tile_fault *fm_tiles_fault(const fm_tiles *t, size_t f);
+size_t fm_tiles_njunctions(const fm_tiles *t);
+const fm_tile_junction *fm_tiles_junction(const fm_tiles *t, size_t i);
+const fm_tile_stats *fm_tiles_stats(const fm_tiles *t);
+
+/* The four corners of a tile in EQSim's order: top at the start of the
+ * strike, bottom there, bottom at the end, top at the end
+ * (counterclockwise seen from the side its upward normal points to). */
+void fm_tile_corners(const fm_tile *t, double c[4][3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,514 @@
+/* Rectangular elements: rows by down-dip distance, columns along each
+ * row's middle contour (fm_tile.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tile_internal.h"
+
+#define NBINS 256
+/* Below about 2 degrees a depth row no longer says where a tile ends down
+ * dip; such tiles keep a width of 1 / sin(2 deg) ~ 29 times their row. */
+#define MIN_SIN 0.0348994967025
+
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void cross3(const double *a, const double *b, double *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Unit normal of triangle t (zero when degenerate). */
+static void tri_normal(const double *x, const int32_t *tri, size_t t, double n[3])
+{
+    const double *a = x + 3 * (size_t)tri[3 * t], *b = x + 3 * (size_t)tri[3 * t + 1],
+                 *c = x + 3 * (size_t)tri[3 * t + 2];
+    double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double g[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    cross3(e, g, n);
+    double l = sqrt(dot3(n, n));
+    for (int d = 0; d < 3; d++)
+        n[d] = l > 0 ? n[d] / l : 0;
+}
+
+/* Where level crosses the edge u-v, computed from the lower-numbered end
+ * so that both triangles of the edge get the same point. */
+static void crossing(const double *x, int32_t u, int32_t v, double level, double p[3])
+{
+    if (u > v) {
+        int32_t w = u;
+        u = v;
+        v = w;
+    }
+    const double *a = x + 3 * (size_t)u, *b = x + 3 * (size_t)v;
+    double t = (level - a[2]) / (b[2] - a[2]);
+    for (int d = 0; d < 3; d++)
+        p[d] = a[d] + t * (b[d] - a[d]);
+    p[2] = level;
+}
+
+typedef struct tiler {
+    const fm_mesh *set;
+    const double *x;
+    const int32_t *tri;
+    const int32_t *nbr;  /* per triangle side: the triangle of the same fault across it, -1 at
+                            an outline, a junction or a side of more than two */
+    int32_t *stamp;      /* per triangle: the contour that went through it */
+    int32_t cur;         /* this contour's stamp */
+    double size;
+    fm_tiles *out;
+    /* one contour */
+    double *pt;          /* 3 per point */
+    int32_t *seg;        /* triangle of each segment */
+    double *s;           /* arc length at each point */
+    size_t npt, cap;
+} tiler;
+
+static int push_point(tiler *tl, const double p[3], int32_t seg)
+{
+    if (tl->npt == tl->cap) {
+        size_t c = tl->cap ? 2 * tl->cap : 256;
+        double *pt = realloc(tl->pt, 3 * c * sizeof *pt);
+        if (pt)
+            tl->pt = pt;
+        int32_t *sg = realloc(tl->seg, c * sizeof *sg);
+        if (sg)
+            tl->seg = sg;
+        double *s = realloc(tl->s, c * sizeof *s);
+        if (s)
+            tl->s = s;
+        if (!pt || !sg || !s)
+            return -1;
+        tl->cap = c;
+    }
+    memcpy(tl->pt + 3 * tl->npt, p, 3 * sizeof *p);
+    tl->seg[tl->npt] = seg; /* the segment that starts here */
+    tl->npt++;
+    return 0;
+}
+
+static int push_tile(fm_tiles *t, const fm_tile *tile)
+{
+    if (t->n == t->cap) {
+        size_t c = t->cap ? 2 * t->cap : 256;
+        fm_tile *nt = realloc(t->tile, c * sizeof *nt);
+        if (!nt)
+            return -1;
+        t->tile = nt;
+        t->cap = c;
+    }
+    t->tile[t->n++] = *tile;
+    return 0;
+}
+
+/* The sides of triangle t that level crosses (vertices at exactly level
+ * were moved off it by the caller): their numbers in k[0], k[1]; 0 when it
+ * does not cross. */
+static int crossed_sides(const tiler *tl, size_t t, double level, int k[2])
+{
+    int above[3], m = 0;
+    for (int i = 0; i < 3; i++)
+        above[i] = tl->x[3 * (size_t)tl->tri[3 * t + (size_t)i] + 2] > level;
+    for (int i = 0; i < 3; i++)
+        if (above[i] != above[(i + 1) % 3])
+            k[m++] = i;
+    return m == 2;
+}
+
+static void side_point(const tiler *tl, size_t t, int k, double level, double p[3])
+{
+    crossing(tl->x, tl->tri[3 * t + (size_t)k], tl->tri[3 * t + (size_t)(k + 1) % 3], level, p);
+}
+
+/* Point at arc length s along the contour, and the segment it lies on. */
+static size_t point_at(const tiler *tl, double s, double p[3])
+{
+    size_t lo = 0, hi = tl->npt - 1;
+    while (hi - lo > 1) {
+        size_t mid = (lo + hi) / 2;
+        if (tl->s[mid] <= s)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double len = tl->s[lo + 1] - tl->s[lo];
+    double t = len > 0 ? (s - tl->s[lo]) / len : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    for (int d = 0; d < 3; d++)
+        p[d] = tl->pt[3 * lo + d] + t * (tl->pt[3 * (lo + 1) + d] - tl->pt[3 * lo + d]);
+    return lo;
+}
+
+/* One tile over the contour's piece [sa, sb]. */
+static int tile_piece(tiler *tl, int32_t fault, int32_t row, double sa, double sb, double ztop,
+                      double zbot)
+{
+    double pa[3], pb[3], pm[3];
+    point_at(tl, sa, pa);
+    point_at(tl, sb, pb);
+    size_t mseg = point_at(tl, (sa + sb) / 2, pm);
+    double st[3] = {pb[0] - pa[0], pb[1] - pa[1], 0};
+    double len = hypot(st[0], st[1]);
+    if (!(len > 1e-9 * tl->size))
+        return 0;
+    st[0] /= len;
+    st[1] /= len;
+    /* The plane's normal lies across the strike: an axial mean (doubled
+     * angles) in the plane of r = strike x up and up, so that triangles
+     * wound either way agree. */
+    double r[3] = {st[1], -st[0], 0};
+    double c2 = 0, s2 = 0;
+    for (size_t i = 0; i + 1 < tl->npt; i++) {
+        double lo = fmax(tl->s[i], sa), hi = fmin(tl->s[i + 1], sb);
+        if (hi <= lo)
+            continue;
+        double n[3];
+        tri_normal(tl->x, tl->tri, (size_t)tl->seg[i], n);
+        double a = dot3(n, r), b = n[2], q = a * a + b * b;
+        if (q < 1e-12)
+            continue;
+        c2 += (hi - lo) * (a * a - b * b) / q;
+        s2 += (hi - lo) * 2 * a * b / q;
+    }
+    double th = (c2 == 0 && s2 == 0) ? 0 : atan2(s2, c2) / 2;
+    double n[3] = {cos(th) * r[0], cos(th) * r[1], sin(th)};
+    if (n[2] < 0)
+        for (int d = 0; d < 3; d++)
+            n[d] = -n[d];
+    if (dot3(n, r) < 0) { /* dipping left: look the other way along the contour */
+        st[0] = -st[0];
+        st[1] = -st[1];
+    }
+    if (fabs(n[2]) < 1e-12) {
+        /* vertical: the strike in [0, 180), as the triangle writers have it */
+        double az = atan2(st[0], st[1]);
+        if (az < 0 || az >= 3.14159265358979323846) {
+            st[0] = -st[0];
+            st[1] = -st[1];
+            n[0] = -n[0];
+            n[1] = -n[1];
+        }
+    }
+    double dip[3];
+    cross3(st, n, dip);
+    double sd = -dip[2];
+    if (sd < MIN_SIN)
+        sd = MIN_SIN;
+    fm_tile t = {.fault = fault, .triangle = tl->seg[mseg], .row = row, .length = len,
+                 .width = (ztop - zbot) / sd};
+    memcpy(t.centre, pm, sizeof pm);
+    memcpy(t.strike, st, sizeof st);
+    memcpy(t.dip, dip, sizeof dip);
+    return push_tile(tl->out, &t);
+}
+
+/* The contour held in tl cut into tiles. */
+static int tile_contour(tiler *tl, int32_t fault, int32_t row, int closed, double ztop,
+                        double zbot)
+{
+    if (tl->npt < 2)
+        return 0;
+    tl->s[0] = 0;
+    for (size_t i = 1; i < tl->npt; i++) {
+        const double *a = tl->pt + 3 * (i - 1), *b = tl->pt + 3 * i;
+        tl->s[i] = tl->s[i - 1] + hypot(b[0] - a[0], b[1] - a[1]);
+    }
+    double len = tl->s[tl->npt - 1];
+    long ncol = lround(len / tl->size);
+    if (closed) {
+        if (ncol < 3)
+            ncol = 3;
+    } else {
+        if (len < tl->size / 4)
+            return 0; /* a sliver of a tile: left to the area measure */
+        if (ncol < 1)
+            ncol = 1;
+    }
+    for (long j = 0; j < ncol; j++)
+        if (tile_piece(tl, fault, row, len * (double)j / (double)ncol,
+                       len * (double)(j + 1) / (double)ncol, ztop, zbot))
+            return -1;
+    return 0;
+}
+
+/* Follows the contour from triangle t, entered across side kin; the
+ * points go into tl. */
+static int walk(tiler *tl, size_t t, int kin, double level)
+{
+    double p[3];
+    tl->npt = 0;
+    side_point(tl, t, kin, level, p);
+    for (;;) {
+        tl->stamp[t] = tl->cur;
+        int k[2];
+        crossed_sides(tl, t, level, k);
+        int kout = k[0] == kin ? k[1] : k[0];
+        if (push_point(tl, p, (int32_t)t))
+            return -1;
+        side_point(tl, t, kout, level, p);
+        int32_t nt = tl->nbr[3 * t + (size_t)kout];
+        if (nt < 0 || tl->stamp[nt] == tl->cur)
+            break;
+        /* the side of nt that is the same edge */
+        int32_t u = tl->tri[3 * t + (size_t)kout], v = tl->tri[3 * t + (size_t)(kout + 1) % 3];
+        kin = -1;
+        for (int i = 0; i < 3; i++) {
+            int32_t a = tl->tri[3 * (size_t)nt + (size_t)i],
+                    b = tl->tri[3 * (size_t)nt + (size_t)(i + 1) % 3];
+            if ((a == u && b == v) || (a == v && b == u))
+                kin = i;
+        }
+        if (kin < 0)
+            break;
+        t = (size_t)nt;
+    }
+    return push_point(tl, p, -1);
+}
+
+/* Every contour of fault f at level, tiled. */
+static int tile_row(tiler *tl, int32_t f, const size_t *tris, size_t n, int32_t row,
+                    double level, double ztop, double zbot)
+{
+    tl->cur++;
+    /* open contours first, from their ends, then closed ones */
+    for (int pass = 0; pass < 2; pass++)
+        for (size_t i = 0; i < n; i++) {
+            size_t t = tris[i];
+            int k[2];
+            if (tl->stamp[t] == tl->cur || !crossed_sides(tl, t, level, k))
+                continue;
+            int kin = -1;
+            if (pass == 0) {
+                if (tl->nbr[3 * t + (size_t)k[0]] < 0)
+                    kin = k[0];
+                else if (tl->nbr[3 * t + (size_t)k[1]] < 0)
+                    kin = k[1];
+                if (kin < 0)
+                    continue;
+            } else {
+                kin = k[0];
+            }
+            if (walk(tl, t, kin, level) ||
+                tile_contour(tl, f, row, pass == 1, ztop, zbot))
+                return -1;
+        }
+    return 0;
+}
+
+/* The depth at down-dip distance dv from the bottom (cumulative dd over
+ * the bins). */
+static double depth_at(const double *dd, double zlo, double dz, double dv)
+{
+    size_t k = 0;
+    while (k + 1 < NBINS && dd[k + 1] < dv)
+        k++;
+    double span = dd[k + 1] - dd[k];
+    double t = span > 0 ? (dv - dd[k]) / span : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    return zlo + ((double)k + t) * dz;
+}
+
+static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
+{
+    const double *x = tl->x;
+    const int32_t *tri = tl->tri;
+    double zlo = INFINITY, zhi = -INFINITY;
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            double z = x[3 * (size_t)tri[3 * tris[i] + (size_t)k] + 2];
+            zlo = fmin(zlo, z);
+            zhi = fmax(zhi, z);
+        }
+    if (!(zhi - zlo > 1e-9 * fmax(1, fabs(zhi)))) {
+        tl->out->stats.unrowed++;
+        return 0;
+    }
+    /* area and area x sin(dip) per depth band, a triangle shared among
+     * the bands it spans by the share of its depth range in each */
+    double area[NBINS] = {0}, asin[NBINS] = {0}, dd[NBINS + 1];
+    double dz = (zhi - zlo) / NBINS, atot = 0, stot = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t t = tris[i];
+        const double *a = x + 3 * (size_t)tri[3 * t], *b = x + 3 * (size_t)tri[3 * t + 1],
+                     *c = x + 3 * (size_t)tri[3 * t + 2];
+        double ar = fm_triangle_area(a, b, c), nrm[3];
+        tri_normal(x, tri, t, nrm);
+        double sn = hypot(nrm[0], nrm[1]);
+        double z0 = fmin(a[2], fmin(b[2], c[2])), z1 = fmax(a[2], fmax(b[2], c[2]));
+        atot += ar;
+        stot += ar * sn;
+        long b0 = (long)((z0 - zlo) / dz), b1 = (long)((z1 - zlo) / dz);
+        b0 = b0 < 0 ? 0 : b0 >= NBINS ? NBINS - 1 : b0;
+        b1 = b1 < 0 ? 0 : b1 >= NBINS ? NBINS - 1 : b1;
+        for (long k = b0; k <= b1; k++) {
+            double lo = fmax(z0, zlo + (double)k * dz), hi = fmin(z1, zlo + (double)(k + 1) * dz);
+            double share = z1 > z0 ? fmax(0, hi - lo) / (z1 - z0) : 1.0 / (double)(b1 - b0 + 1);
+            area[k] += ar * share;
+            asin[k] += ar * sn * share;
+        }
+    }
+    double sall = atot > 0 ? stot / atot : 1;
+    dd[0] = 0;
+    for (int k = 0; k < NBINS; k++) {
+        double s = area[k] > 0 ? asin[k] / area[k] : sall;
+        dd[k + 1] = dd[k] + dz / fmax(s, MIN_SIN);
+    }
+    double dtot = dd[NBINS];
+    long nrows = lround(dtot / tl->size);
+    if (nrows < 1)
+        nrows = 1;
+    for (long r = 0; r < nrows; r++) {
+        double ztop = r == 0 ? zhi : depth_at(dd, zlo, dz, dtot * (double)(nrows - r) / (double)nrows);
+        double zbot = r == nrows - 1 ? zlo
+                                     : depth_at(dd, zlo, dz, dtot * (double)(nrows - r - 1) /
+                                                                 (double)nrows);
+        double level = (ztop + zbot) / 2;
+        /* no vertex exactly at the level, so that every crossing is on a
+         * side between a vertex above and one below */
+        for (int again = 1; again;) {
+            again = 0;
+            for (size_t i = 0; i < n && !again; i++)
+                for (int k = 0; k < 3; k++)
+                    if (x[3 * (size_t)tri[3 * tris[i] + (size_t)k] + 2] == level) {
+                        level = nextafter(level, -INFINITY);
+                        again = 1;
+                        break;
+                    }
+        }
+        if (tile_row(tl, f, tris, n, (int32_t)r, level, ztop, zbot))
+            return -1;
+    }
+    return 0;
+}
+
+/* Neighbours across sides within a fault, and which sides are junctions. */
+static int make_sides(const fm_mesh *set, tile_sides *sd, int32_t *nbr)
+{
+    const int32_t *tri = fm_mesh_triangles(set), *tag = fm_mesh_tags(set);
+    size_t nt = fm_mesh_ntriangles(set);
+    sd->side = fm_mesh_sides(set, &sd->n);
+    sd->junction = sd->side ? calloc(sd->n + 1, 1) : NULL;
+    if (!sd->side || !sd->junction)
+        return -1;
+    for (size_t i = 0; i < 3 * nt; i++)
+        nbr[i] = -1;
+    for (size_t i = 0; i < sd->n;) {
+        size_t j = i + 1;
+        int junction = 0;
+        while (j < sd->n && sd->side[j].key == sd->side[i].key) {
+            junction |= tag[sd->side[j].index] != tag[sd->side[i].index];
+            j++;
+        }
+        for (size_t k = i; k < j; k++)
+            sd->junction[k] = (unsigned char)junction;
+        if (!junction && j - i == 2) {
+            size_t t0 = sd->side[i].index, t1 = sd->side[i + 1].index;
+            uint32_t u = (uint32_t)(sd->side[i].key >> 32), v = (uint32_t)sd->side[i].key;
+            for (int pass = 0; pass < 2; pass++) {
+                size_t t = pass ? t1 : t0, o = pass ? t0 : t1;
+                for (int k = 0; k < 3; k++) {
+                    uint32_t a = (uint32_t)tri[3 * t + (size_t)k],
+                             b = (uint32_t)tri[3 * t + (size_t)(k + 1) % 3];
+                    if ((a == u && b == v) || (a == v && b == u))
+                        nbr[3 * t + (size_t)k] = (int32_t)o;
+                }
+            }
+        }
+        i = j;
+    }
+    return 0;
+}
+
+fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_tiles **out,
+                          fm_error *err)
+{
+    *out = NULL;
+    if (!(size > 0) || !isfinite(size))
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "tile size must be positive");
+    size_t nt = fm_mesh_ntriangles(set);
+    const int32_t *tag = fm_mesh_tags(set);
+    for (size_t t = 0; t < nt; t++)
+        if (tag[t] < 0 || (size_t)tag[t] >= nfaults)
+            return fm_error_set(err, FM_ERR_INVALID, NULL, 0,
+                                "triangle %zu has fault %d, not one of 0..%zu", t, (int)tag[t],
+                                nfaults ? nfaults - 1 : 0);
+    fm_tiles *t = calloc(1, sizeof *t);
+    int32_t *nbr = malloc((3 * nt + 1) * sizeof *nbr);
+    int32_t *stamp = calloc(nt + 1, sizeof *stamp);
+    size_t *start = calloc(nfaults + 2, sizeof *start), *order = malloc((nt + 1) * sizeof *order);
+    tile_sides sd = {0};
+    tiler tl = {.set = set, .x = fm_mesh_vertices(set), .tri = fm_mesh_triangles(set),
+                .nbr = nbr, .stamp = stamp, .size = size, .out = t};
+    int bad = !t || !nbr || !stamp || !start || !order;
+    if (!bad) {
+        t->nfaults = nfaults;
+        t->fault = calloc(nfaults + 1, sizeof *t->fault);
+        t->stats.size = size;
+        bad = !t->fault || make_sides(set, &sd, nbr);
+    }
+    if (!bad) {
+        for (size_t i = 0; i < nt; i++)
+            start[tag[i] + 1]++;
+        for (size_t f = 0; f < nfaults; f++)
+            start[f + 1] += start[f];
+        size_t *pos = malloc((nfaults + 1) * sizeof *pos);
+        bad = !pos;
+        if (pos) {
+            memcpy(pos, start, nfaults * sizeof *pos);
+            for (size_t i = 0; i < nt; i++)
+                order[pos[tag[i]]++] = i;
+            free(pos);
+        }
+    }
+    for (size_t f = 0; !bad && f < nfaults; f++)
+        bad = tile_fault(&tl, (int32_t)f, order + start[f], start[f + 1] - start[f]) != 0;
+    if (!bad)
+        bad = tile_separate(t) || tile_measure(t, set, &sd);
+    free(nbr);
+    free(stamp);
+    free(start);
+    free(order);
+    free(sd.side);
+    free(sd.junction);
+    free(tl.pt);
+    free(tl.seg);
+    free(tl.s);
+    if (bad) {
+        fm_tiles_destroy(t);
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    }
+    *out = t;
+    return FM_OK;
+}
+
+void fm_tiles_destroy(fm_tiles *t)
+{
+    if (!t)
+        return;
+    free(t->tile);
+    free(t->fault);
+    free(t->junction);
+    free(t);
+}
+
+size_t fm_tiles_count(const fm_tiles *t) { return t->n; }
+const fm_tile *fm_tiles_get(const fm_tiles *t, size_t i) { return &t->tile[i]; }
+size_t fm_tiles_nfaults(const fm_tiles *t) { return t->nfaults; }
+const fm_tile_fault *fm_tiles_fault(const fm_tiles *t, size_t f) { return &t->fault[f]; }
+size_t fm_tiles_njunctions(const fm_tiles *t) { return t->njunctions; }
+const fm_tile_junction *fm_tiles_junction(const fm_tiles *t, size_t i) { return &t->junction[i]; }
+const fm_tile_stats *fm_tiles_stats(const fm_tiles *t) { return &t->stats; }
+
+void fm_tile_corners(const fm_tile *t, double c[4][3])
+{
+    static const double su[4] = {-0.5, -0.5, 0.5, 0.5}, sv[4] = {-0.5, 0.5, 0.5, -0.5};
+    for (int k = 0; k < 4; k++)
+        for (int d = 0; d < 3; d++)
+            c[k][d] = t->centre[d] + su[k] * t->length * t->strike[d] +
+                      sv[k] * t->width * t->dip[d];
+}

@@ -1,0 +1,499 @@
+/* Rectangular elements: tiles of different faults kept apart, and the
+ * measures of fm_tile.h (flatness, area, junction gaps). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fm_predicates.h"
+#include "tile_internal.h"
+
+/* Clearance a cut leaves between a tile and the other tile's plane: far
+ * above the rounding of UTM coordinates (1e-9 m), far below anything a
+ * simulator resolves. */
+#define CLEARANCE 1e-3
+
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void cross3(const double *a, const double *b, double *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void normal_of(const fm_tile *t, double n[3])
+{
+    cross3(t->dip, t->strike, n); /* upward */
+}
+
+double tile_distance(const fm_tile *t, const double p[3], double *plane, int *inside)
+{
+    double r[3] = {p[0] - t->centre[0], p[1] - t->centre[1], p[2] - t->centre[2]}, n[3];
+    normal_of(t, n);
+    double u = dot3(r, t->strike), v = dot3(r, t->dip), w = dot3(r, n);
+    double cu = fmin(fmax(u, -t->length / 2), t->length / 2);
+    double cv = fmin(fmax(v, -t->width / 2), t->width / 2);
+    if (plane)
+        *plane = w;
+    if (inside)
+        *inside = cu == u && cv == v;
+    return sqrt((u - cu) * (u - cu) + (v - cv) * (v - cv) + w * w);
+}
+
+/* Tile centres in cubic cells, for the pairs and points near each other. */
+typedef struct grid {
+    double lo[3], cell;
+    fm_keyed *e; /* key: cell, index: tile */
+    size_t n;
+} grid;
+
+static uint64_t cell_key(const grid *g, const double p[3], const long off[3])
+{
+    uint64_t key = 0;
+    for (int d = 0; d < 3; d++) {
+        long c = (long)floor((p[d] - g->lo[d]) / g->cell) + off[d];
+        c = c < 0 ? 0 : c > 0x1fffff ? 0x1fffff : c;
+        key = key << 21 | (uint64_t)c;
+    }
+    return key;
+}
+
+static int grid_make(grid *g, const fm_tiles *t, double reach)
+{
+    double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int d = 0; d < 3; d++)
+        g->lo[d] = INFINITY;
+    for (size_t i = 0; i < t->n; i++)
+        for (int d = 0; d < 3; d++) {
+            g->lo[d] = fmin(g->lo[d], t->tile[i].centre[d]);
+            hi[d] = fmax(hi[d], t->tile[i].centre[d]);
+        }
+    g->cell = reach > 0 ? reach : 1;
+    for (int d = 0; d < 3; d++) {
+        g->lo[d] -= 4 * g->cell;
+        if ((hi[d] - g->lo[d]) / g->cell > 1e6)
+            g->cell = (hi[d] - g->lo[d]) / 1e6;
+    }
+    g->n = t->n;
+    g->e = malloc((t->n + 1) * sizeof *g->e);
+    if (!g->e)
+        return -1;
+    static const long zero[3] = {0, 0, 0};
+    for (size_t i = 0; i < t->n; i++)
+        g->e[i] = (fm_keyed){cell_key(g, t->tile[i].centre, zero), i};
+    return fm_sort_keyed(g->e, g->n);
+}
+
+/* Calls fn for every tile whose centre lies in a cell within reach of p. */
+typedef int (*grid_fn)(size_t tile, void *user);
+static void grid_near(const grid *g, const double p[3], double reach, grid_fn fn, void *user)
+{
+    long k = (long)ceil(reach / g->cell);
+    long off[3];
+    for (off[0] = -k; off[0] <= k; off[0]++)
+        for (off[1] = -k; off[1] <= k; off[1]++)
+            for (off[2] = -k; off[2] <= k; off[2]++) {
+                uint64_t key = cell_key(g, p, off);
+                for (size_t i = fm_keyed_lower_bound(g->e, g->n, key);
+                     i < g->n && g->e[i].key == key; i++)
+                    if (fn(g->e[i].index, user))
+                        return;
+            }
+}
+
+static double radius(const fm_tile *t) { return 0.5 * hypot(t->length, t->width); }
+
+static int tiles_meet(const fm_tile *a, const fm_tile *b)
+{
+    if (a->length <= 0 || b->length <= 0)
+        return 0;
+    double ca[4][3], cb[4][3];
+    fm_tile_corners(a, ca);
+    fm_tile_corners(b, cb);
+    const double *ta[2][3] = {{ca[0], ca[1], ca[2]}, {ca[0], ca[2], ca[3]}};
+    const double *tb[2][3] = {{cb[0], cb[1], cb[2]}, {cb[0], cb[2], cb[3]}};
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++)
+            if (fm_triangles_meet(ta[i], tb[j]))
+                return 1;
+    return 0;
+}
+
+/* The largest part of a on its centre's side of the plane of b, clear of
+ * it: cut back along strike, or down dip, or scaled about its centre,
+ * whichever keeps most. Returns the area lost (INFINITY when a's centre
+ * is on b's plane) and the cut tile in *out. */
+static double cut(const fm_tile *a, const fm_tile *b, fm_tile *out)
+{
+    double n[3];
+    normal_of(b, n);
+    double r[3] = {a->centre[0] - b->centre[0], a->centre[1] - b->centre[1],
+                   a->centre[2] - b->centre[2]};
+    double g0 = dot3(n, r);
+    if (fabs(g0) <= CLEARANCE)
+        return INFINITY;
+    double sg = g0 > 0 ? 1 : -1, h0 = fabs(g0);
+    double hu = sg * dot3(n, a->strike), hv = sg * dot3(n, a->dip);
+    double L = a->length, W = a->width;
+    double best = INFINITY, bu[2] = {0, 0}, bv[2] = {0, 0};
+    /* along strike: every v of the tile, u restricted */
+    double k = h0 - fabs(hv) * W / 2 - CLEARANCE;
+    if (k > 0) {
+        double u0 = -L / 2, u1 = L / 2;
+        if (hu > 0)
+            u0 = fmax(u0, -k / hu);
+        else if (hu < 0)
+            u1 = fmin(u1, k / -hu);
+        if (u1 > u0 && (L - (u1 - u0)) * W < best) {
+            best = (L - (u1 - u0)) * W;
+            bu[0] = u0, bu[1] = u1, bv[0] = -W / 2, bv[1] = W / 2;
+        }
+    }
+    k = h0 - fabs(hu) * L / 2 - CLEARANCE;
+    if (k > 0) {
+        double v0 = -W / 2, v1 = W / 2;
+        if (hv > 0)
+            v0 = fmax(v0, -k / hv);
+        else if (hv < 0)
+            v1 = fmin(v1, k / -hv);
+        if (v1 > v0 && (W - (v1 - v0)) * L < best) {
+            best = (W - (v1 - v0)) * L;
+            bu[0] = -L / 2, bu[1] = L / 2, bv[0] = v0, bv[1] = v1;
+        }
+    }
+    double den = fabs(hu) * L / 2 + fabs(hv) * W / 2;
+    double s = den > 0 ? (h0 - CLEARANCE) / den : 1;
+    if (s > 0 && s < 1 && L * W * (1 - s * s) < best) {
+        best = L * W * (1 - s * s);
+        bu[0] = -s * L / 2, bu[1] = s * L / 2, bv[0] = -s * W / 2, bv[1] = s * W / 2;
+    }
+    if (best == INFINITY)
+        return INFINITY;
+    *out = *a;
+    double du = (bu[0] + bu[1]) / 2, dv = (bv[0] + bv[1]) / 2;
+    for (int d = 0; d < 3; d++)
+        out->centre[d] = a->centre[d] + du * a->strike[d] + dv * a->dip[d];
+    out->length = bu[1] - bu[0];
+    out->width = bv[1] - bv[0];
+    out->shrunk = 1;
+    return best;
+}
+
+typedef struct sep_ctx {
+    fm_tiles *t;
+    const double *rad; /* radius of each tile as made */
+    const double (*c0)[3]; /* centre of each tile as made */
+    size_t i;
+} sep_ctx;
+
+static int separate_pair(size_t j, void *user)
+{
+    sep_ctx *c = user;
+    fm_tile *a = &c->t->tile[c->i], *b = &c->t->tile[j];
+    if (j <= c->i || a->fault == b->fault)
+        return 0;
+    double r[3] = {c->c0[c->i][0] - c->c0[j][0], c->c0[c->i][1] - c->c0[j][1],
+                   c->c0[c->i][2] - c->c0[j][2]};
+    if (sqrt(dot3(r, r)) > c->rad[c->i] + c->rad[j])
+        return 0;
+    for (int round = 0; round < 8 && tiles_meet(a, b); round++) {
+        fm_tile ca, cb;
+        double la = cut(a, b, &ca), lb = cut(b, a, &cb);
+        if (la == INFINITY && lb == INFINITY)
+            break;
+        if (la <= lb)
+            *a = ca;
+        else
+            *b = cb;
+    }
+    if (tiles_meet(a, b)) {
+        /* nothing cuts them apart (one lies across the other's plane at
+         * its centre): the smaller goes */
+        fm_tile *gone = a->length * a->width <= b->length * b->width ? a : b;
+        gone->length = gone->width = 0;
+    }
+    return a->length <= 0; /* nothing left of a to test */
+}
+
+int tile_separate(fm_tiles *t)
+{
+    if (!t->n)
+        return 0;
+    double *rad = malloc(t->n * sizeof *rad), rmax = 0;
+    double (*c0)[3] = malloc(t->n * sizeof *c0);
+    grid g = {0};
+    if (!rad || !c0) {
+        free(rad);
+        free(c0);
+        return -1;
+    }
+    for (size_t i = 0; i < t->n; i++) {
+        rad[i] = radius(&t->tile[i]);
+        rmax = fmax(rmax, rad[i]);
+        memcpy(c0[i], t->tile[i].centre, sizeof c0[i]);
+    }
+    if (grid_make(&g, t, rmax)) {
+        free(rad);
+        free(c0);
+        free(g.e);
+        return -1;
+    }
+    sep_ctx ctx = {t, rad, (const double(*)[3])c0, 0};
+    for (size_t i = 0; i < t->n; i++) {
+        ctx.i = i;
+        if (t->tile[i].length > 0)
+            grid_near(&g, c0[i], rad[i] + rmax, separate_pair, &ctx);
+    }
+    /* the tiles given up leave the list */
+    size_t m = 0;
+    for (size_t i = 0; i < t->n; i++) {
+        if (t->tile[i].length > 0 && t->tile[i].width > 0)
+            t->tile[m++] = t->tile[i];
+        else
+            t->stats.dropped++;
+    }
+    t->n = m;
+    free(rad);
+    free(c0);
+    free(g.e);
+    return 0;
+}
+
+typedef struct near_ctx {
+    const fm_tiles *t;
+    const double *p;
+    int32_t fault;
+    double best;    /* nearest tile of fault (measure_gap) */
+    double flat;    /* unused by the gap search */
+    size_t count;   /* meeting pairs (count_meeting) */
+    size_t i;
+} near_ctx;
+
+static int nearest_of_fault(size_t j, void *user)
+{
+    near_ctx *c = user;
+    const fm_tile *b = &c->t->tile[j];
+    if (b->fault == c->fault)
+        c->best = fmin(c->best, tile_distance(b, c->p, NULL, NULL));
+    return 0;
+}
+
+static int flat_sample(size_t j, void *user)
+{
+    near_ctx *c = user;
+    fm_tile *b = &((fm_tiles *)c->t)->tile[j];
+    if (b->fault != c->fault)
+        return 0;
+    double w;
+    int inside;
+    tile_distance(b, c->p, &w, &inside);
+    if (inside && fabs(w) < c->t->stats.size)
+        b->flatness = fmax(b->flatness, fabs(w));
+    return 0;
+}
+
+static int count_meeting(size_t j, void *user)
+{
+    near_ctx *c = user;
+    const fm_tile *a = &c->t->tile[c->i], *b = &c->t->tile[j];
+    if (j > c->i && a->fault != b->fault && tiles_meet(a, b))
+        c->count++;
+    return 0;
+}
+
+static int dbl_cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+typedef struct gap_rec {
+    uint64_t pair; /* a << 32 | b */
+    double len, gmax, gsum, over;
+} gap_rec;
+
+static int gap_cmp(const void *a, const void *b)
+{
+    const gap_rec *x = a, *y = b;
+    return (x->pair > y->pair) - (x->pair < y->pair);
+}
+
+/* The per-junction gaps: each edge two faults share sampled at its
+ * quarter points, each sample the larger distance to a tile of either. */
+static int measure_gaps(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, const grid *g,
+                        double reach)
+{
+    const double *x = fm_mesh_vertices(set);
+    const int32_t *tag = fm_mesh_tags(set);
+    gap_rec *rec = NULL;
+    size_t nrec = 0, cap = 0;
+    for (size_t i = 0; i < sd->n;) {
+        size_t j = i + 1;
+        while (j < sd->n && sd->side[j].key == sd->side[i].key)
+            j++;
+        if (!sd->junction[i]) {
+            i = j;
+            continue;
+        }
+        const double *a = x + 3 * (size_t)(sd->side[i].key >> 32),
+                     *b = x + 3 * (size_t)(sd->side[i].key & 0xffffffffu);
+        double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+                          (b[2] - a[2]) * (b[2] - a[2]));
+        /* the distinct faults holding the edge */
+        int32_t fl[8];
+        int nf = 0;
+        for (size_t p = i; p < j && nf < 8; p++) {
+            int32_t f = tag[sd->side[p].index], k = nf;
+            for (int q = 0; q < nf; q++)
+                if (fl[q] == f)
+                    k = -1;
+            if (k < 0)
+                continue;
+            while (k > 0 && fl[k - 1] > f) {
+                fl[k] = fl[k - 1];
+                k--;
+            }
+            fl[k] = f;
+            nf++;
+        }
+        for (int p = 0; p < nf; p++)
+            for (int q = p + 1; q < nf; q++) {
+                int32_t fa = fl[p], fb = fl[q];
+                if (nrec == cap) {
+                    cap = cap ? 2 * cap : 1024;
+                    gap_rec *nr = realloc(rec, cap * sizeof *nr);
+                    if (!nr) {
+                        free(rec);
+                        return -1;
+                    }
+                    rec = nr;
+                }
+                gap_rec gr = {(uint64_t)(uint32_t)fa << 32 | (uint32_t)fb, len, 0, 0, 0};
+                for (int k = 1; k <= 3; k++) {
+                    double pt[3];
+                    for (int d = 0; d < 3; d++)
+                        pt[d] = a[d] + (b[d] - a[d]) * k / 4.0;
+                    near_ctx ca = {t, pt, fa, reach, 0, 0, 0};
+                    near_ctx cb = {t, pt, fb, reach, 0, 0, 0};
+                    grid_near(g, pt, reach, nearest_of_fault, &ca);
+                    grid_near(g, pt, reach, nearest_of_fault, &cb);
+                    double gap = fmax(ca.best, cb.best);
+                    gr.gmax = fmax(gr.gmax, gap);
+                    gr.gsum += gap * len / 3;
+                    if (gap > t->stats.size / 2)
+                        gr.over += len / 3;
+                }
+                rec[nrec++] = gr;
+            }
+        i = j;
+    }
+    if (nrec)
+        qsort(rec, nrec, sizeof *rec, gap_cmp);
+    size_t m = 0;
+    for (size_t i = 0; i < nrec; i++) {
+        if (m && rec[m - 1].pair == rec[i].pair) {
+            rec[m - 1].len += rec[i].len;
+            rec[m - 1].gmax = fmax(rec[m - 1].gmax, rec[i].gmax);
+            rec[m - 1].gsum += rec[i].gsum;
+            rec[m - 1].over += rec[i].over;
+        } else {
+            rec[m++] = rec[i];
+        }
+    }
+    t->junction = malloc((m + 1) * sizeof *t->junction);
+    if (!t->junction) {
+        free(rec);
+        return -1;
+    }
+    for (size_t i = 0; i < m; i++)
+        t->junction[i] = (fm_tile_junction){(int32_t)(rec[i].pair >> 32),
+                                            (int32_t)(rec[i].pair & 0xffffffffu), rec[i].len,
+                                            rec[i].gmax, rec[i].len > 0 ? rec[i].gsum / rec[i].len : 0,
+                                            rec[i].over};
+    t->njunctions = m;
+    free(rec);
+    return 0;
+}
+
+int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd)
+{
+    const double *x = fm_mesh_vertices(set);
+    const int32_t *tri = fm_mesh_triangles(set), *tag = fm_mesh_tags(set);
+    size_t nt = fm_mesh_ntriangles(set);
+    double rmax = 0;
+    for (size_t i = 0; i < t->n; i++)
+        rmax = fmax(rmax, radius(&t->tile[i]));
+    grid g = {0};
+    if (t->n && grid_make(&g, t, rmax)) {
+        free(g.e);
+        return -1;
+    }
+    /* flatness: the fault's surface sampled at each triangle's corners,
+     * side midpoints and centroid */
+    for (size_t i = 0; t->n && i < nt; i++) {
+        const double *c[3] = {x + 3 * (size_t)tri[3 * i], x + 3 * (size_t)tri[3 * i + 1],
+                              x + 3 * (size_t)tri[3 * i + 2]};
+        t->fault[tag[i]].area_triangles += fm_triangle_area(c[0], c[1], c[2]);
+        double p[7][3];
+        for (int d = 0; d < 3; d++) {
+            for (int k = 0; k < 3; k++) {
+                p[k][d] = c[k][d];
+                p[3 + k][d] = (c[k][d] + c[(k + 1) % 3][d]) / 2;
+            }
+            p[6][d] = (c[0][d] + c[1][d] + c[2][d]) / 3;
+        }
+        for (int k = 0; k < 7; k++) {
+            near_ctx nc = {t, p[k], tag[i], 0, 0, 0, 0};
+            grid_near(&g, p[k], rmax, flat_sample, &nc);
+        }
+    }
+    for (size_t i = 0; !t->n && i < nt; i++)
+        t->fault[tag[i]].area_triangles +=
+            fm_triangle_area(x + 3 * (size_t)tri[3 * i], x + 3 * (size_t)tri[3 * i + 1],
+                             x + 3 * (size_t)tri[3 * i + 2]);
+    double *flat = malloc((t->n + 1) * sizeof *flat);
+    if (!flat) {
+        free(g.e);
+        return -1;
+    }
+    for (size_t i = 0; i < t->n; i++) {
+        fm_tile *tl = &t->tile[i];
+        fm_tile_fault *f = &t->fault[tl->fault];
+        f->ntiles++;
+        f->area_tiles += tl->length * tl->width;
+        f->flatness_max = fmax(f->flatness_max, tl->flatness);
+        t->stats.shrunk += tl->shrunk != 0;
+        flat[i] = tl->flatness;
+    }
+    t->stats.ntiles = t->n;
+    if (t->n) {
+        qsort(flat, t->n, sizeof *flat, dbl_cmp);
+        t->stats.flatness_p99 = flat[(size_t)floor(0.99 * (double)(t->n - 1))];
+        t->stats.flatness_max = flat[t->n - 1];
+    }
+    free(flat);
+    t->stats.area_ratio_min = INFINITY;
+    t->stats.area_ratio_max = 0;
+    for (size_t f = 0; f < t->nfaults; f++)
+        if (t->fault[f].ntiles && t->fault[f].area_triangles > 0) {
+            double r = t->fault[f].area_tiles / t->fault[f].area_triangles;
+            t->stats.area_ratio_min = fmin(t->stats.area_ratio_min, r);
+            t->stats.area_ratio_max = fmax(t->stats.area_ratio_max, r);
+        }
+    if (t->stats.area_ratio_min == INFINITY)
+        t->stats.area_ratio_min = 0;
+    /* what still meets, counted by the same exact test */
+    for (size_t i = 0; i < t->n; i++) {
+        near_ctx nc = {t, NULL, 0, 0, 0, 0, i};
+        grid_near(&g, t->tile[i].centre, 2 * rmax, count_meeting, &nc);
+        t->stats.meeting += nc.count;
+    }
+    int st = t->n ? measure_gaps(t, set, sd, &g, 2 * rmax + t->stats.size) : 0;
+    if (!t->n)
+        t->junction = malloc(1);
+    free(g.e);
+    return st || !t->junction ? -1 : 0;
+}

@@ -1,0 +1,194 @@
+/* Rectangular elements (fm_tile.h): rows and columns of a planar fault,
+ * a curved one, and tiles of two meeting faults that stop at their
+ * junction without meeting, with the gap measured. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "fm_test.h"
+#include "fm_test_mesh.h"
+#include "fm_tile.h"
+
+static const double D45 = 0.70710678118654752440;
+
+/* Strike north, dipping 45 degrees east, top at sea level. */
+static void dipping(const void *ctx, double s, double t, double p[3])
+{
+    (void)ctx;
+    p[0] = 500000 + t * D45;
+    p[1] = 3700000 + s;
+    p[2] = -t * D45;
+}
+
+/* A quarter of a vertical cylinder of radius 20 km. */
+static void curved(const void *ctx, double s, double t, double p[3])
+{
+    (void)ctx;
+    double a = s / 20000;
+    p[0] = 20000 * cos(a);
+    p[1] = 20000 * sin(a);
+    p[2] = -t;
+}
+
+static void test_planar_rows_and_columns(void)
+{
+    fm_mesh *m = fm_test_grid_mesh(20000, 10000, 500, dipping, NULL);
+    fm_tiles *t = NULL;
+    CHECK_EQ(fm_tiles_create(m, 1, 2000, &t, NULL), FM_OK);
+    CHECK_EQ(fm_tiles_count(t), 50); /* 5 rows of 10 */
+    const fm_tile_fault *f = fm_tiles_fault(t, 0);
+    CHECK(fabs(f->area_tiles / f->area_triangles - 1) < 1e-6);
+    CHECK(f->flatness_max < 1e-6);
+    for (size_t i = 0; i < fm_tiles_count(t); i++) {
+        const fm_tile *tl = fm_tiles_get(t, i);
+        CHECK(fabs(tl->length - 2000) < 1e-6 && fabs(tl->width - 2000) < 1e-6);
+        /* strike north, dipping east */
+        CHECK(fabs(tl->strike[1] - 1) < 1e-9);
+        CHECK(fabs(tl->dip[0] - D45) < 1e-9 && fabs(tl->dip[2] + D45) < 1e-9);
+        double c[4][3];
+        fm_tile_corners(tl, c);
+        /* EQSim's order: top, bottom at the start of the strike, then the
+         * end's bottom and top, counterclockwise from above */
+        CHECK(c[0][2] > c[1][2] && c[3][2] > c[2][2] && c[0][1] < c[3][1]);
+        CHECK(c[0][2] <= 1e-9 && c[1][2] >= -10000 * D45 - 1e-6);
+    }
+    CHECK_EQ(fm_tiles_get(t, 0)->row, 0);
+    CHECK_EQ(fm_tiles_stats(t)->meeting, 0);
+    fm_tiles_destroy(t);
+    fm_mesh_destroy(m);
+}
+
+static void test_curved_area(void)
+{
+    fm_mesh *m = fm_test_grid_mesh(31416, 12000, 250, curved, NULL);
+    fm_tiles *t = NULL;
+    CHECK_EQ(fm_tiles_create(m, 1, 2000, &t, NULL), FM_OK);
+    const fm_tile_fault *f = fm_tiles_fault(t, 0);
+    CHECK(fabs(f->area_tiles / f->area_triangles - 1) < 0.01);
+    /* chords of 2 km on a 20 km radius: sagitta 25 m */
+    CHECK(fm_tiles_stats(t)->flatness_p99 < 30);
+    CHECK(fm_tiles_stats(t)->flatness_p99 > 5);
+    fm_tiles_destroy(t);
+    fm_mesh_destroy(m);
+}
+
+/* Fault 0 the vertical plane x = 0, y in [-10, 10] km; fault 1 a vertical
+ * plane from the origin at angle a from fault 0, ending on it; both 10 km
+ * deep, meshed at 500 m with the junction's nodes shared. */
+static fm_mesh *tee(double a)
+{
+    fm_mesh *m = fm_mesh_create();
+    const int ns = 40, nz = 20;
+    for (int k = 0; k <= nz; k++)
+        for (int i = 0; i <= ns; i++)
+            fm_mesh_add_vertex(m, 0, -10000 + 500.0 * i, -500.0 * k);
+    int32_t base = (int32_t)fm_mesh_nvertices(m);
+    const int nb = 20;
+    for (int k = 0; k <= nz; k++)
+        for (int i = 1; i <= nb; i++)
+            fm_mesh_add_vertex(m, 500.0 * i * sin(a), 500.0 * i * cos(a), -500.0 * k);
+    for (int k = 0; k < nz; k++)
+        for (int i = 0; i < ns; i++) {
+            int32_t p = k * (ns + 1) + i, q = p + 1, r = p + ns + 1, s = r + 1;
+            fm_mesh_add_triangle(m, p, q, s, 0);
+            fm_mesh_add_triangle(m, p, s, r, 0);
+        }
+    for (int k = 0; k < nz; k++)
+        for (int i = 0; i < nb; i++) {
+            /* column 0 of fault 1 is fault 0's node at y = 0 */
+            int32_t p = i == 0 ? k * (ns + 1) + ns / 2 : base + k * nb + i - 1;
+            int32_t r = i == 0 ? (k + 1) * (ns + 1) + ns / 2 : base + (k + 1) * nb + i - 1;
+            int32_t q = base + k * nb + i, s = base + (k + 1) * nb + i;
+            fm_mesh_add_triangle(m, p, q, s, 1);
+            fm_mesh_add_triangle(m, p, s, r, 1);
+        }
+    return m;
+}
+
+static void test_tee_junction(void)
+{
+    const double angles[3] = {3.14159265358979 / 2, 3.14159265358979 / 3, 0.3};
+    for (int k = 0; k < 3; k++) {
+        fm_mesh *m = tee(angles[k]);
+        fm_tiles *t = NULL;
+        CHECK_EQ(fm_tiles_create(m, 2, 2000, &t, NULL), FM_OK);
+        const fm_tile_stats *st = fm_tiles_stats(t);
+        CHECK_EQ(st->meeting, 0);
+        CHECK_EQ(st->dropped, 0);
+        /* fault 0's contour stops at the junction: 2 x 5 columns per row */
+        CHECK_EQ(fm_tiles_fault(t, 0)->ntiles, 50);
+        CHECK_EQ(fm_tiles_njunctions(t), 1);
+        const fm_tile_junction *j = fm_tiles_junction(t, 0);
+        CHECK(j->a == 0 && j->b == 1 && fabs(j->length - 10000) < 1e-6);
+        CHECK(j->gap_max <= 1000);
+        CHECK(j->over_half == 0);
+        for (int f = 0; f < 2; f++) {
+            const fm_tile_fault *tf = fm_tiles_fault(t, (size_t)f);
+            CHECK(tf->area_tiles / tf->area_triangles > 0.97);
+            CHECK(tf->area_tiles / tf->area_triangles < 1 + 1e-9);
+        }
+        fm_tiles_destroy(t);
+        fm_mesh_destroy(m);
+    }
+}
+
+/* Fault 1 crossing fault 0 at a slant: tile corners reach across, and are
+ * cut back. */
+static void tilted(const void *ctx, double s, double t, double p[3])
+{
+    (void)ctx;
+    p[0] = -5000 + s;
+    p[1] = 0.3 * (-5000 + s) + 0.8 * t;
+    p[2] = -t;
+}
+
+static void vertical(const void *ctx, double s, double t, double p[3])
+{
+    (void)ctx;
+    p[0] = 0;
+    p[1] = -10000 + s;
+    p[2] = -t;
+}
+
+static void test_crossing_faults_cut_apart(void)
+{
+    /* Two separate meshes in one set, not sharing nodes: the worst case,
+     * tiles that run through each other, must still come apart. */
+    fm_mesh *a = fm_test_grid_mesh(20000, 8000, 500, vertical, NULL);
+    fm_mesh *b = fm_test_grid_mesh(10000, 8000, 500, tilted, NULL);
+    fm_mesh *m = fm_mesh_create();
+    const fm_mesh *parts[2] = {a, b};
+    for (int f = 0; f < 2; f++) {
+        int32_t base = (int32_t)fm_mesh_nvertices(m);
+        const double *x = fm_mesh_vertices(parts[f]);
+        for (size_t v = 0; v < fm_mesh_nvertices(parts[f]); v++)
+            fm_mesh_add_vertex(m, x[3 * v], x[3 * v + 1], x[3 * v + 2]);
+        const int32_t *tri = fm_mesh_triangles(parts[f]);
+        for (size_t i = 0; i < fm_mesh_ntriangles(parts[f]); i++)
+            fm_mesh_add_triangle(m, base + tri[3 * i], base + tri[3 * i + 1],
+                                 base + tri[3 * i + 2], f);
+    }
+    fm_tiles *t = NULL;
+    CHECK_EQ(fm_tiles_create(m, 2, 2000, &t, NULL), FM_OK);
+    CHECK_EQ(fm_tiles_stats(t)->meeting, 0);
+    CHECK(fm_tiles_stats(t)->shrunk > 0);
+    fm_tiles_destroy(t);
+    fm_mesh_destroy(a);
+    fm_mesh_destroy(b);
+    fm_mesh_destroy(m);
+}
+
+static void test_bad_input(void)
+{
+    fm_mesh *m = fm_test_grid_mesh(2000, 2000, 500, vertical, NULL);
+    fm_tiles *t = NULL;
+    CHECK_EQ(fm_tiles_create(m, 1, 0, &t, NULL), FM_ERR_INVALID);
+    CHECK_EQ(fm_tiles_create(m, 1, NAN, &t, NULL), FM_ERR_INVALID);
+    CHECK_EQ(fm_tiles_create(m, 0, 1000, &t, NULL), FM_ERR_INVALID); /* tag 0 not < 0 faults */
+    CHECK(t == NULL);
+    fm_mesh_destroy(m);
+}
+
+FM_TEST_MAIN(FM_CASE(test_planar_rows_and_columns), FM_CASE(test_curved_area),
+             FM_CASE(test_tee_junction), FM_CASE(test_crossing_faults_cut_apart),
+             FM_CASE(test_bad_input))
