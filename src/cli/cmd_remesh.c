@@ -395,7 +395,7 @@ static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **c
     if (npaths == 0)
         npaths = ncinputs;
     extend_fit(&cli);
-    if (settle_msh(&cli)) {
+    if (settle_msh(&cli) || settle_elements(&cli)) {
         free(paths);
         return FM_EXIT_USAGE;
     }
@@ -493,7 +493,7 @@ static int demo_main(remesh_cli *cli_in, int argc, char **argv)
         }
     }
     extend_fit(&cli);
-    if (settle_msh(&cli))
+    if (settle_msh(&cli) || settle_elements(&cli))
         return FM_EXIT_USAGE;
     if (!cli.dir) {
         fprintf(stderr, "faultmesh: demo needs -o DIR, the output folder (see faultmesh demo "

@@ -62,6 +62,10 @@ void remesh_usage(FILE *fp)
             "                        connect, exclude, rake, slip_rate by name pattern\n"
             "                        (options beside it override it; see docs/guide.md)\n"
             "  --no-report-html      skip DIR/report.html\n"
+            "  --elements tri|quad   triangles (default), or rectangles of about SIZE x SIZE\n"
+            "                        along strike and down dip for the simulators that read\n"
+            "                        only rectangles: mesh.vtu, mesh.msh, mesh.rsqsim and\n"
+            "                        mesh.eqsim then hold rectangles (see docs/formats.md)\n"
             "  --formats LIST        the outputs to write, comma-separated, of vtu, msh,\n"
             "                        stl, obj, exo, ts (NAME.ts), igs (model.igs), rsqsim,\n"
             "                        eqsim, html (report.html), names (names.csv); default\n"
@@ -190,6 +194,14 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     } else if (!strcmp(a, "--no-report-html")) {
         cli->html = 0;
         return 1;
+    } else if (!strcmp(a, "--elements")) {
+        if (!val)
+            return fm_cli_missing(a);
+        if (strcmp(val, "tri") && strcmp(val, "quad")) {
+            fprintf(stderr, "faultmesh: --elements takes tri or quad, not '%s'\n", val);
+            return -1;
+        }
+        cli->quads = !strcmp(val, "quad");
     } else if (!strcmp(a, "--formats")) {
         if (!val)
             return fm_cli_missing(a);
@@ -224,6 +236,23 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
 }
 
 /* Tandem reads MSH 2.2 only; -1 (after saying why) when asked for 4.1. */
+int settle_elements(remesh_cli *cli)
+{
+    const unsigned tri_only = FMT_STL | FMT_OBJ | FMT_EXO | FMT_TS | FMT_IGS;
+    if (!cli->quads)
+        return 0;
+    if (cli->formats == FMT_ALL) {
+        cli->formats &= ~tri_only;
+        return 0;
+    }
+    if (cli->formats & tri_only) {
+        fprintf(stderr, "faultmesh: --elements quad writes vtu, msh, rsqsim, eqsim, html and "
+                        "names; stl, obj, exo, ts and igs hold triangles only\n");
+        return -1;
+    }
+    return 0;
+}
+
 int settle_msh(remesh_cli *cli)
 {
     if (cli->msh_tags != FM_MSH_TAGS_TANDEM)

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "remesh_quads.h"
 #include "fm_atomic.h"
 #include "fm_json.h"
 #include "remesh_run.h"
@@ -505,6 +506,7 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
      * the CFM's default */
     fm_json_kv_string(&j, "crs_source", rs->crs_source);
     fm_json_kv_string(&j, "msh_tags", fm_msh_tags_name(cli->msh_tags));
+    fm_json_kv_string(&j, "elements", cli->quads ? "quad" : "tri");
     fm_json_end_object(&j);
     fm_json_key(&j, "faults");
     fm_json_begin_array(&j);
@@ -516,6 +518,8 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
     json_connect(&j, cli, rs, &t);
     if (sa)
         sim_json_summary(&j, &cli->sim, sa, (const char *const *)rs->names);
+    if (sa && sa->tiles)
+        quads_json(&j, sa, (const char *const *)rs->names);
     if (rs->outputs)
         outputs_json(&j, rs->outputs);
     fm_json_key(&j, "summary");

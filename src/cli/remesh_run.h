@@ -48,6 +48,7 @@ typedef struct remesh_cli {
     int html;             /* write report.html (default 1) */
     size_t max_triangles; /* refuse a fault or run expected to need more (0: no limit) */
     unsigned formats;     /* --formats: the outputs written (FMT_* bits; report.json always) */
+    int quads;            /* --elements quad: rectangles instead of triangles */
 } remesh_cli;
 
 /* The outputs --formats chooses among, by name: vtu msh stl obj exo ts igs
@@ -176,6 +177,9 @@ void remesh_usage(FILE *fp);
  * consumed), -1 on error, 0 if not one of them. */
 int mesh_option(int argc, char **argv, int *i, remesh_cli *cli);
 int settle_msh(remesh_cli *cli);
+/* --elements quad: the formats that hold rectangles (default) or a usage
+ * error for another one asked for; 0 or -1 after saying why. */
+int settle_elements(remesh_cli *cli);
 void extend_fit(remesh_cli *cli);
 void cli_defaults(remesh_cli *cli);
 /* The settings file's top-level keys, applied as the options they name

@@ -9,6 +9,7 @@
 #include "fm_check.h"
 #include "fm_closest.h"
 #include "fm_faultset_write.h"
+#include "remesh_quads.h"
 #include "fm_reproject.h"
 #include "fm_sort.h"
 #include "fm_tsurf.h"
@@ -581,14 +582,16 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
                                    .done = outputs_done,
                                    .done_ctx = rs->outputs};
         fm_status cst = FM_OK, sst = FM_OK, nst = FM_OK;
-        if (fm & (FMT_ALL & ~(FMT_IGS | FMT_RSQSIM | FMT_EQSIM | FMT_HTML | FMT_NAMES)))
+        if (cli->quads)
+            sst = write_quads(cli, &fs, sa, rs->outputs, &err);
+        else if (fm & (FMT_ALL & ~(FMT_IGS | FMT_RSQSIM | FMT_EQSIM | FMT_HTML | FMT_NAMES)))
             st = fm_faultset_write_all(&fs, &out, cli->jobs, &err);
         if (fm & FMT_IGS) {
             const char *igs = path + 5 * n;
             cst = fm_cad_write_iges_reprojected(igs, rs->cad, rs->ncad, fs.crs, rp, &err);
             outputs_note(rs->outputs, igs, SIZE_MAX, OUTPUT_SET, cst == FM_OK ? NULL : &err);
         }
-        if (fm & (FMT_RSQSIM | FMT_EQSIM))
+        if (!cli->quads && (fm & (FMT_RSQSIM | FMT_EQSIM)))
             sst = sim_write(&cli->sim, &fs, sa, cli->dir, (fm & FMT_RSQSIM) != 0,
                             (fm & FMT_EQSIM) != 0, outputs_done, rs->outputs);
         if (fm & FMT_NAMES) {

@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "config.h"
 #include "sim_attrs.h"
+#include "fm_tile.h"
 
 #define DEG2RAD (3.14159265358979323846 / 180.0)
 #define METADATA_FILE "CFM5.3_Metadata.csv"
@@ -162,6 +163,7 @@ void sim_cli_free(sim_cli *sc)
 void sim_attrs_free(sim_attrs *a)
 {
     sim_kinematics_free(a);
+    fm_tiles_destroy(a->tiles);
     free(a->slip);
     free(a->rake_f);
     free(a->rate_f);

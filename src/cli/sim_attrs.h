@@ -76,6 +76,8 @@ typedef struct sim_attrs {
      * rake disagrees with the slip sense, the rates taken (mm/yr); per
      * fault the sections taken and their areas (CSR over ksec_start) */
     struct fm_element_kinematics *kin;
+    /* --elements quad: the rectangles written (remesh_quads.c); NULL without */
+    struct fm_tiles *tiles;
     double *k_area, *k_matched, *k_disagree, *k_rmin, *k_rmax;
     size_t *ksec_start;
     int32_t *ksec_id;

@@ -54,6 +54,7 @@ typedef struct fm_tile_fault {
     size_t ntiles;
     double area_triangles; /* the fault's triangles, m^2 */
     double area_tiles;     /* its tiles, m^2 */
+    double area_cut;       /* what its tiles lost where they met other faults' tiles, m^2 */
     double flatness_max;   /* m */
 } fm_tile_fault;
 

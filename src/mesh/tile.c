@@ -61,6 +61,7 @@ typedef struct tiler {
     int32_t *stamp;      /* per triangle: the contour that went through it */
     int32_t cur;         /* this contour's stamp */
     double size;
+    double rowdw;        /* the row's width down dip (tile_fault) */
     fm_tiles *out;
     /* one contour */
     double *pt;          /* 3 per point */
@@ -92,16 +93,23 @@ static int push_point(tiler *tl, const double p[3], int32_t seg)
     return 0;
 }
 
-static int push_tile(fm_tiles *t, const fm_tile *tile)
+static int push_tile(fm_tiles *t, const fm_tile *tile, double ztop, double zbot, double dw)
 {
     if (t->n == t->cap) {
         size_t c = t->cap ? 2 * t->cap : 256;
         fm_tile *nt = realloc(t->tile, c * sizeof *nt);
-        if (!nt)
+        if (nt)
+            t->tile = nt;
+        double(*nb)[3] = realloc(t->band, c * sizeof *nb);
+        if (nb)
+            t->band = nb;
+        if (!nt || !nb)
             return -1;
-        t->tile = nt;
         t->cap = c;
     }
+    t->band[t->n][0] = ztop;
+    t->band[t->n][1] = zbot;
+    t->band[t->n][2] = dw;
     t->tile[t->n++] = *tile;
     return 0;
 }
@@ -196,15 +204,13 @@ static int tile_piece(tiler *tl, int32_t fault, int32_t row, double sa, double s
     }
     double dip[3];
     cross3(st, n, dip);
-    double sd = -dip[2];
-    if (sd < MIN_SIN)
-        sd = MIN_SIN;
+    double sd = fmax(-dip[2], tile_min_sin(ztop - zbot, tl->rowdw));
     fm_tile t = {.fault = fault, .triangle = tl->seg[mseg], .row = row, .length = len,
                  .width = (ztop - zbot) / sd};
     memcpy(t.centre, pm, sizeof pm);
     memcpy(t.strike, st, sizeof st);
     memcpy(t.dip, dip, sizeof dip);
-    return push_tile(tl->out, &t);
+    return push_tile(tl->out, &t, ztop, zbot, tl->rowdw);
 }
 
 /* The contour held in tl cut into tiles. */
@@ -224,7 +230,7 @@ static int tile_contour(tiler *tl, int32_t fault, int32_t row, int closed, doubl
         if (ncol < 3)
             ncol = 3;
     } else {
-        if (len < tl->size / 4)
+        if (len < tl->size / 10)
             return 0; /* a sliver of a tile: left to the area measure */
         if (ncol < 1)
             ncol = 1;
@@ -362,6 +368,7 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
     long nrows = lround(dtot / tl->size);
     if (nrows < 1)
         nrows = 1;
+    tl->rowdw = dtot / (double)nrows;
     for (long r = 0; r < nrows; r++) {
         double ztop = r == 0 ? zhi : depth_at(dd, zlo, dz, dtot * (double)(nrows - r) / (double)nrows);
         double zbot = r == nrows - 1 ? zlo
@@ -456,6 +463,33 @@ fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_ti
             start[tag[i] + 1]++;
         for (size_t f = 0; f < nfaults; f++)
             start[f + 1] += start[f];
+    }
+    int32_t *part = bad ? NULL : malloc((nt + 1) * sizeof *part);
+    if (!bad && part) {
+        /* pieces: triangles joined across the sides nbr joins */
+        for (size_t i = 0; i < nt; i++)
+            part[i] = -1;
+        size_t *stack = order; /* free until the faults' triangles go in */
+        for (size_t i = 0; i < nt; i++) {
+            if (part[i] >= 0)
+                continue;
+            size_t top = 0;
+            stack[top++] = i;
+            part[i] = (int32_t)i;
+            while (top) {
+                size_t c = stack[--top];
+                for (int k = 0; k < 3; k++) {
+                    int32_t o = nbr[3 * c + (size_t)k];
+                    if (o >= 0 && part[o] < 0) {
+                        part[o] = (int32_t)i;
+                        stack[top++] = (size_t)o;
+                    }
+                }
+            }
+        }
+    }
+    /* each fault's triangles, in order */
+    if (!bad && part) {
         size_t *pos = malloc((nfaults + 1) * sizeof *pos);
         bad = !pos;
         if (pos) {
@@ -465,10 +499,16 @@ fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_ti
             free(pos);
         }
     }
-    for (size_t f = 0; !bad && f < nfaults; f++)
+    for (size_t f = 0; !bad && part && f < nfaults; f++)
         bad = tile_fault(&tl, (int32_t)f, order + start[f], start[f + 1] - start[f]) != 0;
     if (!bad)
-        bad = tile_separate(t) || tile_measure(t, set, &sd);
+        bad = !part || tile_fit_planes(t, set, part) || tile_separate(t) ||
+              tile_measure(t, set, &sd, part);
+    if (t) {
+        free(t->band);
+        t->band = NULL;
+    }
+    free(part);
     free(nbr);
     free(stamp);
     free(start);

@@ -43,67 +43,6 @@ double tile_distance(const fm_tile *t, const double p[3], double *plane, int *in
     return sqrt((u - cu) * (u - cu) + (v - cv) * (v - cv) + w * w);
 }
 
-/* Tile centres in cubic cells, for the pairs and points near each other. */
-typedef struct grid {
-    double lo[3], cell;
-    fm_keyed *e; /* key: cell, index: tile */
-    size_t n;
-} grid;
-
-static uint64_t cell_key(const grid *g, const double p[3], const long off[3])
-{
-    uint64_t key = 0;
-    for (int d = 0; d < 3; d++) {
-        long c = (long)floor((p[d] - g->lo[d]) / g->cell) + off[d];
-        c = c < 0 ? 0 : c > 0x1fffff ? 0x1fffff : c;
-        key = key << 21 | (uint64_t)c;
-    }
-    return key;
-}
-
-static int grid_make(grid *g, const fm_tiles *t, double reach)
-{
-    double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (int d = 0; d < 3; d++)
-        g->lo[d] = INFINITY;
-    for (size_t i = 0; i < t->n; i++)
-        for (int d = 0; d < 3; d++) {
-            g->lo[d] = fmin(g->lo[d], t->tile[i].centre[d]);
-            hi[d] = fmax(hi[d], t->tile[i].centre[d]);
-        }
-    g->cell = reach > 0 ? reach : 1;
-    for (int d = 0; d < 3; d++) {
-        g->lo[d] -= 4 * g->cell;
-        if ((hi[d] - g->lo[d]) / g->cell > 1e6)
-            g->cell = (hi[d] - g->lo[d]) / 1e6;
-    }
-    g->n = t->n;
-    g->e = malloc((t->n + 1) * sizeof *g->e);
-    if (!g->e)
-        return -1;
-    static const long zero[3] = {0, 0, 0};
-    for (size_t i = 0; i < t->n; i++)
-        g->e[i] = (fm_keyed){cell_key(g, t->tile[i].centre, zero), i};
-    return fm_sort_keyed(g->e, g->n);
-}
-
-/* Calls fn for every tile whose centre lies in a cell within reach of p. */
-typedef int (*grid_fn)(size_t tile, void *user);
-static void grid_near(const grid *g, const double p[3], double reach, grid_fn fn, void *user)
-{
-    long k = (long)ceil(reach / g->cell);
-    long off[3];
-    for (off[0] = -k; off[0] <= k; off[0]++)
-        for (off[1] = -k; off[1] <= k; off[1]++)
-            for (off[2] = -k; off[2] <= k; off[2]++) {
-                uint64_t key = cell_key(g, p, off);
-                for (size_t i = fm_keyed_lower_bound(g->e, g->n, key);
-                     i < g->n && g->e[i].key == key; i++)
-                    if (fn(g->e[i].index, user))
-                        return;
-            }
-}
-
 static double radius(const fm_tile *t) { return 0.5 * hypot(t->length, t->width); }
 
 static int tiles_meet(const fm_tile *a, const fm_tile *b)
@@ -223,21 +162,24 @@ int tile_separate(fm_tiles *t)
     if (!t->n)
         return 0;
     double *rad = malloc(t->n * sizeof *rad), rmax = 0;
-    double (*c0)[3] = malloc(t->n * sizeof *c0);
-    grid g = {0};
-    if (!rad || !c0) {
+    double (*c0)[3] = malloc(t->n * sizeof *c0), *a0 = malloc(t->n * sizeof *a0);
+    tile_grid g = {0};
+    if (!rad || !c0 || !a0) {
         free(rad);
         free(c0);
+        free(a0);
         return -1;
     }
     for (size_t i = 0; i < t->n; i++) {
         rad[i] = radius(&t->tile[i]);
+        a0[i] = t->tile[i].length * t->tile[i].width;
         rmax = fmax(rmax, rad[i]);
         memcpy(c0[i], t->tile[i].centre, sizeof c0[i]);
     }
-    if (grid_make(&g, t, rmax)) {
+    if (tile_grid_make(&g, t, rmax)) {
         free(rad);
         free(c0);
+        free(a0);
         free(g.e);
         return -1;
     }
@@ -245,11 +187,13 @@ int tile_separate(fm_tiles *t)
     for (size_t i = 0; i < t->n; i++) {
         ctx.i = i;
         if (t->tile[i].length > 0)
-            grid_near(&g, c0[i], rad[i] + rmax, separate_pair, &ctx);
+            tile_grid_near(&g, c0[i], rad[i] + rmax, separate_pair, &ctx);
     }
     /* the tiles given up leave the list */
     size_t m = 0;
     for (size_t i = 0; i < t->n; i++) {
+        t->fault[t->tile[i].fault].area_cut +=
+            a0[i] - t->tile[i].length * t->tile[i].width;
         if (t->tile[i].length > 0 && t->tile[i].width > 0)
             t->tile[m++] = t->tile[i];
         else
@@ -258,6 +202,7 @@ int tile_separate(fm_tiles *t)
     t->n = m;
     free(rad);
     free(c0);
+    free(a0);
     free(g.e);
     return 0;
 }
@@ -270,6 +215,8 @@ typedef struct near_ctx {
     double flat;    /* unused by the gap search */
     size_t count;   /* meeting pairs (count_meeting) */
     size_t i;
+    const int32_t *part; /* flat_sample: the samples' piece against the tile's */
+    int32_t piece;
 } near_ctx;
 
 static int nearest_of_fault(size_t j, void *user)
@@ -285,7 +232,7 @@ static int flat_sample(size_t j, void *user)
 {
     near_ctx *c = user;
     fm_tile *b = &((fm_tiles *)c->t)->tile[j];
-    if (b->fault != c->fault)
+    if (b->fault != c->fault || c->part[b->triangle] != c->piece)
         return 0;
     double w;
     int inside;
@@ -323,7 +270,7 @@ static int gap_cmp(const void *a, const void *b)
 
 /* The per-junction gaps: each edge two faults share sampled at its
  * quarter points, each sample the larger distance to a tile of either. */
-static int measure_gaps(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, const grid *g,
+static int measure_gaps(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, const tile_grid *g,
                         double reach)
 {
     const double *x = fm_mesh_vertices(set);
@@ -376,10 +323,10 @@ static int measure_gaps(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, c
                     double pt[3];
                     for (int d = 0; d < 3; d++)
                         pt[d] = a[d] + (b[d] - a[d]) * k / 4.0;
-                    near_ctx ca = {t, pt, fa, reach, 0, 0, 0};
-                    near_ctx cb = {t, pt, fb, reach, 0, 0, 0};
-                    grid_near(g, pt, reach, nearest_of_fault, &ca);
-                    grid_near(g, pt, reach, nearest_of_fault, &cb);
+                    near_ctx ca = {t, pt, fa, reach, 0, 0, 0, NULL, 0};
+                    near_ctx cb = {t, pt, fb, reach, 0, 0, 0, NULL, 0};
+                    tile_grid_near(g, pt, reach, nearest_of_fault, &ca);
+                    tile_grid_near(g, pt, reach, nearest_of_fault, &cb);
                     double gap = fmax(ca.best, cb.best);
                     gr.gmax = fmax(gr.gmax, gap);
                     gr.gsum += gap * len / 3;
@@ -418,7 +365,7 @@ static int measure_gaps(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, c
     return 0;
 }
 
-int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd)
+int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, const int32_t *part)
 {
     const double *x = fm_mesh_vertices(set);
     const int32_t *tri = fm_mesh_triangles(set), *tag = fm_mesh_tags(set);
@@ -426,8 +373,8 @@ int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd)
     double rmax = 0;
     for (size_t i = 0; i < t->n; i++)
         rmax = fmax(rmax, radius(&t->tile[i]));
-    grid g = {0};
-    if (t->n && grid_make(&g, t, rmax)) {
+    tile_grid g = {0};
+    if (t->n && tile_grid_make(&g, t, rmax)) {
         free(g.e);
         return -1;
     }
@@ -446,8 +393,8 @@ int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd)
             p[6][d] = (c[0][d] + c[1][d] + c[2][d]) / 3;
         }
         for (int k = 0; k < 7; k++) {
-            near_ctx nc = {t, p[k], tag[i], 0, 0, 0, 0};
-            grid_near(&g, p[k], rmax, flat_sample, &nc);
+            near_ctx nc = {t, p[k], tag[i], 0, 0, 0, 0, part, part[i]};
+            tile_grid_near(&g, p[k], rmax, flat_sample, &nc);
         }
     }
     for (size_t i = 0; !t->n && i < nt; i++)
@@ -487,8 +434,8 @@ int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd)
         t->stats.area_ratio_min = 0;
     /* what still meets, counted by the same exact test */
     for (size_t i = 0; i < t->n; i++) {
-        near_ctx nc = {t, NULL, 0, 0, 0, 0, i};
-        grid_near(&g, t->tile[i].centre, 2 * rmax, count_meeting, &nc);
+        near_ctx nc = {t, NULL, 0, 0, 0, 0, i, NULL, 0};
+        tile_grid_near(&g, t->tile[i].centre, 2 * rmax, count_meeting, &nc);
         t->stats.meeting += nc.count;
     }
     int st = t->n ? measure_gaps(t, set, sd, &g, 2 * rmax + t->stats.size) : 0;

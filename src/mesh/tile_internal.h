@@ -13,6 +13,8 @@ struct fm_tiles {
     fm_tile_junction *junction;
     size_t njunctions;
     fm_tile_stats stats;
+    double (*band)[3];   /* while tiling: each tile's row, its top and bottom depth and its
+                            width down dip at the fault's mean dip in that band */
 };
 
 /* The set's triangle sides (fm_mesh_sides) with, per run of one key,
@@ -24,14 +26,45 @@ typedef struct tile_sides {
 } tile_sides;
 
 /* Tiles of different faults that meet cut back until none does, then the
- * measures of fm_tile_fault, fm_tile_junction and fm_tile_stats; -1 when
+ * measures of fm_tile_fault, fm_tile_junction and fm_tile_stats (part:
+ * per triangle, its piece of the fault between outlines, junctions and
+ * branch lines: a tile's flatness looks at its own piece only); -1 when
  * memory runs out (tile_apart.c). */
 int tile_separate(fm_tiles *t);
-int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd);
+/* Each tile's plane fitted to its own piece of surface (part, as below)
+ * within its row and columns; -1 when memory runs out (tile_plane.c). */
+int tile_fit_planes(fm_tiles *t, const fm_mesh *set, const int32_t *part);
+
+/* The least sine of dip a tile of a row dz deep and dw wide down dip (at
+ * the fault's mean dip there) takes: a surface locally flatter than that
+ * (or a dip of under 2 degrees) would give a tile reaching far beyond its
+ * row, over its neighbours; 1.5 dw at most. */
+static inline double tile_min_sin(double dz, double dw)
+{
+    double s = dw > 0 ? dz / (1.5 * dw) : 0;
+    return s > 0.0348994967025 ? s : 0.0348994967025;
+}
+int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, const int32_t *part);
 
 /* Distance from p to the tile's rectangle, and from p to its plane in
  * *plane (signed, along the upward normal) when plane is not NULL; *inside
  * whether p projects into the rectangle. */
 double tile_distance(const fm_tile *t, const double p[3], double *plane, int *inside);
+
+/* Tile centres in cubic cells, for the pairs and points near each other
+ * (tile_grid.c). */
+typedef struct tile_grid {
+    double lo[3], cell;
+    fm_keyed *e; /* key: cell, index: tile */
+    size_t n;
+} tile_grid;
+/* Cells of about reach over t's tiles as they are now; -1 when memory runs
+ * out (free g->e either way). */
+int tile_grid_make(tile_grid *g, const fm_tiles *t, double reach);
+/* Calls fn for every tile whose centre lies in a cell within reach of p,
+ * until it returns non-zero. */
+typedef int (*tile_grid_fn)(size_t tile, void *user);
+void tile_grid_near(const tile_grid *g, const double p[3], double reach, tile_grid_fn fn,
+                    void *user);
 
 #endif

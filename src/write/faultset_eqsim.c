@@ -96,6 +96,71 @@ static void put_int(fs_out *o, uint64_t v)
     fs_out_u64(o, v);
 }
 
+static const field_desc rectangle_fields[] = {
+    {"index", 1, "Element index number (consecutive integers, starting with 1)"},
+    {"vertex_1", 1, "Vertex index number for corner #1 (counting counterclockwise as viewed from positive side of element)"},
+    {"vertex_2", 1, "Vertex index number for corner #2 (counting counterclockwise as viewed from positive side of element)"},
+    {"vertex_3", 1, "Vertex index number for corner #3 (counting counterclockwise as viewed from positive side of element)"},
+    {"vertex_4", 1, "Vertex index number for corner #4 (counting counterclockwise as viewed from positive side of element)"},
+    {"rake", 2, "Rake angle (decimal degrees)"},
+    {"slip_rate", 2, "Element slip rate (meters/second)"},
+    {"aseis_factor", 2, "Element aseismicity factor"},
+    {"strike", 2, "Strike angle (decimal degrees)"},
+    {"dip", 2, "Dip angle (decimal degrees)"},
+    {"perfect_flag", 1, "Perfect flag (0 = not perfect rectangle, 1 = perfect rectangle)"},
+};
+
+void sim_eqsim_head(fs_out *o, const char *title, int sph, const fm_reproject *rp,
+                    const char *crs, int rectangles)
+{
+    fs_out_str(o, "101 EQSim_Input_Geometry_2 4\n");
+    fs_out_printf(o, "111 %s\n", title);
+    fs_out_printf(o, "112 faultmesh %s\n", FM_VERSION_STRING);
+    if (sph) {
+        PJ_INFO pi = proj_info();
+        fs_out_printf(o, "110 Coordinates: spherical, latitude and longitude in decimal "
+                         "degrees on WGS 84 (EPSG:4326), converted with PROJ %s from %.200s\n",
+                      pi.version, crs);
+        fs_out_printf(o, "110 PROJ operation (one for every vertex): %s, accuracy %s\n",
+                      fm_reproject_name(rp), fm_reproject_accuracy(rp));
+        fs_out_str(o, "110 PROJ pipeline: ");
+        fs_out_str(o, fm_reproject_pipeline(rp));
+        fs_out_char(o, '\n');
+        fs_out_printf(o, "110 Strike from true north, dip: from the converted corners in "
+                         "earth-centred coordinates (depth as height over the ellipsoid), seen "
+                         "in the east-north-up frame at each %s\n",
+                      rectangles ? "rectangle" : "triangle");
+    } else {
+        fs_out_printf(o, "110 Coordinates: rectangular, y (north) in the lat fields and x "
+                         "(east) in the lon fields, meters, CRS %.200s\n",
+                      crs && crs[0] ? crs : "not given");
+        fs_out_str(o, "110 Strike from grid north (+y), dip\n");
+    }
+    fs_out_str(o, "110 Depth: elevation in meters, negative underground; das: meters along "
+                  "the section's mean strike in the mesh's own coordinates\n");
+    fs_out_str(o, rectangles ? "110 Rectangle corners: top and bottom at the start of the "
+                               "strike, then bottom and top at its end, counterclockwise seen "
+                               "from above (the upward normal side); rake: Aki & Richards; "
+                               "slip rate: meters/second\n"
+                             : "110 Triangle corners counterclockwise seen from above (the "
+                               "upward normal side); rake: Aki & Richards; slip rate: "
+                               "meters/second\n");
+    fs_out_str(o, "102 End_Metadata\n");
+    put_record_desc(o, 200, "summary", "Record 200: Fault system summary", summary_fields,
+                    sizeof summary_fields / sizeof *summary_fields);
+    put_record_desc(o, 201, "section", "Record 201: Fault section information",
+                    section_fields, sizeof section_fields / sizeof *section_fields);
+    put_record_desc(o, 202, "vertex", "Record 202: Vertex", vertex_fields,
+                    sizeof vertex_fields / sizeof *vertex_fields);
+    if (rectangles)
+        put_record_desc(o, 204, "rectangle", "Record 204: Rectangle", rectangle_fields,
+                        sizeof rectangle_fields / sizeof *rectangle_fields);
+    else
+        put_record_desc(o, 203, "triangle", "Record 203: Triangle", triangle_fields,
+                        sizeof triangle_fields / sizeof *triangle_fields);
+    fs_out_str(o, "103 End_Descriptor\n");
+}
+
 fm_status fm_eqsim_check_crs(const char *crs, fm_error *err)
 {
     if (!crs || !crs[0])
@@ -149,7 +214,7 @@ static fm_status convert_vertices(const fm_faultset *fs, fm_eqsim_coords coords,
  * metres. The corners go through earth-centred coordinates exactly
  * rather than a flat local approximation, whose curvature error (d^2/2R,
  * 2 cm over 500 m) tilts thin triangles by degrees. */
-static void enu_normal(const double lat[3], const double lon[3], const double z[3], double n[3])
+void sim_enu_normal(const double lat[3], const double lon[3], const double z[3], double n[3])
 {
     const double a = 6378137.0, f = 1 / 298.257223563, e2 = f * (2 - f);
     double p[3][3], c[3] = {0, 0, 0};
@@ -391,42 +456,10 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
     }
     if (st == FM_OK) {
         int sph = coords == FM_EQSIM_SPHERICAL;
-        fs_out_str(o, "101 EQSim_Input_Geometry_2 4\n");
-        fs_out_printf(o, "111 faultmesh fault set: %zu sections, %zu triangles\n", fs->nfaults, nt);
-        fs_out_printf(o, "112 faultmesh %s\n", FM_VERSION_STRING);
-        if (sph) {
-            PJ_INFO pi = proj_info();
-            fs_out_printf(o, "110 Coordinates: spherical, latitude and longitude in decimal "
-                             "degrees on WGS 84 (EPSG:4326), converted with PROJ %s from %.200s\n",
-                          pi.version, fs->crs);
-            fs_out_printf(o, "110 PROJ operation (one for every vertex): %s, accuracy %s\n",
-                          fm_reproject_name(rp), fm_reproject_accuracy(rp));
-            fs_out_str(o, "110 PROJ pipeline: ");
-            fs_out_str(o, fm_reproject_pipeline(rp));
-            fs_out_char(o, '\n');
-            fs_out_str(o, "110 Strike from true north, dip: from the converted corners in "
-                          "earth-centred coordinates (depth as height over the ellipsoid), seen "
-                          "in the east-north-up frame at each triangle\n");
-        } else {
-            fs_out_printf(o, "110 Coordinates: rectangular, y (north) in the lat fields and x "
-                             "(east) in the lon fields, meters, CRS %.200s\n",
-                          fs->crs && fs->crs[0] ? fs->crs : "not given");
-            fs_out_str(o, "110 Strike from grid north (+y), dip\n");
-        }
-        fs_out_str(o, "110 Depth: elevation in meters, negative underground; das: meters along "
-                      "the section's mean strike in the mesh's own coordinates\n");
-        fs_out_str(o, "110 Triangle corners counterclockwise seen from above (the upward normal "
-                      "side); rake: Aki & Richards; slip rate: meters/second\n");
-        fs_out_str(o, "102 End_Metadata\n");
-        put_record_desc(o, 200, "summary", "Record 200: Fault system summary", summary_fields,
-                        sizeof summary_fields / sizeof *summary_fields);
-        put_record_desc(o, 201, "section", "Record 201: Fault section information",
-                        section_fields, sizeof section_fields / sizeof *section_fields);
-        put_record_desc(o, 202, "vertex", "Record 202: Vertex", vertex_fields,
-                        sizeof vertex_fields / sizeof *vertex_fields);
-        put_record_desc(o, 203, "triangle", "Record 203: Triangle", triangle_fields,
-                        sizeof triangle_fields / sizeof *triangle_fields);
-        fs_out_str(o, "103 End_Descriptor\n");
+        char title[160];
+        snprintf(title, sizeof title, "faultmesh fault set: %zu sections, %zu triangles",
+                 fs->nfaults, nt);
+        sim_eqsim_head(o, title, sph, rp, fs->crs, 0);
         fs_out_str(o, "200");
         put_int(o, fs->nfaults);
         put_int(o, nvtotal);
@@ -531,7 +564,7 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
                         lo[k] = lon[c[k]];
                         z[k] = x[3 * (size_t)c[k] + 2];
                     }
-                    enu_normal(la, lo, z, nrm);
+                    sim_enu_normal(la, lo, z, nrm);
                     sim_strike_dip(nrm, &st_deg, &dip_deg);
                 } else {
                     fm_element_orient(x + 3 * (size_t)c[0], x + 3 * (size_t)c[1],

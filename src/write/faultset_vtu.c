@@ -18,7 +18,8 @@ fm_status fm_faultset_write_vtu(const char *path, const fm_faultset *fs, fm_erro
     const char *crs[1] = {fs->crs};
     fm_vtu_strings fsd[2] = {{"fault_names", fs->names, fs->nfaults}, {"crs", crs, 1}};
     size_t nfs = fs->crs && fs->crs[0] ? 2 : 1;
-    fm_vtu_content c = {fs->mesh, NULL, 0, cd, fs->ncell_data + 1, fsd, nfs};
+    fm_vtu_content c = {.mesh = fs->mesh, .cell_data = cd, .ncell_data = fs->ncell_data + 1,
+                        .field_strings = fsd, .nfield_strings = nfs};
     st = fm_vtu_write(path, &c, err);
     free(cd);
     return st;

@@ -1,6 +1,7 @@
 /* faultmesh write: VTK XML UnstructuredGrid (.vtu) for ParaView.
  *
- * Triangles only (VTK cell type 5). Arrays are written inline as base64
+ * Triangles (VTK cell type 5) of an fm_mesh, or quadrilaterals (type 9)
+ * over a point array. Arrays are written inline as base64
  * "binary" DataArrays with UInt64 headers, little-endian, which ParaView and
  * meshio both read. Coordinates are Float64, in the input CRS's metres.
  * Strings (fault names) have no portable VTU array type that every reader
@@ -36,13 +37,17 @@ typedef struct fm_vtu_strings {
 } fm_vtu_strings;
 
 typedef struct fm_vtu_content {
-    const fm_mesh *mesh;
+    const fm_mesh *mesh; /* NULL: the quadrilaterals at the end */
     const fm_vtu_array *point_data;
     size_t npoint_data;
     const fm_vtu_array *cell_data;
     size_t ncell_data;
     const fm_vtu_strings *field_strings;
     size_t nfield_strings;
+    const double *points; /* without a mesh: 3 per point */
+    size_t npoints;
+    const int32_t *quads; /* and 4 point indices per cell */
+    size_t nquads;
 } fm_vtu_content;
 
 /* Writes path atomically. */

@@ -31,7 +31,8 @@ fm_status fm_model_write_vtu(const char *path, const char *name, const fm_model 
     fm_vtu_array cd = {"sheet", FM_VTU_INT32, 1, sheet};
     const char *names[1] = {name};
     fm_vtu_strings fs = {"fault_names", names, 1};
-    fm_vtu_content c = {all, &pd, 1, &cd, 1, &fs, 1};
+    fm_vtu_content c = {.mesh = all, .point_data = &pd, .npoint_data = 1, .cell_data = &cd,
+                        .ncell_data = 1, .field_strings = &fs, .nfield_strings = 1};
     rc = fm_vtu_write(path, &c, err);
     fm_mesh_destroy(all);
     free(dist);

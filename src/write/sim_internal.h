@@ -19,4 +19,15 @@ void sim_section_names_free(char **sect, size_t n);
 fm_status sim_check_slip(const fm_faultset *fs, const fm_sim_slip *slip, const char *path,
                          fm_error *err);
 
+/* The EQSim geometry file's metadata and descriptors, up to and with
+ * 103 End_Descriptor: records 200-202 and 203 (triangles) or 204
+ * (rectangles); rp is the spherical conversion (sph). */
+struct fs_out;
+struct fm_reproject;
+void sim_eqsim_head(struct fs_out *o, const char *title, int sph, const struct fm_reproject *rp,
+                    const char *crs, int rectangles);
+/* Normal of the triangle of three corners given as lat, lon (degrees) and
+ * elevation (m) in the east-north-up frame at their mean position. */
+void sim_enu_normal(const double lat[3], const double lon[3], const double z[3], double n[3]);
+
 #endif

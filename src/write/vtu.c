@@ -110,7 +110,9 @@ static int little_endian(void)
 
 static void write_body(fs_out *fp, const fm_vtu_content *c)
 {
-    size_t nv = fm_mesh_nvertices(c->mesh), nt = fm_mesh_ntriangles(c->mesh);
+    size_t nv = c->mesh ? fm_mesh_nvertices(c->mesh) : c->npoints;
+    size_t nt = c->mesh ? fm_mesh_ntriangles(c->mesh) : c->nquads;
+    int corners = c->mesh ? 3 : 4;
     fs_out_str(fp, "<?xml version=\"1.0\"?>\n"
           "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
           "header_type=\"UInt64\">\n  <UnstructuredGrid>\n");
@@ -137,11 +139,12 @@ static void write_body(fs_out *fp, const fm_vtu_content *c)
     fs_out_printf(fp, "    <Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n", nv, nt);
     fs_out_str(fp, "      <Points>\n");
     array_open(fp, "Float64", "Points", 3);
-    write_binary(fp, fm_mesh_vertices(c->mesh), nv * 3 * sizeof(double));
+    write_binary(fp, c->mesh ? fm_mesh_vertices(c->mesh) : c->points, nv * 3 * sizeof(double));
     array_close(fp);
     fs_out_str(fp, "      </Points>\n      <Cells>\n");
     array_open(fp, "Int32", "connectivity", 1);
-    write_binary(fp, fm_mesh_triangles(c->mesh), nt * 3 * sizeof(int32_t));
+    write_binary(fp, c->mesh ? fm_mesh_triangles(c->mesh) : c->quads,
+                 nt * (size_t)corners * sizeof(int32_t));
     array_close(fp);
 
     /* offsets and types, streamed in chunks to stay small in memory */
@@ -151,7 +154,7 @@ static void write_body(fs_out *fp, const fm_vtu_content *c)
         uint64_t header = nt * sizeof(int32_t);
         b64_put(&b, &header, sizeof header);
         for (size_t t = 0; t < nt; t++) {
-            int32_t off = (int32_t)(3 * (t + 1));
+            int32_t off = (int32_t)((size_t)corners * (t + 1));
             b64_put(&b, &off, sizeof off);
         }
         b64_finish(&b);
@@ -162,7 +165,7 @@ static void write_body(fs_out *fp, const fm_vtu_content *c)
         b64 b = {fp, {0}, 0};
         uint64_t header = nt;
         b64_put(&b, &header, sizeof header);
-        const unsigned char tri = 5; /* VTK_TRIANGLE */
+        const unsigned char tri = c->mesh ? 5 : 9; /* VTK_TRIANGLE, VTK_QUAD */
         for (size_t t = 0; t < nt; t++)
             b64_put(&b, &tri, 1);
         b64_finish(&b);

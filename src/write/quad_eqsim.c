@@ -1,0 +1,251 @@
+/* Rectangular elements as an EQSim input geometry file (record 204). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fm_atomic.h"
+#include "fm_names.h"
+#include "fm_reproject.h"
+#include "fs_out.h"
+#include "quad_internal.h"
+#include "sim_internal.h"
+
+#define DEG2RAD (3.14159265358979323846 / 180)
+
+static void put_num(fs_out *o, double v)
+{
+    fs_out_char(o, ' ');
+    fs_out_double(o, v);
+}
+
+static void put_int(fs_out *o, uint64_t v)
+{
+    fs_out_char(o, ' ');
+    fs_out_u64(o, v);
+}
+
+/* lat (or y) and lon (or x) of every corner. */
+static fm_status convert(const fm_quadset *qs, int sph, double *lat, double *lon,
+                         fm_reproject **rp, const char *path, fm_error *err)
+{
+    size_t n = 4 * qs->nquads;
+    const double *c = qs->corners;
+    if (!sph) {
+        for (size_t i = 0; i < n; i++) {
+            lat[i] = c[3 * i + 1];
+            lon[i] = c[3 * i];
+        }
+        return FM_OK;
+    }
+    double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < n; i++) {
+        bb[0] = fmin(bb[0], c[3 * i]);
+        bb[1] = fmin(bb[1], c[3 * i + 1]);
+        bb[2] = fmax(bb[2], c[3 * i]);
+        bb[3] = fmax(bb[3], c[3 * i + 1]);
+    }
+    *rp = fm_reproject_create(qs->crs, "EPSG:4326", bb, path, err);
+    if (!*rp)
+        return err ? err->code : FM_ERR_INVALID;
+    for (size_t i = 0; i < n; i++)
+        if (fm_reproject_point(*rp, c[3 * i], c[3 * i + 1], &lon[i], &lat[i]) ||
+            fabs(lat[i]) > 90)
+            return fm_error_set(err, FM_ERR_NUMERIC, path, 0,
+                                "PROJ cannot convert corner (%.3f, %.3f) from '%s' to WGS 84",
+                                c[3 * i], c[3 * i + 1], qs->crs);
+    return FM_OK;
+}
+
+/* The section's mean strike direction (east, north): the axial mean of
+ * its elements' strikes weighted by area, pointed the way most point. */
+static void mean_strike(const fm_quadset *qs, size_t a, size_t b, double dir[2])
+{
+    double c2 = 0, s2 = 0, th, sense = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        for (size_t i = a; i < b; i++) {
+            const double *c = qs->corners + 12 * i;
+            double st, dp, L = hypot(c[9] - c[0], c[10] - c[1]);
+            fm_quad_strike_dip(c, &st, &dp);
+            (void)dp;
+            if (pass == 0) {
+                c2 += L * cos(2 * st * DEG2RAD);
+                s2 += L * sin(2 * st * DEG2RAD);
+            } else {
+                sense += L * cos(st * DEG2RAD - th);
+            }
+        }
+        th = (c2 == 0 && s2 == 0) ? 0 : atan2(s2, c2) / 2;
+    }
+    if (sense < 0)
+        th += 3.14159265358979323846;
+    dir[0] = sin(th);
+    dir[1] = cos(th);
+}
+
+fm_status fm_quadset_write_eqsim(const char *path, const fm_quadset *qs, fm_eqsim_coords coords,
+                                 fm_error *err)
+{
+    fm_status st = quad_validate(qs, path, err);
+    if (st != FM_OK)
+        return st;
+    if (coords != FM_EQSIM_SPHERICAL && coords != FM_EQSIM_RECTANGULAR)
+        return fm_error_set(err, FM_ERR_INVALID, path, 0, "unknown EQSim coordinate system %d",
+                            (int)coords);
+    int sph = coords == FM_EQSIM_SPHERICAL;
+    if (sph && (!qs->crs || !qs->crs[0]))
+        return fm_error_set(err, FM_ERR_INVALID, path, 0,
+                            "spherical EQSim coordinates need a CRS (--crs)");
+    size_t n = 4 * qs->nquads;
+    double *lat = malloc((n + 1) * sizeof *lat), *lon = malloc((n + 1) * sizeof *lon);
+    double *das = malloc((n + 1) * sizeof *das);
+    char **sect = fm_short_names(qs->names, qs->nfaults, FM_SECTION_NAME_MAX);
+    fm_reproject *rp = NULL;
+    if (!lat || !lon || !das || !sect)
+        st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    if (st == FM_OK)
+        st = convert(qs, sph, lat, lon, &rp, path, err);
+    fm_atomic_file *af = NULL;
+    fs_out *o = NULL;
+    if (st == FM_OK && !(af = fm_atomic_open(path, err)))
+        st = err ? err->code : FM_ERR_IO;
+    if (st == FM_OK && !(o = fs_out_open(fm_atomic_stream(af)))) {
+        fm_atomic_abort(af);
+        st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    }
+    if (st == FM_OK) {
+        size_t nsec = 0;
+        double bl[2] = {INFINITY, -INFINITY}, bo[2] = {INFINITY, -INFINITY},
+               bz[2] = {INFINITY, -INFINITY};
+        for (size_t i = 0; i < n; i++) {
+            bl[0] = fmin(bl[0], lat[i]);
+            bl[1] = fmax(bl[1], lat[i]);
+            bo[0] = fmin(bo[0], lon[i]);
+            bo[1] = fmax(bo[1], lon[i]);
+            bz[0] = fmin(bz[0], qs->corners[3 * i + 2]);
+            bz[1] = fmax(bz[1], qs->corners[3 * i + 2]);
+        }
+        for (size_t i = 0; i < qs->nquads; i++)
+            nsec += i == 0 || qs->fault[i] != qs->fault[i - 1];
+        char title[160];
+        snprintf(title, sizeof title, "faultmesh fault set: %zu sections, %zu rectangles", nsec,
+                 qs->nquads);
+        sim_eqsim_head(o, title, sph, rp, qs->crs, 1);
+        fs_out_str(o, "200");
+        put_int(o, nsec);
+        put_int(o, n);
+        put_int(o, 0);
+        put_int(o, qs->nquads);
+        put_num(o, n ? bl[0] : 0);
+        put_num(o, n ? bl[1] : 0);
+        put_num(o, n ? bo[0] : 0);
+        put_num(o, n ? bo[1] : 0);
+        put_num(o, n ? bz[0] : 0);
+        put_num(o, n ? bz[1] : 0);
+        put_int(o, sph ? 0 : 1);
+        fs_out_char(o, '\n');
+        for (size_t a = 0; a < qs->nquads;) {
+            size_t b = a + 1;
+            while (b < qs->nquads && qs->fault[b] == qs->fault[a])
+                b++;
+            double dir[2], dlo = INFINITY, dhi = -INFINITY;
+            mean_strike(qs, a, b, dir);
+            double sl[2] = {INFINITY, -INFINITY}, so[2] = {INFINITY, -INFINITY},
+                   sz[2] = {INFINITY, -INFINITY};
+            for (size_t v = 4 * a; v < 4 * b; v++) {
+                const double *p = qs->corners + 3 * v;
+                das[v] = dir[0] * p[0] + dir[1] * p[1];
+                dlo = fmin(dlo, das[v]);
+                sl[0] = fmin(sl[0], lat[v]);
+                sl[1] = fmax(sl[1], lat[v]);
+                so[0] = fmin(so[0], lon[v]);
+                so[1] = fmax(so[1], lon[v]);
+                sz[0] = fmin(sz[0], p[2]);
+                sz[1] = fmax(sz[1], p[2]);
+            }
+            /* the trace: upper corners of the top row; 2 and 3 at its ends */
+            size_t first = SIZE_MAX, last = SIZE_MAX;
+            for (size_t v = 4 * a; v < 4 * b; v++) {
+                das[v] -= dlo;
+                dhi = fmax(dhi, das[v]);
+                size_t i = v / 4, k = v % 4;
+                if (qs->top && qs->top[i] && (k == 0 || k == 3)) {
+                    if (first == SIZE_MAX || das[v] < das[first])
+                        first = v;
+                    if (last == SIZE_MAX || das[v] > das[last])
+                        last = v;
+                }
+            }
+            int32_t f = qs->fault[a];
+            fs_out_str(o, "201");
+            put_int(o, (uint64_t)f + 1);
+            fs_out_char(o, ' ');
+            fs_out_str(o, sect[f]);
+            put_int(o, 4 * (b - a));
+            put_int(o, 0);
+            put_int(o, b - a);
+            put_num(o, sl[0]);
+            put_num(o, sl[1]);
+            put_num(o, so[0]);
+            put_num(o, so[1]);
+            put_num(o, sz[0]);
+            put_num(o, sz[1]);
+            put_num(o, 0);
+            put_num(o, dhi);
+            put_int(o, (uint64_t)f + 1);
+            fs_out_char(o, '\n');
+            for (size_t v = 4 * a; v < 4 * b; v++) {
+                size_t i = v / 4, k = v % 4;
+                int on = qs->top && qs->top[i] && (k == 0 || k == 3);
+                fs_out_str(o, "202");
+                put_int(o, v + 1);
+                put_num(o, lat[v]);
+                put_num(o, lon[v]);
+                put_num(o, qs->corners[3 * v + 2]);
+                put_num(o, das[v]);
+                put_int(o, !on ? 0 : v == first ? 2 : v == last ? 3 : 1);
+                fs_out_char(o, '\n');
+            }
+            for (size_t i = a; i < b; i++) {
+                const double *c = qs->corners + 12 * i;
+                double sd, dd;
+                if (sph) {
+                    double la[3], lo[3], z[3], nrm[3];
+                    const int k3[3] = {0, 1, 3};
+                    /* corners 0, 1, 3: down dip then along strike, as the
+                     * triangle writer's corner order has it */
+                    for (int k = 0; k < 3; k++) {
+                        size_t v = 4 * i + (size_t)k3[k];
+                        la[k] = lat[v];
+                        lo[k] = lon[v];
+                        z[k] = qs->corners[3 * v + 2];
+                    }
+                    sim_enu_normal(la, lo, z, nrm);
+                    sim_strike_dip(nrm, &sd, &dd);
+                } else {
+                    fm_quad_strike_dip(c, &sd, &dd);
+                }
+                fs_out_str(o, "204");
+                put_int(o, i + 1);
+                for (int k = 0; k < 4; k++)
+                    put_int(o, 4 * i + (size_t)k + 1);
+                put_num(o, quad_rake(qs, i));
+                put_num(o, quad_rate(qs, i));
+                put_num(o, 0);
+                put_num(o, sd);
+                put_num(o, dd);
+                put_int(o, 1);
+                fs_out_char(o, '\n');
+            }
+            a = b;
+        }
+        fs_out_str(o, "999 End\n");
+        st = fs_out_commit(o, af, path, err);
+    }
+    fm_short_names_free(sect, qs->nfaults);
+    free(lat);
+    free(lon);
+    free(das);
+    fm_reproject_destroy(rp);
+    return st;
+}
