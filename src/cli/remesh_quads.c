@@ -60,9 +60,10 @@ fm_status write_quads(const remesh_cli *cli, const fm_faultset *fs, sim_attrs *s
     double *rake = malloc((n + 1) * sizeof *rake), *rate = malloc((n + 1) * sizeof *rate);
     int32_t *fault = malloc((n + 1) * sizeof *fault);
     unsigned char *top = malloc(n + 1);
+    double *flat = malloc((n + 1) * sizeof *flat);
     size_t plen = strlen(cli->dir) + 32;
     char *path = malloc(plen);
-    if (!corners || !rake || !rate || !fault || !top || !path) {
+    if (!corners || !rake || !rate || !fault || !top || !flat || !path) {
         st = fm_error_set(err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
     } else {
         const double *x = fm_mesh_vertices(fs->mesh);
@@ -76,8 +77,9 @@ fm_status write_quads(const remesh_cli *cli, const fm_faultset *fs, sim_attrs *s
             rate[i] = sa->rate_t[k];
             fault[i] = tl->fault;
             top[i] = tl->row == 0;
+            flat[i] = tl->flatness;
         }
-        fm_quadset qs = {corners, fault, top, n, fs->names, fs->nfaults, fs->crs, rake, rate};
+        fm_quadset qs = {corners, fault, top, n, fs->names, fs->nfaults, fs->crs, rake, rate, flat};
         static const char *const file[4] = {"mesh.vtu", "mesh.msh", "mesh.rsqsim", "mesh.eqsim"};
         static const unsigned bit[4] = {FMT_VTU, FMT_MSH, FMT_RSQSIM, FMT_EQSIM};
         for (int k = 0; k < 4; k++) {
@@ -103,6 +105,7 @@ fm_status write_quads(const remesh_cli *cli, const fm_faultset *fs, sim_attrs *s
     free(rate);
     free(fault);
     free(top);
+    free(flat);
     free(path);
     return st;
 }

@@ -213,9 +213,61 @@ static int tile_piece(tiler *tl, int32_t fault, int32_t row, double sa, double s
     return push_tile(tl->out, &t, ztop, zbot, tl->rowdw);
 }
 
-/* The contour held in tl cut into tiles. */
-static int tile_contour(tiler *tl, int32_t fault, int32_t row, int closed, double ztop,
+/* Whether p lies under a tile of this row made so far (from first on). */
+static int covered(const tiler *tl, size_t first, const double p[3])
+{
+    for (size_t i = first; i < tl->out->n; i++) {
+        double w;
+        int inside;
+        tile_distance(&tl->out->tile[i], p, &w, &inside);
+        if (inside && fabs(w) <= tl->size)
+            return 1;
+    }
+    return 0;
+}
+
+/* The stretches of the contour in tl that no tile of the row (from
+ * first on) covers, tiled: where the surface does not reach the row's
+ * middle depth. */
+static int fill_contour(tiler *tl, int32_t fault, int32_t row, size_t first, double ztop,
                         double zbot)
+{
+    double len = tl->s[tl->npt - 1], step = tl->size / 8;
+    long ns = (long)ceil(len / step);
+    if (ns < 1)
+        return 0;
+    double run = -1;
+    for (long k = 0; k <= ns + 1; k++) {
+        double s = fmin(len, (double)k * len / (double)ns), p[3];
+        int open = k <= ns;
+        if (open) {
+            point_at(tl, s, p);
+            open = !covered(tl, first, p);
+        }
+        if (open && run < 0)
+            run = k ? s - len / (double)ns / 2 : 0;
+        if (!open && run >= 0) {
+            double end = k <= ns ? s - len / (double)ns / 2 : len;
+            double l = end - run;
+            if (l >= tl->size / 4) {
+                long nc = lround(l / tl->size);
+                if (nc < 1)
+                    nc = 1;
+                for (long j = 0; j < nc; j++)
+                    if (tile_piece(tl, fault, row, run + l * (double)j / (double)nc,
+                                   run + l * (double)(j + 1) / (double)nc, ztop, zbot))
+                        return -1;
+            }
+            run = -1;
+        }
+    }
+    return 0;
+}
+
+/* The contour held in tl cut into tiles; fill (the first tile of the row
+ * from fill - 1 on): only what the row's tiles do not cover yet. */
+static int tile_contour(tiler *tl, int32_t fault, int32_t row, int closed, double ztop,
+                        double zbot, size_t fill)
 {
     if (tl->npt < 2)
         return 0;
@@ -224,6 +276,8 @@ static int tile_contour(tiler *tl, int32_t fault, int32_t row, int closed, doubl
         const double *a = tl->pt + 3 * (i - 1), *b = tl->pt + 3 * i;
         tl->s[i] = tl->s[i - 1] + hypot(b[0] - a[0], b[1] - a[1]);
     }
+    if (fill)
+        return fill_contour(tl, fault, row, fill - 1, ztop, zbot);
     double len = tl->s[tl->npt - 1];
     long ncol = lround(len / tl->size);
     if (closed) {
@@ -278,7 +332,7 @@ static int walk(tiler *tl, size_t t, int kin, double level)
 
 /* Every contour of fault f at level, tiled. */
 static int tile_row(tiler *tl, int32_t f, const size_t *tris, size_t n, int32_t row,
-                    double level, double ztop, double zbot)
+                    double level, double ztop, double zbot, size_t fill)
 {
     tl->cur++;
     /* open contours first, from their ends, then closed ones */
@@ -300,7 +354,7 @@ static int tile_row(tiler *tl, int32_t f, const size_t *tris, size_t n, int32_t 
                 kin = k[0];
             }
             if (walk(tl, t, kin, level) ||
-                tile_contour(tl, f, row, pass == 1, ztop, zbot))
+                tile_contour(tl, f, row, pass == 1, ztop, zbot, fill))
                 return -1;
         }
     return 0;
@@ -374,21 +428,28 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
         double zbot = r == nrows - 1 ? zlo
                                      : depth_at(dd, zlo, dz, dtot * (double)(nrows - r - 1) /
                                                                  (double)nrows);
-        double level = (ztop + zbot) / 2;
-        /* no vertex exactly at the level, so that every crossing is on a
-         * side between a vertex above and one below */
-        for (int again = 1; again;) {
-            again = 0;
-            for (size_t i = 0; i < n && !again; i++)
-                for (int k = 0; k < 3; k++)
-                    if (x[3 * (size_t)tri[3 * tris[i] + (size_t)k] + 2] == level) {
-                        level = nextafter(level, -INFINITY);
-                        again = 1;
-                        break;
-                    }
+        /* the middle depth, then a quarter from the top and from the bottom
+         * for what the first leaves out */
+        size_t first = tl->out->n;
+        for (int q = 0; q < 3; q++) {
+            double level = q == 0 ? (ztop + zbot) / 2
+                           : q == 1 ? ztop - (ztop - zbot) / 4
+                                    : zbot + (ztop - zbot) / 4;
+            /* no vertex exactly at the level, so that every crossing is on
+             * a side between a vertex above and one below */
+            for (int again = 1; again;) {
+                again = 0;
+                for (size_t i = 0; i < n && !again; i++)
+                    for (int k = 0; k < 3; k++)
+                        if (x[3 * (size_t)tri[3 * tris[i] + (size_t)k] + 2] == level) {
+                            level = nextafter(level, -INFINITY);
+                            again = 1;
+                            break;
+                        }
+            }
+            if (tile_row(tl, f, tris, n, (int32_t)r, level, ztop, zbot, q ? first + 1 : 0))
+                return -1;
         }
-        if (tile_row(tl, f, tris, n, (int32_t)r, level, ztop, zbot))
-            return -1;
     }
     return 0;
 }
@@ -464,32 +525,8 @@ fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_ti
         for (size_t f = 0; f < nfaults; f++)
             start[f + 1] += start[f];
     }
-    int32_t *part = bad ? NULL : malloc((nt + 1) * sizeof *part);
-    if (!bad && part) {
-        /* pieces: triangles joined across the sides nbr joins */
-        for (size_t i = 0; i < nt; i++)
-            part[i] = -1;
-        size_t *stack = order; /* free until the faults' triangles go in */
-        for (size_t i = 0; i < nt; i++) {
-            if (part[i] >= 0)
-                continue;
-            size_t top = 0;
-            stack[top++] = i;
-            part[i] = (int32_t)i;
-            while (top) {
-                size_t c = stack[--top];
-                for (int k = 0; k < 3; k++) {
-                    int32_t o = nbr[3 * c + (size_t)k];
-                    if (o >= 0 && part[o] < 0) {
-                        part[o] = (int32_t)i;
-                        stack[top++] = (size_t)o;
-                    }
-                }
-            }
-        }
-    }
     /* each fault's triangles, in order */
-    if (!bad && part) {
+    if (!bad) {
         size_t *pos = malloc((nfaults + 1) * sizeof *pos);
         bad = !pos;
         if (pos) {
@@ -499,16 +536,19 @@ fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_ti
             free(pos);
         }
     }
-    for (size_t f = 0; !bad && part && f < nfaults; f++)
+    for (size_t f = 0; !bad && f < nfaults; f++)
         bad = tile_fault(&tl, (int32_t)f, order + start[f], start[f + 1] - start[f]) != 0;
+    tile_walk w = {tl.x, tl.tri, nbr, calloc(nt + 1, sizeof(uint32_t)), 0,
+                   malloc((nt + 1) * sizeof(int32_t)), 0};
     if (!bad)
-        bad = !part || tile_fit_planes(t, set, part) || tile_separate(t) ||
-              tile_measure(t, set, &sd, part);
+        bad = !w.stamp || !w.list || tile_fit_planes(t, &w) || tile_separate(t) ||
+              tile_measure(t, set, &sd, &w);
+    free(w.stamp);
+    free(w.list);
     if (t) {
         free(t->band);
         t->band = NULL;
     }
-    free(part);
     free(nbr);
     free(stamp);
     free(start);

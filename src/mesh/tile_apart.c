@@ -215,8 +215,6 @@ typedef struct near_ctx {
     double flat;    /* unused by the gap search */
     size_t count;   /* meeting pairs (count_meeting) */
     size_t i;
-    const int32_t *part; /* flat_sample: the samples' piece against the tile's */
-    int32_t piece;
 } near_ctx;
 
 static int nearest_of_fault(size_t j, void *user)
@@ -225,20 +223,6 @@ static int nearest_of_fault(size_t j, void *user)
     const fm_tile *b = &c->t->tile[j];
     if (b->fault == c->fault)
         c->best = fmin(c->best, tile_distance(b, c->p, NULL, NULL));
-    return 0;
-}
-
-static int flat_sample(size_t j, void *user)
-{
-    near_ctx *c = user;
-    fm_tile *b = &((fm_tiles *)c->t)->tile[j];
-    if (b->fault != c->fault || c->part[b->triangle] != c->piece)
-        return 0;
-    double w;
-    int inside;
-    tile_distance(b, c->p, &w, &inside);
-    if (inside && fabs(w) < c->t->stats.size)
-        b->flatness = fmax(b->flatness, fabs(w));
     return 0;
 }
 
@@ -323,8 +307,8 @@ static int measure_gaps(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, c
                     double pt[3];
                     for (int d = 0; d < 3; d++)
                         pt[d] = a[d] + (b[d] - a[d]) * k / 4.0;
-                    near_ctx ca = {t, pt, fa, reach, 0, 0, 0, NULL, 0};
-                    near_ctx cb = {t, pt, fb, reach, 0, 0, 0, NULL, 0};
+                    near_ctx ca = {t, pt, fa, reach, 0, 0, 0};
+                    near_ctx cb = {t, pt, fb, reach, 0, 0, 0};
                     tile_grid_near(g, pt, reach, nearest_of_fault, &ca);
                     tile_grid_near(g, pt, reach, nearest_of_fault, &cb);
                     double gap = fmax(ca.best, cb.best);
@@ -365,7 +349,7 @@ static int measure_gaps(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, c
     return 0;
 }
 
-int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, const int32_t *part)
+int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, tile_walk *w)
 {
     const double *x = fm_mesh_vertices(set);
     const int32_t *tri = fm_mesh_triangles(set), *tag = fm_mesh_tags(set);
@@ -378,29 +362,38 @@ int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, const in
         free(g.e);
         return -1;
     }
-    /* flatness: the fault's surface sampled at each triangle's corners,
-     * side midpoints and centroid */
-    for (size_t i = 0; t->n && i < nt; i++) {
-        const double *c[3] = {x + 3 * (size_t)tri[3 * i], x + 3 * (size_t)tri[3 * i + 1],
-                              x + 3 * (size_t)tri[3 * i + 2]};
-        t->fault[tag[i]].area_triangles += fm_triangle_area(c[0], c[1], c[2]);
-        double p[7][3];
-        for (int d = 0; d < 3; d++) {
-            for (int k = 0; k < 3; k++) {
-                p[k][d] = c[k][d];
-                p[3 + k][d] = (c[k][d] + c[(k + 1) % 3][d]) / 2;
-            }
-            p[6][d] = (c[0][d] + c[1][d] + c[2][d]) / 3;
-        }
-        for (int k = 0; k < 7; k++) {
-            near_ctx nc = {t, p[k], tag[i], 0, 0, 0, 0, part, part[i]};
-            tile_grid_near(&g, p[k], rmax, flat_sample, &nc);
-        }
-    }
-    for (size_t i = 0; !t->n && i < nt; i++)
+    for (size_t i = 0; i < nt; i++)
         t->fault[tag[i]].area_triangles +=
             fm_triangle_area(x + 3 * (size_t)tri[3 * i], x + 3 * (size_t)tri[3 * i + 1],
                              x + 3 * (size_t)tri[3 * i + 2]);
+    /* flatness: the surface each tile stands for, sampled at its
+     * triangles' corners, side midpoints and centroids, where it lies
+     * under the tile */
+    for (size_t i = 0; i < t->n; i++) {
+        fm_tile *tl = &t->tile[i];
+        double c[4][3];
+        fm_tile_corners(tl, c);
+        double zlo = fmin(fmin(c[0][2], c[1][2]), fmin(c[2][2], c[3][2]));
+        double zhi = fmax(fmax(c[0][2], c[1][2]), fmax(c[2][2], c[3][2]));
+        tile_region(w, tl, zlo, zhi);
+        for (size_t k = 0; k < w->n; k++) {
+            const double *v[3];
+            for (int q = 0; q < 3; q++)
+                v[q] = x + 3 * (size_t)tri[3 * (size_t)w->list[k] + (size_t)q];
+            for (int q = 0; q < 7; q++) {
+                double p[3];
+                for (int d = 0; d < 3; d++)
+                    p[d] = q < 3 ? v[q][d]
+                           : q < 6 ? (v[q - 3][d] + v[(q - 2) % 3][d]) / 2
+                                   : (v[0][d] + v[1][d] + v[2][d]) / 3;
+                double wd;
+                int inside;
+                tile_distance(tl, p, &wd, &inside);
+                if (inside)
+                    tl->flatness = fmax(tl->flatness, fabs(wd));
+            }
+        }
+    }
     double *flat = malloc((t->n + 1) * sizeof *flat);
     if (!flat) {
         free(g.e);
@@ -434,7 +427,7 @@ int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, const in
         t->stats.area_ratio_min = 0;
     /* what still meets, counted by the same exact test */
     for (size_t i = 0; i < t->n; i++) {
-        near_ctx nc = {t, NULL, 0, 0, 0, 0, i, NULL, 0};
+        near_ctx nc = {t, NULL, 0, 0, 0, 0, i};
         tile_grid_near(&g, t->tile[i].centre, 2 * rmax, count_meeting, &nc);
         t->stats.meeting += nc.count;
     }

@@ -26,14 +26,27 @@ typedef struct tile_sides {
 } tile_sides;
 
 /* Tiles of different faults that meet cut back until none does, then the
- * measures of fm_tile_fault, fm_tile_junction and fm_tile_stats (part:
- * per triangle, its piece of the fault between outlines, junctions and
- * branch lines: a tile's flatness looks at its own piece only); -1 when
- * memory runs out (tile_apart.c). */
+ * measures of fm_tile_fault, fm_tile_junction and fm_tile_stats (a tile's
+ * flatness over the surface tile_region finds for it); -1 when memory
+ * runs out (tile_apart.c). */
 int tile_separate(fm_tiles *t);
-/* Each tile's plane fitted to its own piece of surface (part, as below)
- * within its row and columns; -1 when memory runs out (tile_plane.c). */
-int tile_fit_planes(fm_tiles *t, const fm_mesh *set, const int32_t *part);
+/* The surface a tile stands for: the triangles joined to the one under its
+ * centre (across the sides nbr joins: not across an outline, a junction
+ * or a branch line) that reach into its columns between depths zlo and
+ * zhi. Found by walking out from that triangle (tile_plane.c). */
+typedef struct tile_walk {
+    const double *x;
+    const int32_t *tri, *nbr;
+    uint32_t *stamp; /* per triangle */
+    uint32_t cur;
+    int32_t *list;   /* the triangles found */
+    size_t n;
+} tile_walk;
+void tile_region(tile_walk *w, const fm_tile *tl, double zlo, double zhi);
+
+/* Each tile's plane fitted to the surface it stands for; -1 when memory
+ * runs out (tile_plane.c). */
+int tile_fit_planes(fm_tiles *t, tile_walk *w);
 
 /* The least sine of dip a tile of a row dz deep and dw wide down dip (at
  * the fault's mean dip there) takes: a surface locally flatter than that
@@ -44,7 +57,8 @@ static inline double tile_min_sin(double dz, double dw)
     double s = dw > 0 ? dz / (1.5 * dw) : 0;
     return s > 0.0348994967025 ? s : 0.0348994967025;
 }
-int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, const int32_t *part);
+struct tile_walk;
+int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, struct tile_walk *w);
 
 /* Distance from p to the tile's rectangle, and from p to its plane in
  * *plane (signed, along the upward normal) when plane is not NULL; *inside

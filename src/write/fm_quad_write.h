@@ -36,6 +36,8 @@ typedef struct fm_quadset {
     const char *crs;           /* as fm_faultset's */
     const double *rake;        /* per element, degrees */
     const double *slip_rate;   /* per element, m/s */
+    const double *flatness;    /* per element: how far the surface departs from it, m
+                                  (VTU cell data); NULL: none */
 } fm_quadset;
 
 /* Strike and dip (degrees) of an element's corners by the convention. */
@@ -43,7 +45,8 @@ void fm_quad_strike_dip(const double c[12], double *strike, double *dip);
 
 /* VTU: VTK_QUAD cells (type 9), 4 points each in element order; Int32
  * cell data fault_id (the fault index), Float64 strike, dip, rake,
- * slip_rate, length, width; field data fault_names and crs. */
+ * slip_rate, length, width and flatness (when given); field data
+ * fault_names and crs. */
 fm_status fm_quadset_write_vtu(const char *path, const fm_quadset *qs, fm_error *err);
 
 /* Gmsh MSH 4.1 ASCII: one surface entity and one physical surface per

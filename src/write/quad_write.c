@@ -85,17 +85,19 @@ fm_status fm_quadset_write_vtu(const char *path, const fm_quadset *qs, fm_error 
         wid[i] = sqrt((c[3] - c[0]) * (c[3] - c[0]) + (c[4] - c[1]) * (c[4] - c[1]) +
                       (c[5] - c[2]) * (c[5] - c[2]));
     }
-    fm_vtu_array cells[7] = {{"fault_id", FM_VTU_INT32, 1, qs->fault},
+    fm_vtu_array cells[8] = {{"fault_id", FM_VTU_INT32, 1, qs->fault},
                              {"strike", FM_VTU_FLOAT64, 1, strike},
                              {"dip", FM_VTU_FLOAT64, 1, dip},
                              {"rake", FM_VTU_FLOAT64, 1, rake},
                              {"slip_rate", FM_VTU_FLOAT64, 1, rate},
                              {"length", FM_VTU_FLOAT64, 1, len},
-                             {"width", FM_VTU_FLOAT64, 1, wid}};
+                             {"width", FM_VTU_FLOAT64, 1, wid},
+                             {"flatness", FM_VTU_FLOAT64, 1, qs->flatness}};
     const char *crs[1] = {qs->crs ? qs->crs : ""};
     fm_vtu_strings strings[2] = {{"fault_names", qs->names, qs->nfaults}, {"crs", crs, 1}};
     fm_vtu_content content = {.points = qs->corners, .npoints = 4 * n, .quads = conn,
-                              .nquads = n, .cell_data = cells, .ncell_data = 7,
+                              .nquads = n, .cell_data = cells,
+                              .ncell_data = qs->flatness ? 8 : 7,
                               .field_strings = strings,
                               .nfield_strings = qs->crs && qs->crs[0] ? 2 : 1};
     st = fm_vtu_write(path, &content, err);
