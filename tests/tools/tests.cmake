@@ -340,3 +340,20 @@ if(FM_SYSTEM_PYTHON)
             ${FM_CFM_DIR}/../kinematics)
   set_tests_properties(cfm_kinematics_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
 endif()
+
+# Rectangular elements (issue 23), read back by check_quads.py as OpenSHA's
+# and Virtual Quake's EQSim readers and RSQSim's readFault read them:
+# quads_demo on the synthetic system (corrupted copies must fail), and
+# cfm_quads_500m_2000 on the whole CFM 500 m set at 2 km with the NSHM23
+# kinematics when present (skipped without the CFM; not in the sanitizer
+# run). Skipped (77) without Debian's python3-meshio.
+if(FM_SYSTEM_PYTHON)
+  add_test(NAME quads_demo
+    COMMAND bash ${FM_TOOLS}/quads_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/quads_demo demo)
+  set_tests_properties(quads_demo PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+  add_test(NAME cfm_quads_500m_2000
+    COMMAND bash ${FM_TOOLS}/quads_check.sh $<TARGET_FILE:faultmesh_cli> ${FM_SYSTEM_PYTHON}
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/cfm_quads cfm ${FM_CFM_DIR} ${FM_CFM_DIR}/../kinematics)
+  set_tests_properties(cfm_quads_500m_2000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
+endif()
