@@ -93,14 +93,14 @@ static int push_point(tiler *tl, const double p[3], int32_t seg)
     return 0;
 }
 
-static int push_tile(fm_tiles *t, const fm_tile *tile, double ztop, double zbot, double dw)
+int tile_push(fm_tiles *t, const fm_tile *tile, double ztop, double zbot, double dw, int open)
 {
     if (t->n == t->cap) {
         size_t c = t->cap ? 2 * t->cap : 256;
         fm_tile *nt = realloc(t->tile, c * sizeof *nt);
         if (nt)
             t->tile = nt;
-        double(*nb)[3] = realloc(t->band, c * sizeof *nb);
+        double(*nb)[4] = realloc(t->band, c * sizeof *nb);
         if (nb)
             t->band = nb;
         if (!nt || !nb)
@@ -110,6 +110,7 @@ static int push_tile(fm_tiles *t, const fm_tile *tile, double ztop, double zbot,
     t->band[t->n][0] = ztop;
     t->band[t->n][1] = zbot;
     t->band[t->n][2] = dw;
+    t->band[t->n][3] = open;
     t->tile[t->n++] = *tile;
     return 0;
 }
@@ -154,7 +155,7 @@ static size_t point_at(const tiler *tl, double s, double p[3])
 
 /* One tile over the contour's piece [sa, sb]. */
 static int tile_piece(tiler *tl, int32_t fault, int32_t row, double sa, double sb, double ztop,
-                      double zbot)
+                      double zbot, int open)
 {
     double pa[3], pb[3], pm[3];
     point_at(tl, sa, pa);
@@ -210,7 +211,10 @@ static int tile_piece(tiler *tl, int32_t fault, int32_t row, double sa, double s
     memcpy(t.centre, pm, sizeof pm);
     memcpy(t.strike, st, sizeof st);
     memcpy(t.dip, dip, sizeof dip);
-    return push_tile(tl->out, &t, ztop, zbot, tl->rowdw);
+    /* looking the other way along the contour swaps its ends */
+    if (st[0] * (pb[0] - pa[0]) + st[1] * (pb[1] - pa[1]) < 0)
+        open = (open & 1) << 1 | (open & 2) >> 1;
+    return tile_push(tl->out, &t, ztop, zbot, tl->rowdw, open);
 }
 
 /* Whether p lies under a tile of this row made so far (from first on). */
@@ -253,9 +257,12 @@ static int fill_contour(tiler *tl, int32_t fault, int32_t row, size_t first, dou
                 long nc = lround(l / tl->size);
                 if (nc < 1)
                     nc = 1;
+                /* open where the run ends with the contour */
+                int ends = (run <= 0 ? 1 : 0) | (end >= len ? 2 : 0);
                 for (long j = 0; j < nc; j++)
                     if (tile_piece(tl, fault, row, run + l * (double)j / (double)nc,
-                                   run + l * (double)(j + 1) / (double)nc, ztop, zbot))
+                                   run + l * (double)(j + 1) / (double)nc, ztop, zbot,
+                                   (j == 0 ? ends & 1 : 0) | (j == nc - 1 ? ends & 2 : 0)))
                         return -1;
             }
             run = -1;
@@ -289,9 +296,12 @@ static int tile_contour(tiler *tl, int32_t fault, int32_t row, int closed, doubl
         if (ncol < 1)
             ncol = 1;
     }
+    /* the end pieces of an open contour take the surface past its ends (the
+     * outline or junction crossing the row at a slant) into their area */
     for (long j = 0; j < ncol; j++)
         if (tile_piece(tl, fault, row, len * (double)j / (double)ncol,
-                       len * (double)(j + 1) / (double)ncol, ztop, zbot))
+                       len * (double)(j + 1) / (double)ncol, ztop, zbot,
+                       closed ? 0 : (j == 0 ? 1 : 0) | (j == ncol - 1 ? 2 : 0)))
             return -1;
     return 0;
 }
@@ -454,6 +464,32 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
     return 0;
 }
 
+/* The tiles in fault order, each fault's in the order they were made (a
+ * split tile's second half comes after the others); -1 when memory runs
+ * out. */
+static int by_fault(fm_tiles *t)
+{
+    size_t *start = calloc(t->nfaults + 1, sizeof *start);
+    fm_tile *sorted = malloc((t->n + 1) * sizeof *sorted);
+    if (!start || !sorted) {
+        free(start);
+        free(sorted);
+        return -1;
+    }
+    for (size_t i = 0; i < t->n; i++)
+        if ((size_t)t->tile[i].fault + 1 < t->nfaults)
+            start[t->tile[i].fault + 1]++;
+    for (size_t f = 1; f < t->nfaults; f++)
+        start[f] += start[f - 1];
+    for (size_t i = 0; i < t->n; i++)
+        sorted[start[t->tile[i].fault]++] = t->tile[i];
+    free(t->tile);
+    t->tile = sorted;
+    t->cap = t->n + 1;
+    free(start);
+    return 0;
+}
+
 /* Neighbours across sides within a fault, and which sides are junctions. */
 static int make_sides(const fm_mesh *set, tile_sides *sd, int32_t *nbr)
 {
@@ -539,10 +575,10 @@ fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_ti
     for (size_t f = 0; !bad && f < nfaults; f++)
         bad = tile_fault(&tl, (int32_t)f, order + start[f], start[f + 1] - start[f]) != 0;
     tile_walk w = {tl.x, tl.tri, nbr, calloc(nt + 1, sizeof(uint32_t)), 0,
-                   malloc((nt + 1) * sizeof(int32_t)), 0};
+                   malloc((nt + 1) * sizeof(int32_t)), 0, 0};
     if (!bad)
         bad = !w.stamp || !w.list || tile_fit_planes(t, &w) || tile_separate(t) ||
-              tile_measure(t, set, &sd, &w);
+              by_fault(t) || tile_measure(t, set, &sd, &w);
     free(w.stamp);
     free(w.list);
     if (t) {

@@ -157,10 +157,109 @@ static int separate_pair(size_t j, void *user)
     return a->length <= 0; /* nothing left of a to test */
 }
 
+typedef struct split_ctx {
+    fm_tiles *t;
+    unsigned char *mark; /* 1: split along strike, 2: down dip */
+    double rmax;
+    size_t i;
+} split_ctx;
+
+/* Halves of a tile (along strike, or down dip: then the lower one is no
+ * longer on the top row). */
+static void halve(const fm_tile *a, int dip, fm_tile h[2])
+{
+    for (int k = 0; k < 2; k++) {
+        double sg = k ? 0.25 : -0.25;
+        h[k] = *a;
+        if (dip) {
+            h[k].width = a->width / 2;
+            for (int d = 0; d < 3; d++)
+                h[k].centre[d] += sg * a->width * a->dip[d];
+            h[k].row = a->row + k;
+        } else {
+            h[k].length = a->length / 2;
+            for (int d = 0; d < 3; d++)
+                h[k].centre[d] += sg * a->length * a->strike[d];
+        }
+    }
+}
+
+/* What cutting a (or its halves) clear of b's plane loses. */
+static double cut_loss(const fm_tile *a, const fm_tile *b, int halves_dip)
+{
+    fm_tile o, h[2];
+    if (halves_dip < 0)
+        return cut(a, b, &o);
+    halve(a, halves_dip, h);
+    double l = 0;
+    for (int k = 0; k < 2; k++)
+        l += tiles_meet(&h[k], b) ? cut(&h[k], b, &o) : 0;
+    return l;
+}
+
+static int mark_pair(size_t j, void *user)
+{
+    split_ctx *c = user;
+    fm_tile *a = &c->t->tile[c->i], *b = &c->t->tile[j];
+    if (j == c->i || a->fault == b->fault || c->mark[c->i] || !tiles_meet(a, b))
+        return 0;
+    double la = cut_loss(a, b, -1), lb = cut_loss(b, a, -1);
+    if (la > lb)
+        return 0; /* b is the one cut: its own turn decides */
+    double area = a->length * a->width, least = c->t->stats.size / 4;
+    if (!(la > 0.1 * area))
+        return 0;
+    double ls = a->length / 2 >= least ? cut_loss(a, b, 0) : INFINITY;
+    double ld = a->width / 2 >= least ? cut_loss(a, b, 1) : INFINITY;
+    if (fmin(ls, ld) < 0.75 * la)
+        c->mark[c->i] = ls <= ld ? 1 : 2;
+    return 0;
+}
+
+/* Tiles that would lose more than a tenth of their area where they meet
+ * another fault's tile (a junction crossing a row at a slant) split in
+ * two first, so that the cut takes less; -1 when memory runs out. */
+static int split_for_cuts(fm_tiles *t)
+{
+    double rmax = 0;
+    for (size_t i = 0; i < t->n; i++)
+        rmax = fmax(rmax, radius(&t->tile[i]));
+    unsigned char *mark = calloc(t->n + 1, 1);
+    tile_grid g = {0};
+    if (!mark || tile_grid_make(&g, t, rmax)) {
+        free(mark);
+        free(g.e);
+        return -1;
+    }
+    split_ctx c = {t, mark, rmax, 0};
+    for (size_t i = 0; i < t->n; i++) {
+        c.i = i;
+        tile_grid_near(&g, t->tile[i].centre, 2 * rmax, mark_pair, &c);
+    }
+    free(g.e);
+    size_t n = t->n;
+    for (size_t i = 0; i < n; i++) {
+        if (!mark[i])
+            continue;
+        fm_tile h[2];
+        halve(&t->tile[i], mark[i] == 2, h);
+        t->tile[i] = h[0];
+        if (tile_push(t, &h[1], 0, 0, 0, 0)) {
+            free(mark);
+            return -1;
+        }
+    }
+    free(mark);
+    return 0;
+}
+
 int tile_separate(fm_tiles *t)
 {
     if (!t->n)
         return 0;
+    for (int round = 0; round < 2; round++)
+        if (split_for_cuts(t))
+            return -1;
     double *rad = malloc(t->n * sizeof *rad), rmax = 0;
     double (*c0)[3] = malloc(t->n * sizeof *c0), *a0 = malloc(t->n * sizeof *a0);
     tile_grid g = {0};
@@ -376,23 +475,7 @@ int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, tile_wal
         double zlo = fmin(fmin(c[0][2], c[1][2]), fmin(c[2][2], c[3][2]));
         double zhi = fmax(fmax(c[0][2], c[1][2]), fmax(c[2][2], c[3][2]));
         tile_region(w, tl, zlo, zhi);
-        for (size_t k = 0; k < w->n; k++) {
-            const double *v[3];
-            for (int q = 0; q < 3; q++)
-                v[q] = x + 3 * (size_t)tri[3 * (size_t)w->list[k] + (size_t)q];
-            for (int q = 0; q < 7; q++) {
-                double p[3];
-                for (int d = 0; d < 3; d++)
-                    p[d] = q < 3 ? v[q][d]
-                           : q < 6 ? (v[q - 3][d] + v[(q - 2) % 3][d]) / 2
-                                   : (v[0][d] + v[1][d] + v[2][d]) / 3;
-                double wd;
-                int inside;
-                tile_distance(tl, p, &wd, &inside);
-                if (inside)
-                    tl->flatness = fmax(tl->flatness, fabs(wd));
-            }
-        }
+        tl->flatness = tile_flatness(w, tl);
     }
     double *flat = malloc((t->n + 1) * sizeof *flat);
     if (!flat) {

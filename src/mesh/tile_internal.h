@@ -13,8 +13,10 @@ struct fm_tiles {
     fm_tile_junction *junction;
     size_t njunctions;
     fm_tile_stats stats;
-    double (*band)[3];   /* while tiling: each tile's row, its top and bottom depth and its
-                            width down dip at the fault's mean dip in that band */
+    double (*band)[4];   /* while tiling: each tile's row, its top and bottom depth and its
+                            width down dip at the fault's mean dip in that band; and
+                            whether its columns are open at the start (1) or the end (2)
+                            of the strike: it ends its contour there */
 };
 
 /* The set's triangle sides (fm_mesh_sides) with, per run of one key,
@@ -41,12 +43,21 @@ typedef struct tile_walk {
     uint32_t cur;
     int32_t *list;   /* the triangles found */
     size_t n;
+    int open;        /* the columns run on past the start (1) or the end (2) of the tile */
 } tile_walk;
 void tile_region(tile_walk *w, const fm_tile *tl, double zlo, double zhi);
 
-/* Each tile's plane fitted to the surface it stands for; -1 when memory
- * runs out (tile_plane.c). */
+/* Each tile's plane fitted to the surface it stands for, then a tile the
+ * surface departs from by more than a twentieth of the size split in two
+ * (along strike or down dip, whichever leaves it flatter) while its sides
+ * stay above a quarter of the size; -1 when memory runs out
+ * (tile_plane.c). */
 int tile_fit_planes(fm_tiles *t, tile_walk *w);
+/* How far the surface w found for tl lies from tl's plane where it lies
+ * under tl (tile_region first). */
+double tile_flatness(const tile_walk *w, const fm_tile *tl);
+/* Appends a tile of the row ztop..zbot, dw wide down dip (tile.c). */
+int tile_push(fm_tiles *t, const fm_tile *tile, double ztop, double zbot, double dw, int open);
 
 /* The least sine of dip a tile of a row dz deep and dw wide down dip (at
  * the fault's mean dip there) takes: a surface locally flatter than that

@@ -18,20 +18,28 @@ static double dot3(const double *a, const double *b)
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* Whether triangle t reaches into the tile's columns between zlo and zhi. */
+/* Whether triangle t reaches into the tile's columns between zlo and zhi,
+ * near its plane: within half the tile's larger side, so that the surface
+ * past a bend, which may come back under the tile, is not taken for it. */
 static int reaches(const tile_walk *w, size_t t, const fm_tile *tl, double zlo, double zhi)
 {
-    double ulo = INFINITY, uhi = -INFINITY, z0 = INFINITY, z1 = -INFINITY;
+    double ulo = INFINITY, uhi = -INFINITY, z0 = INFINITY, z1 = -INFINITY, wmin = INFINITY;
+    double n[3] = {tl->dip[1] * tl->strike[2] - tl->dip[2] * tl->strike[1],
+                   tl->dip[2] * tl->strike[0] - tl->dip[0] * tl->strike[2],
+                   tl->dip[0] * tl->strike[1] - tl->dip[1] * tl->strike[0]};
     for (int k = 0; k < 3; k++) {
         const double *p = w->x + 3 * (size_t)w->tri[3 * t + (size_t)k];
-        double u = (p[0] - tl->centre[0]) * tl->strike[0] + (p[1] - tl->centre[1]) * tl->strike[1] +
-                   (p[2] - tl->centre[2]) * tl->strike[2];
+        double r[3] = {p[0] - tl->centre[0], p[1] - tl->centre[1], p[2] - tl->centre[2]};
+        double u = dot3(r, tl->strike);
         ulo = fmin(ulo, u);
         uhi = fmax(uhi, u);
         z0 = fmin(z0, p[2]);
         z1 = fmax(z1, p[2]);
+        wmin = fmin(wmin, fabs(dot3(r, n)));
     }
-    return uhi >= -tl->length / 2 && ulo <= tl->length / 2 && z1 >= zlo && z0 <= zhi;
+    return (uhi >= -tl->length / 2 || (w->open & 1)) && (ulo <= tl->length / 2 || (w->open & 2)) &&
+           z1 >= zlo && z0 <= zhi &&
+           wmin <= fmax(tl->length, tl->width) / 2;
 }
 
 void tile_region(tile_walk *w, const fm_tile *tl, double zlo, double zhi)
@@ -54,6 +62,52 @@ void tile_region(tile_walk *w, const fm_tile *tl, double zlo, double zhi)
                 w->list[w->n++] = o;
         }
     }
+}
+
+/* The part of triangle c between u = -L/2 and L/2 along strike st (from
+ * centre o) and between depths zbot and ztop: its area, and its area times
+ * its centroid added to m[3]. */
+static double clipped(const double *const c[3], const double *o, const double *st, double L,
+                      int open, double zbot, double ztop, double m[3])
+{
+    double poly[2][12][3];
+    int n = 3, cur = 0;
+    for (int k = 0; k < 3; k++)
+        memcpy(poly[0][k], c[k], sizeof poly[0][k]);
+    for (int plane = 0; plane < 4 && n > 0; plane++) {
+        if ((plane == 0 && (open & 1)) || (plane == 1 && (open & 2)))
+            continue;
+        int m2 = 0;
+        double f[12];
+        for (int k = 0; k < n; k++) {
+            const double *p = poly[cur][k];
+            double u = (p[0] - o[0]) * st[0] + (p[1] - o[1]) * st[1] + (p[2] - o[2]) * st[2];
+            f[k] = plane == 0 ? u + L / 2 : plane == 1 ? L / 2 - u : plane == 2 ? p[2] - zbot : ztop - p[2];
+        }
+        for (int k = 0; k < n; k++) {
+            int j = (k + 1) % n;
+            const double *a = poly[cur][k], *b = poly[cur][j];
+            if (f[k] >= 0 && m2 < 12)
+                memcpy(poly[1 - cur][m2++], a, 3 * sizeof *a);
+            if ((f[k] >= 0) != (f[j] >= 0) && m2 < 12) {
+                double t = f[k] / (f[k] - f[j]);
+                for (int d = 0; d < 3; d++)
+                    poly[1 - cur][m2][d] = a[d] + t * (b[d] - a[d]);
+                m2++;
+            }
+        }
+        n = m2;
+        cur = 1 - cur;
+    }
+    double area = 0;
+    for (int k = 1; k + 1 < n; k++) {
+        const double *a = poly[cur][0], *b = poly[cur][k], *d = poly[cur][k + 1];
+        double ar = fm_triangle_area(a, b, d);
+        area += ar;
+        for (int q = 0; q < 3; q++)
+            m[q] += ar * (a[q] + b[q] + d[q]) / 3;
+    }
+    return area;
 }
 
 /* The plane and depth span of tile tl (row ztop..zbot, dw wide down dip at
@@ -135,22 +189,170 @@ static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, dou
         memcpy(dip, tl->dip, sizeof dip);
     }
     double sd = fmax(-dip[2], sdmin);
-    /* along the dip to the middle of the depth span */
-    double level = (ztop + zbot) / 2, s = dip[2] < -1e-12 ? (level - q[2]) / dip[2] : 0;
+    /* The tile's width makes its area the surface's within its columns and
+     * depth span, and it is centred on that surface's centroid: a top or
+     * bottom edge across the column at a slant (a sea floor, a climbing
+     * tip) then costs neither overlap nor loss on average. */
+    double area = 0, m[3] = {0, 0, 0};
+    for (size_t i = 0; i < w->n; i++) {
+        const double *c[3];
+        for (int k = 0; k < 3; k++)
+            c[k] = w->x + 3 * (size_t)w->tri[3 * (size_t)w->list[i] + (size_t)k];
+        /* the refit may have turned the strike round: the open ends too */
+        int open = w->open;
+        if (st[0] * tl->strike[0] + st[1] * tl->strike[1] < 0)
+            open = (open & 1) << 1 | (open & 2) >> 1;
+        area += clipped(c, tl->centre, st, tl->length, open, zbot, ztop, m);
+    }
+    double width = dz / sd, level = (ztop + zbot) / 2;
+    if (area > 0 && tl->length > 0) {
+        /* within the depth span, at the plane's own dip however flat */
+        double sdt = -dip[2];
+        width = fmin(sdt > 1e-9 ? dz / sdt : INFINITY, area / tl->length);
+        double h = width * fmax(sdt, 0) / 2;
+        level = fmin(fmax(m[2] / area, zbot + h), ztop - h);
+    }
+    double s = dip[2] < -1e-12 ? (level - q[2]) / dip[2] : 0;
     for (int d = 0; d < 3; d++)
         tl->centre[d] = q[d] + s * dip[d];
     tl->centre[2] = level;
     (void)zc;
     memcpy(tl->strike, st, sizeof st);
     memcpy(tl->dip, dip, sizeof dip);
-    tl->width = dz / sd;
+    tl->width = width;
+}
+
+double tile_flatness(const tile_walk *w, const fm_tile *tl)
+{
+    double flat = 0;
+    for (size_t k = 0; k < w->n; k++) {
+        const double *v[3];
+        for (int q = 0; q < 3; q++)
+            v[q] = w->x + 3 * (size_t)w->tri[3 * (size_t)w->list[k] + (size_t)q];
+        for (int q = 0; q < 7; q++) {
+            double p[3];
+            for (int d = 0; d < 3; d++)
+                p[d] = q < 3   ? v[q][d]
+                       : q < 6 ? (v[q - 3][d] + v[(q - 2) % 3][d]) / 2
+                               : (v[0][d] + v[1][d] + v[2][d]) / 3;
+            double wd;
+            int inside;
+            tile_distance(tl, p, &wd, &inside);
+            if (inside)
+                flat = fmax(flat, fabs(wd));
+        }
+    }
+    return flat;
+}
+
+/* The depth span of a tile as it stands. */
+static void span(const fm_tile *tl, double *ztop, double *zbot)
+{
+    double h = fabs(tl->dip[2]) * tl->width / 2;
+    *ztop = tl->centre[2] + h;
+    *zbot = tl->centre[2] - h;
+}
+
+/* The flatness of a tile as it stands; its triangle made the one of its
+ * surface nearest its centre (a half's centre is not its whole's). */
+static double flat_of(tile_walk *w, fm_tile *tl)
+{
+    double lo, hi;
+    span(tl, &hi, &lo);
+    tile_region(w, tl, lo, hi);
+    double best = INFINITY;
+    for (size_t k = 0; k < w->n; k++) {
+        double c[3] = {0, 0, 0};
+        for (int q = 0; q < 3; q++)
+            for (int d = 0; d < 3; d++)
+                c[d] += w->x[3 * (size_t)w->tri[3 * (size_t)w->list[k] + (size_t)q] + (size_t)d] / 3;
+        double d2 = (c[0] - tl->centre[0]) * (c[0] - tl->centre[0]) +
+                    (c[1] - tl->centre[1]) * (c[1] - tl->centre[1]) +
+                    (c[2] - tl->centre[2]) * (c[2] - tl->centre[2]);
+        if (d2 < best) {
+            best = d2;
+            tl->triangle = w->list[k];
+        }
+    }
+    return tile_flatness(w, tl);
+}
+
+/* A tile made for row ztop..zbot, its columns open at its ends as open
+ * says, fitted; its flatness. */
+static double fitted(tile_walk *w, fm_tile *tl, double ztop, double zbot, double dw, int open)
+{
+    w->open = open;
+    tile_region(w, tl, zbot, ztop);
+    refit(tl, w, ztop, zbot, dw);
+    w->open = 0;
+    return flat_of(w, tl);
+}
+
+/* Halves of tile tl (of row band b): along strike (dip 0) or down dip. */
+static void halves(const fm_tile *tl, const double b[4], int dip, fm_tile h[2], double hb[2][4])
+{
+    double ztop, zbot;
+    span(tl, &ztop, &zbot);
+    for (int k = 0; k < 2; k++) {
+        h[k] = *tl;
+        double sg = k ? 0.5 : -0.5;
+        if (!dip) {
+            h[k].length = tl->length / 2;
+            for (int d = 0; d < 3; d++)
+                h[k].centre[d] += sg * tl->length / 2 * tl->strike[d];
+            hb[k][0] = ztop;
+            hb[k][1] = zbot;
+        } else {
+            h[k].width = tl->width / 2;
+            for (int d = 0; d < 3; d++)
+                h[k].centre[d] += sg * tl->width / 2 * tl->dip[d];
+            hb[k][0] = k ? tl->centre[2] : ztop;
+            hb[k][1] = k ? zbot : tl->centre[2];
+            h[k].row = tl->row + k; /* only the upper half keeps the top edge */
+        }
+        hb[k][2] = b[2] / (dip ? 2 : 1);
+        int open = (int)b[3];
+        hb[k][3] = dip ? open : open & (k ? 2 : 1);
+    }
 }
 
 int tile_fit_planes(fm_tiles *t, tile_walk *w)
 {
+    double tol = t->stats.size / 25, least = t->stats.size / 4;
     for (size_t i = 0; i < t->n; i++) {
-        tile_region(w, &t->tile[i], t->band[i][1], t->band[i][0]);
-        refit(&t->tile[i], w, t->band[i][0], t->band[i][1], t->band[i][2]);
+        if (!t->band) /* after a failed push */
+            return -1;
+        double flat = fitted(w, &t->tile[i], t->band[i][0], t->band[i][1], t->band[i][2],
+                             (int)t->band[i][3]);
+        /* split until flat enough or small: the halves join the list */
+        while (flat > tol) {
+            fm_tile best[2];
+            double bb[2][4], bf = flat;
+            int found = 0;
+            for (int dip = 0; dip < 2; dip++) {
+                const fm_tile *tl = &t->tile[i];
+                if ((dip ? tl->width : tl->length) / 2 < least)
+                    continue;
+                fm_tile h[2];
+                double hb[2][4];
+                halves(tl, t->band[i], dip, h, hb);
+                double f0 = fitted(w, &h[0], hb[0][0], hb[0][1], hb[0][2], (int)hb[0][3]);
+                double f1 = fitted(w, &h[1], hb[1][0], hb[1][1], hb[1][2], (int)hb[1][3]);
+                if (fmax(f0, f1) < bf) {
+                    bf = fmax(f0, f1);
+                    memcpy(best, h, sizeof best);
+                    memcpy(bb, hb, sizeof bb);
+                    found = 1;
+                }
+            }
+            if (!found)
+                break;
+            t->tile[i] = best[0];
+            memcpy(t->band[i], bb[0], sizeof bb[0]);
+            if (tile_push(t, &best[1], bb[1][0], bb[1][1], bb[1][2], (int)bb[1][3]))
+                return -1;
+            flat = flat_of(w, &t->tile[i]);
+        }
     }
     return 0;
 }
