@@ -120,6 +120,7 @@ void quads_json(fm_json *j, const sim_attrs *sa, const char *const *names)
     fm_json_kv_int(j, "elements", (int64_t)s->ntiles);
     fm_json_kv_int(j, "cut_back_at_other_faults", (int64_t)s->shrunk);
     fm_json_kv_int(j, "given_up", (int64_t)s->dropped);
+    fm_json_kv_int(j, "slivers_left_out", (int64_t)s->slivers);
     /* pairs of rectangles of different faults that meet (exact test) */
     fm_json_kv_int(j, "meeting_pairs", (int64_t)s->meeting);
     fm_json_kv_int(j, "faults_not_tiled", (int64_t)s->unrowed);

@@ -74,6 +74,9 @@ typedef struct fm_tile_stats {
     size_t ntiles;
     size_t shrunk;        /* tiles cut back at another fault */
     size_t dropped;       /* tiles given up (nothing left after cutting back) */
+    size_t slivers;       /* tiles left out for a side under a twentieth of the size (after
+                             cutting back, or where the surface fills a row only thinly):
+                             elements that thin only trouble a simulator */
     size_t meeting;       /* pairs of tiles of different faults that still meet: 0 unless a
                              tile could not be cut back */
     size_t unrowed;       /* faults that could not be tiled (no depth range: horizontal) */

@@ -293,8 +293,11 @@ int tile_separate(fm_tiles *t)
     for (size_t i = 0; i < t->n; i++) {
         t->fault[t->tile[i].fault].area_cut +=
             a0[i] - t->tile[i].length * t->tile[i].width;
-        if (t->tile[i].length > 0 && t->tile[i].width > 0)
+        double least = fmin(t->tile[i].length, t->tile[i].width);
+        if (least >= t->stats.size / 20)
             t->tile[m++] = t->tile[i];
+        else if (least > 0)
+            t->stats.slivers++;
         else
             t->stats.dropped++;
     }

@@ -47,8 +47,9 @@ typedef struct tile_walk {
 } tile_walk;
 void tile_region(tile_walk *w, const fm_tile *tl, double zlo, double zhi);
 
-/* Each tile's plane fitted to the surface it stands for, then a tile the
- * surface departs from by more than a twentieth of the size split in two
+/* Each tile's plane fitted to the surface it stands for, then a tile over
+ * 1.5 times the size wide halved down dip until it is not, and one the
+ * surface departs from by more than a 25th of the size split in two
  * (along strike or down dip, whichever leaves it flatter) while its sides
  * stay above a quarter of the size; -1 when memory runs out
  * (tile_plane.c). */

@@ -324,7 +324,21 @@ int tile_fit_planes(fm_tiles *t, tile_walk *w)
             return -1;
         double flat = fitted(w, &t->tile[i], t->band[i][0], t->band[i][1], t->band[i][2],
                              (int)t->band[i][3]);
-        /* split until flat enough or small: the halves join the list */
+        /* A tile much wider than the size (a surface flatter in its row
+         * than the fault's mean dip there says) is halved down dip until it
+         * is not; then one the surface departs from too far is split until
+         * flat enough or small. The halves join the list. */
+        while (t->tile[i].width > 1.5 * t->stats.size) {
+            fm_tile h[2];
+            double hb[2][4];
+            halves(&t->tile[i], t->band[i], 1, h, hb);
+            fitted(w, &h[1], hb[1][0], hb[1][1], hb[1][2], (int)hb[1][3]);
+            flat = fitted(w, &h[0], hb[0][0], hb[0][1], hb[0][2], (int)hb[0][3]);
+            t->tile[i] = h[0];
+            memcpy(t->band[i], hb[0], sizeof hb[0]);
+            if (tile_push(t, &h[1], hb[1][0], hb[1][1], hb[1][2], (int)hb[1][3]))
+                return -1;
+        }
         while (flat > tol) {
             fm_tile best[2];
             double bb[2][4], bf = flat;
