@@ -51,7 +51,7 @@ void tile_region(tile_walk *w, const fm_tile *tl, double zlo, double zhi);
  * 1.5 times the size wide halved down dip until it is not, and one the
  * surface departs from by more than a 25th of the size split in two
  * (along strike or down dip, whichever leaves it flatter) while its sides
- * stay above a quarter of the size; -1 when memory runs out
+ * stay above an eighth of the size; -1 when memory runs out
  * (tile_plane.c). */
 int tile_fit_planes(fm_tiles *t, tile_walk *w);
 /* How far the surface w found for tl lies from tl's plane where it lies

@@ -318,7 +318,7 @@ static void halves(const fm_tile *tl, const double b[4], int dip, fm_tile h[2], 
 
 int tile_fit_planes(fm_tiles *t, tile_walk *w)
 {
-    double tol = t->stats.size / 25, least = t->stats.size / 4;
+    double tol = t->stats.size / 25, least = t->stats.size / 8;
     for (size_t i = 0; i < t->n; i++) {
         if (!t->band) /* after a failed push */
             return -1;
