@@ -77,7 +77,7 @@ def main():
     title = args[2] if len(args) > 2 else ""
     m = meshio.read(vtu)
     p, t = m.points, m.cells_dict["triangle"]
-    fid = np.asarray(m.cell_data["fault_id"][0])
+    fid = np.asarray(m.cell_data["fault_id"][0]) - 1  # fault numbers are from 1
     names = names_of(m)
     cmap = plt.get_cmap("tab10")
     if fault is None:

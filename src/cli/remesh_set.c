@@ -553,11 +553,17 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
         st = fm_error_set(&err, FM_ERR_INVALID, cli->dir, 0,
                           "the element attributes could not be made (--kinematics, above)");
     /* the element attributes, and which sheet of its fault a triangle is on
-     * (the repair stage's sheets: the parts of a branching fault) */
+     * (the repair stage's sheets: the parts of a branching fault), numbered
+     * from 1 as faults are */
+    size_t ntri = fm_mesh_ntriangles(rs->set);
+    int32_t *sheet = malloc((ntri + 1) * sizeof *sheet);
+    if (!sheet && st == FM_OK)
+        st = fm_error_set(&err, FM_ERR_NOMEM, cli->dir, 0, "out of memory");
+    for (size_t t = 0; sheet && t < ntri; t++)
+        sheet[t] = rs->sheet[t] + 1;
     fm_vtu_array cells[sizeof sa->cells / sizeof *sa->cells + 1];
     memcpy(cells, sa->cells, sizeof sa->cells);
-    cells[sizeof sa->cells / sizeof *sa->cells] =
-        (fm_vtu_array){"sheet", FM_VTU_INT32, 1, rs->sheet};
+    cells[sizeof sa->cells / sizeof *sa->cells] = (fm_vtu_array){"sheet", FM_VTU_INT32, 1, sheet};
     fs.cell_data = cells;
     fs.ncell_data = sizeof cells / sizeof *cells;
     size_t n = strlen(cli->dir) + 32;
@@ -604,6 +610,7 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
     }
     free(path);
     free(tags);
+    free(sheet);
     fm_faultset_free_file_names(pnames, rs->nfaults);
     free_junction_sets(&js);
     fm_mesh_destroy(converted);

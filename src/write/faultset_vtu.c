@@ -1,4 +1,4 @@
-/* Fault set as VTU: the shared mesh with the fault index per triangle. */
+/* Fault set as VTU: the shared mesh with the fault number per triangle. */
 #include <stdlib.h>
 
 #include "faultset_internal.h"
@@ -8,11 +8,19 @@ fm_status fm_faultset_write_vtu(const char *path, const fm_faultset *fs, fm_erro
     fm_status st = fm_faultset_validate(fs, path, err);
     if (st != FM_OK)
         return st;
+    size_t nt = fm_mesh_ntriangles(fs->mesh);
     fm_vtu_array *cd = malloc((fs->ncell_data + 1) * sizeof *cd);
-    if (!cd)
+    int32_t *number = malloc((nt + 1) * sizeof *number);
+    if (!cd || !number) {
+        free(cd);
+        free(number);
         return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
-    /* Validated: the tags are the fault indices already. */
-    cd[0] = (fm_vtu_array){"fault_id", FM_VTU_INT32, 1, fm_mesh_tags(fs->mesh)};
+    }
+    /* the fault number, index + 1, as every other format numbers faults */
+    const int32_t *tag = fm_mesh_tags(fs->mesh);
+    for (size_t t = 0; t < nt; t++)
+        number[t] = tag[t] + 1;
+    cd[0] = (fm_vtu_array){"fault_id", FM_VTU_INT32, 1, number};
     for (size_t i = 0; i < fs->ncell_data; i++)
         cd[i + 1] = fs->cell_data[i];
     const char *crs[1] = {fs->crs};
@@ -22,5 +30,6 @@ fm_status fm_faultset_write_vtu(const char *path, const fm_faultset *fs, fm_erro
                         .field_strings = fsd, .nfield_strings = nfs};
     st = fm_vtu_write(path, &c, err);
     free(cd);
+    free(number);
     return st;
 }

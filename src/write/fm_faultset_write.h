@@ -73,7 +73,8 @@ typedef struct fm_faultset {
 /* Checks what every writer checks (see above); the writers call it. */
 fm_status fm_faultset_validate(const fm_faultset *fs, const char *path, fm_error *err);
 
-/* VTU: the triangles with Int32 cell data "fault_id" (the tag) and the
+/* VTU: the triangles with Int32 cell data "fault_id" (the fault number:
+ * tag + 1, as MSH, Exodus II, RSQSim and EQSim number faults) and the
  * extra cell arrays; field data "fault_names" (the names, each followed
  * by a NUL byte, as fm_vtu.h stores strings) and "crs" when set. */
 fm_status fm_faultset_write_vtu(const char *path, const fm_faultset *fs, fm_error *err);

@@ -44,7 +44,7 @@ typedef struct fm_quadset {
 void fm_quad_strike_dip(const double c[12], double *strike, double *dip);
 
 /* VTU: VTK_QUAD cells (type 9), 4 points each in element order; Int32
- * cell data fault_id (the fault index), Float64 strike, dip, rake,
+ * cell data fault_id (the fault number, index + 1), Float64 strike, dip, rake,
  * slip_rate, length, width and flatness (when given); field data
  * fault_names and crs. */
 fm_status fm_quadset_write_vtu(const char *path, const fm_quadset *qs, fm_error *err);

@@ -64,11 +64,12 @@ fm_status fm_quadset_write_vtu(const char *path, const fm_quadset *qs, fm_error 
     if (st != FM_OK)
         return st;
     size_t n = qs->nquads;
-    int32_t *conn = malloc((4 * n + 1) * sizeof *conn);
+    int32_t *conn = malloc((4 * n + 1) * sizeof *conn), *number = malloc((n + 1) * sizeof *number);
     double *v = malloc((6 * n + 1) * sizeof *v);
-    if (!conn || !v) {
+    if (!conn || !v || !number) {
         free(conn);
         free(v);
+        free(number);
         return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
     }
     double *strike = v, *dip = v + n, *rake = v + 2 * n, *rate = v + 3 * n, *len = v + 4 * n,
@@ -78,6 +79,7 @@ fm_status fm_quadset_write_vtu(const char *path, const fm_quadset *qs, fm_error 
         for (int k = 0; k < 4; k++)
             conn[4 * i + (size_t)k] = (int32_t)(4 * i + (size_t)k);
         fm_quad_strike_dip(c, &strike[i], &dip[i]);
+        number[i] = qs->fault[i] + 1;
         rake[i] = quad_rake(qs, i);
         rate[i] = quad_rate(qs, i);
         len[i] = sqrt((c[9] - c[0]) * (c[9] - c[0]) + (c[10] - c[1]) * (c[10] - c[1]) +
@@ -85,7 +87,7 @@ fm_status fm_quadset_write_vtu(const char *path, const fm_quadset *qs, fm_error 
         wid[i] = sqrt((c[3] - c[0]) * (c[3] - c[0]) + (c[4] - c[1]) * (c[4] - c[1]) +
                       (c[5] - c[2]) * (c[5] - c[2]));
     }
-    fm_vtu_array cells[8] = {{"fault_id", FM_VTU_INT32, 1, qs->fault},
+    fm_vtu_array cells[8] = {{"fault_id", FM_VTU_INT32, 1, number},
                              {"strike", FM_VTU_FLOAT64, 1, strike},
                              {"dip", FM_VTU_FLOAT64, 1, dip},
                              {"rake", FM_VTU_FLOAT64, 1, rake},
@@ -103,6 +105,7 @@ fm_status fm_quadset_write_vtu(const char *path, const fm_quadset *qs, fm_error 
     st = fm_vtu_write(path, &content, err);
     free(conn);
     free(v);
+    free(number);
     return st;
 }
 

@@ -125,7 +125,7 @@ def check_vtu(path):
     check(len(cells) == NT, "%d triangles" % len(cells))
     check(np.array_equal(m.points, PTS), "points bit for bit")
     check(np.array_equal(cells, TRIS), "connectivity and winding as in the mesh")
-    check(np.array_equal(data.get("fault_id"), TAGS), "fault_id per triangle")
+    check(np.array_equal(data.get("fault_id"), TAGS + 1), "fault_id per triangle: the fault number, tag + 1")
     areas = [0.5 * np.linalg.norm(np.cross(PTS[b] - PTS[a], PTS[c] - PTS[a])) for a, b, c in TRIS]
     check(np.allclose(data.get("area"), areas, rtol=1e-12, atol=0), "extra cell array 'area'")
     check(strings(m.field_data.get("fault_names", [])) == NAMES, "fault_names field data")

@@ -170,7 +170,7 @@ def main():
     check(len(quads) == 1 and len(m.cells) == 1, "VTU: quadrilaterals only")
     q = quads[0].data
     P = m.points[q]  # n x 4 x 3
-    fid = m.cell_data["fault_id"][0]
+    fid = m.cell_data["fault_id"][0] - 1  # the fault number, from 1
     n = len(q)
     sections, verts, rects, coord = read_eqsim(d + "/mesh.eqsim")
     check(len(rects) == n, "EQSim: %d rectangles, the VTU's %d" % (len(rects), n))

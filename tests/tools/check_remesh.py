@@ -555,12 +555,13 @@ def main():
     vtu = meshio.read(os.path.join(out, "mesh.vtu"))
     X = np.asarray(vtu.points, dtype=float)
     tris, cdata = triangles_of(vtu, "mesh.vtu")
-    fid = np.asarray(cdata.get("fault_id", np.full(len(tris), -1)), dtype=np.int64)
+    # fault_id is the fault number, from 1; fid the index
+    fid = np.asarray(cdata.get("fault_id", np.full(len(tris), 0)), dtype=np.int64) - 1
     names = field_strings(vtu.field_data.get("fault_names", []))
     nf = len(names)
     check("fault_id" in cdata, "mesh.vtu: cell data fault_id")
     check(len(fid) == 0 or (fid.min() >= 0 and fid.max() < nf),
-          "mesh.vtu: fault_id within 0..%d" % (nf - 1))
+          "mesh.vtu: fault_id within 1..%d" % nf)
     check(len(tris) == 0 or (tris.min() >= 0 and tris.max() < len(X)),
           "mesh.vtu: connectivity within %d points" % len(X))
     check(np.all(np.isfinite(X)), "mesh.vtu: finite coordinates")

@@ -206,7 +206,7 @@ def main():
     pts = np.asarray(m.points, dtype=float)
     tri = np.asarray(m.cells_dict["triangle"])
     cd = {k: np.asarray(v[0]).ravel() for k, v in m.cell_data.items()}
-    fid = cd["fault_id"].astype(int)
+    fid = cd["fault_id"].astype(int) - 1  # the fault number, from 1
     nt = len(tri)
     print("VTU: %d points, %d triangles, %d faults" % (len(pts), nt, nf))
     P = pts[tri]  # nt x 3 x 3

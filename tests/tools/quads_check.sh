@@ -71,7 +71,7 @@ import sys
 import meshio
 import numpy as np
 m = meshio.read(sys.argv[1] + "/mesh.vtu")
-q, fid = m.cells[0].data, m.cell_data["fault_id"][0]
+q, fid = m.cells[0].data, m.cell_data["fault_id"][0] - 1
 # the first rectangle of fault 1 made a copy of fault 0's first one turned
 # a quarter about the vertical through its centre: through it
 a, b = q[np.where(fid == 1)[0][0]], q[np.where(fid == 0)[0][0]]

@@ -73,7 +73,7 @@ if st[blind]["status"] != "excluded" or "f.toml:4" not in st[blind].get("error",
     bad.append("excluded fault: %s" % st[blind])
 m = meshio.read(out + "/mesh.vtu")
 tri = m.cells_dict["triangle"]
-fid = m.cell_data_dict["fault_id"]["triangle"]
+fid = m.cell_data_dict["fault_id"]["triangle"] - 1
 ok_names = [f["name"] for f in r["faults"] if f["status"] == "ok"]
 if blind in ok_names or len(set(fid.tolist())) != len(ok_names):
     bad.append("excluded fault meshed")
