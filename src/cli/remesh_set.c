@@ -543,6 +543,9 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
                       .physical_tags = tags,
                       .physical_names = (const char *const *)pnames,
                       .msh_dense_nodes = cli->msh_tags == FM_MSH_TAGS_TANDEM,
+                      /* Tandem and SeisSol read only their own tags */
+                      .msh_no_curves = cli->msh_tags == FM_MSH_TAGS_TANDEM ||
+                                       cli->msh_tags == FM_MSH_TAGS_SEISSOL,
                       .crs = cli->crs_out ? cli->crs_out : rs->crs,
                       .nodesets = js.set,
                       .nnodesets = js.n};

@@ -25,6 +25,27 @@ size_t *fs_fault_counts(const fm_faultset *fs);
  * memory runs out. */
 int fs_group_by(const int32_t *key, size_t n, size_t nkeys, size_t **start, size_t **order);
 
+/* Named groups of edges for the formats that tag them (MSH physical
+ * curves, Exodus II side sets): each fault's outline edges by which way
+ * they face within their triangle (up dip within 45 degrees: its top, at
+ * or above sea level, or buried below it; down dip: its bottom; else its
+ * ends), edges shared with another fault left out; then each node set
+ * (fs->nodesets: the junction curves) as the edges two faults share with
+ * both nodes in it. Groups without edges are left out. */
+enum { FS_EDGE_TOP, FS_EDGE_BURIED, FS_EDGE_BOTTOM, FS_EDGE_ENDS, FS_EDGE_KINDS };
+extern const char *const fs_edge_kind_names[FS_EDGE_KINDS];
+typedef struct fs_edge_group {
+    char *name;         /* "FAULT: top" ("buried top", "bottom", "ends"), or the set's name */
+    int32_t fault;      /* its fault, -1 for a junction curve */
+    int kind;           /* FS_EDGE_*, -1 for a junction curve */
+    int32_t (*edge)[4]; /* per edge: its two vertices, a triangle holding it, and which side
+                           of that triangle it is (k: from corner k to corner k + 1) */
+    size_t n, cap;
+} fs_edge_group;
+/* 0, or -1 when memory runs out. */
+int fs_edge_groups_make(const fm_faultset *fs, fs_edge_group **out, size_t *n);
+void fs_edge_groups_free(fs_edge_group *g, size_t n);
+
 /* Start of the last whole UTF-8 character at or before byte n of s (s is
  * valid UTF-8), so cutting there keeps the text valid. */
 size_t fs_utf8_cut(const char *s, size_t n);

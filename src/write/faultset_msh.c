@@ -43,7 +43,8 @@ static void put_comment(fs_out *o, const char *key, const char *text)
     fs_out_str(o, "\"\n");
 }
 
-static void put_head(fs_out *o, const fm_faultset *fs, const char *version)
+static void put_head(fs_out *o, const fm_faultset *fs, const char *version,
+                     const fs_edge_group *g, size_t ng)
 {
     fs_out_printf(o, "$MeshFormat\n%s 0 8\n$EndMeshFormat\n$Comments\n", version);
     put_comment(o, "written by faultmesh ", FM_VERSION_STRING);
@@ -55,7 +56,11 @@ static void put_head(fs_out *o, const fm_faultset *fs, const char *version)
     size_t ngroups = 0;
     for (size_t i = 0; i < fs->nfaults; i++)
         ngroups += first_with_tag(fs, i);
-    fs_out_printf(o, "$PhysicalNames\n%zu\n", ngroups);
+    fs_out_printf(o, "$PhysicalNames\n%zu\n", ngroups + ng);
+    for (size_t i = 0; i < ng; i++) {
+        fs_out_printf(o, "1 %zu ", i + 1);
+        put_name(o, g[i].name);
+    }
     for (size_t i = 0; i < fs->nfaults; i++) {
         if (!first_with_tag(fs, i))
             continue;
@@ -85,11 +90,30 @@ static void put_triangle(fs_out *o, const int32_t *t)
 }
 
 static void put_entities(fs_out *o, const fm_faultset *fs, const size_t *tstart,
-                         const size_t *torder)
+                         const size_t *torder, const fs_edge_group *g, size_t ng)
 {
     const double *x = fm_mesh_vertices(fs->mesh);
     const int32_t *tri = fm_mesh_triangles(fs->mesh);
-    fs_out_printf(o, "$Entities\n0 0 %zu 0\n", fs->nfaults);
+    fs_out_printf(o, "$Entities\n0 %zu %zu 0\n", ng, fs->nfaults);
+    /* curve i + 1 in physical curve i + 1 */
+    for (size_t i = 0; i < ng; i++) {
+        double lo[3], hi[3];
+        memcpy(lo, x + 3 * (size_t)g[i].edge[0][0], sizeof lo);
+        memcpy(hi, lo, sizeof hi);
+        for (size_t e = 0; e < g[i].n; e++)
+            for (int k = 0; k < 2; k++)
+                for (int d = 0; d < 3; d++) {
+                    double v = x[3 * (size_t)g[i].edge[e][k] + (size_t)d];
+                    lo[d] = v < lo[d] ? v : lo[d];
+                    hi[d] = v > hi[d] ? v : hi[d];
+                }
+        fs_out_u64(o, i + 1);
+        for (int d = 0; d < 6; d++) {
+            fs_out_char(o, ' ');
+            fs_out_double(o, d < 3 ? lo[d] : hi[d - 3]);
+        }
+        fs_out_printf(o, " 1 %zu 0\n", i + 1);
+    }
     for (size_t f = 0; f < fs->nfaults; f++) {
         double lo[3], hi[3];
         const double *p0 = x + 3 * (size_t)tri[3 * torder[tstart[f]]];
@@ -114,7 +138,8 @@ static void put_entities(fs_out *o, const fm_faultset *fs, const size_t *tstart,
 }
 
 static void put_41(fs_out *o, const fm_faultset *fs, const size_t *vstart, const size_t *vorder,
-                   const size_t *tstart, const size_t *torder)
+                   const size_t *tstart, const size_t *torder, const fs_edge_group *g,
+                   size_t ng)
 {
     const double *x = fm_mesh_vertices(fs->mesh);
     const int32_t *tri = fm_mesh_triangles(fs->mesh);
@@ -126,7 +151,7 @@ static void put_41(fs_out *o, const fm_faultset *fs, const size_t *vstart, const
         vmin = vorder[i] < vmin ? vorder[i] : vmin;
         vmax = vorder[i] > vmax ? vorder[i] : vmax;
     }
-    put_entities(o, fs, tstart, torder);
+    put_entities(o, fs, tstart, torder, g, ng);
     fs_out_printf(o, "$Nodes\n%zu %zu %zu %zu\n", nblocks, nused, vmin + 1, vmax + 1);
     for (size_t f = 0; f < nf; f++) {
         if (vstart[f + 1] == vstart[f])
@@ -139,13 +164,28 @@ static void put_41(fs_out *o, const fm_faultset *fs, const size_t *vstart, const
         for (size_t i = vstart[f]; i < vstart[f + 1]; i++)
             put_vertex(o, x + 3 * vorder[i]);
     }
-    size_t nt = fm_mesh_ntriangles(fs->mesh);
-    fs_out_printf(o, "$EndNodes\n$Elements\n%zu %zu 1 %zu\n", nf, nt, nt);
+    size_t nt = fm_mesh_ntriangles(fs->mesh), ne = 0;
+    for (size_t i = 0; i < ng; i++)
+        ne += g[i].n;
+    fs_out_printf(o, "$EndNodes\n$Elements\n%zu %zu 1 %zu\n", nf + ng, nt + ne, nt + ne);
     for (size_t f = 0; f < nf; f++) {
         fs_out_printf(o, "2 %zu 2 %zu\n", f + 1, tstart[f + 1] - tstart[f]);
         for (size_t i = tstart[f]; i < tstart[f + 1]; i++) {
             fs_out_u64(o, torder[i] + 1);
             put_triangle(o, tri + 3 * torder[i]);
+        }
+    }
+    /* the curves' line elements after the triangles, tags nt + 1 on */
+    size_t tagn = nt;
+    for (size_t i = 0; i < ng; i++) {
+        fs_out_printf(o, "1 %zu 1 %zu\n", i + 1, g[i].n);
+        for (size_t e = 0; e < g[i].n; e++) {
+            fs_out_u64(o, ++tagn);
+            for (int k = 0; k < 2; k++) {
+                fs_out_char(o, ' ');
+                fs_out_i64(o, (int64_t)g[i].edge[e][k] + 1);
+            }
+            fs_out_char(o, '\n');
         }
     }
     fs_out_str(o, "$EndElements\n");
@@ -154,7 +194,8 @@ static void put_41(fs_out *o, const fm_faultset *fs, const size_t *vstart, const
 /* MSH 2.2 node tags: vertex index + 1, or with fs->msh_dense_nodes the
  * position among the written (used) vertices + 1; stored in owner[]'s
  * place as a tag per vertex, 0 for a vertex not written. */
-static void put_22(fs_out *o, const fm_faultset *fs, int32_t *owner)
+static void put_22(fs_out *o, const fm_faultset *fs, int32_t *owner, const fs_edge_group *g,
+                   size_t ng)
 {
     const double *x = fm_mesh_vertices(fs->mesh);
     const int32_t *tri = fm_mesh_triangles(fs->mesh), *tag = fm_mesh_tags(fs->mesh);
@@ -170,7 +211,10 @@ static void put_22(fs_out *o, const fm_faultset *fs, int32_t *owner)
             fs_out_char(o, ' ');
             put_vertex(o, x + 3 * v);
         }
-    fs_out_printf(o, "$EndNodes\n$Elements\n%zu\n", nt);
+    size_t ne = 0;
+    for (size_t i = 0; i < ng; i++)
+        ne += g[i].n;
+    fs_out_printf(o, "$EndNodes\n$Elements\n%zu\n", nt + ne);
     for (size_t t = 0; t < nt; t++) {
         fs_out_u64(o, t + 1);
         fs_out_str(o, " 2 2 ");
@@ -183,6 +227,17 @@ static void put_22(fs_out *o, const fm_faultset *fs, int32_t *owner)
         }
         fs_out_char(o, '\n');
     }
+    size_t tagn = nt;
+    for (size_t i = 0; i < ng; i++)
+        for (size_t e = 0; e < g[i].n; e++) {
+            fs_out_u64(o, ++tagn);
+            fs_out_printf(o, " 1 2 %zu %zu", i + 1, i + 1);
+            for (int k = 0; k < 2; k++) {
+                fs_out_char(o, ' ');
+                fs_out_i64(o, owner[g[i].edge[e][k]]);
+            }
+            fs_out_char(o, '\n');
+        }
     fs_out_str(o, "$EndElements\n");
 }
 
@@ -199,6 +254,10 @@ fm_status fm_faultset_write_msh(const char *path, const fm_faultset *fs, fm_msh_
     size_t *vstart = NULL, *vorder = NULL, *tstart = NULL, *torder = NULL;
     int32_t *owner = fs_vertex_owner(fs);
     int bad = !owner;
+    fs_edge_group *g = NULL;
+    size_t ng = 0;
+    if (!bad && !fs->msh_no_curves)
+        bad = fs_edge_groups_make(fs, &g, &ng);
     if (!bad && version == FM_MSH_41)
         bad = fs_group_by(owner, nv, fs->nfaults, &vstart, &vorder) ||
               fs_group_by(fm_mesh_tags(fs->mesh), nt, fs->nfaults, &tstart, &torder);
@@ -213,13 +272,14 @@ fm_status fm_faultset_write_msh(const char *path, const fm_faultset *fs, fm_msh_
         st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
     }
     if (st == FM_OK) {
-        put_head(o, fs, version == FM_MSH_41 ? "4.1" : "2.2");
+        put_head(o, fs, version == FM_MSH_41 ? "4.1" : "2.2", g, ng);
         if (version == FM_MSH_41)
-            put_41(o, fs, vstart, vorder, tstart, torder);
+            put_41(o, fs, vstart, vorder, tstart, torder, g, ng);
         else
-            put_22(o, fs, owner);
+            put_22(o, fs, owner, g, ng);
         st = fs_out_commit(o, f, path, err);
     }
+    fs_edge_groups_free(g, ng);
     free(owner);
     free(vstart);
     free(vorder);

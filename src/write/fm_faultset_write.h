@@ -64,6 +64,9 @@ typedef struct fm_faultset {
     /* MSH 2.2: number the written nodes 1..n in vertex order instead of
      * vertex index + 1 (Tandem's reader takes only node tags 1..n). */
     int msh_dense_nodes;
+    /* MSH: leave out the curves (below), for codes that read only their own
+     * tags (Tandem, SeisSol). */
+    int msh_no_curves;
     /* Named node sets of the Exodus II file besides the one per fault
      * (the junction curves): each a list of vertex indices. */
     const struct fm_faultset_nodeset *nodesets;
@@ -103,6 +106,16 @@ typedef enum fm_msh_version {
  * is written as '\'' and '\\' as '/'; names are cut (at a UTF-8 character
  * boundary) to FM_MSH_NAME_MAX bytes, since Gmsh reads the line into a
  * fixed 256-byte buffer and loses the rest of the file after a longer one.
+ *
+ * Curves: each fault's outline edges by kind ("NAME: top" at or above
+ * sea level, "NAME: buried top", "NAME: bottom", "NAME: ends": which way
+ * an edge faces within its triangle, up dip or down dip within 45
+ * degrees or neither; edges another fault shares left out) and each
+ * junction curve (fs->nodesets: "NAME" of the set, the edges two faults
+ * share with both nodes in it) are physical curves numbered 1.. in that
+ * order (dimension 1 has its own tags), each its own curve entity (4.1),
+ * their 2-node lines (type 1) after the triangles, element tags nt + 1 on;
+ * not with msh_no_curves.
  *
  * Faults sharing a physical tag make one physical group (named once).
  * The CRS and the writer go in a $Comments section after $MeshFormat,

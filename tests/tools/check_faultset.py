@@ -103,10 +103,13 @@ def corners(points, cells):
     return np.asarray(points)[np.asarray(cells)]
 
 
-def meshio_triangles(m):
-    """All triangle blocks of a meshio mesh concatenated, and cell data alike."""
+def meshio_triangles(m, lines=False):
+    """All triangle blocks of a meshio mesh concatenated, and cell data alike
+    (lines: MSH's curves may come besides)."""
     blocks = [i for i, c in enumerate(m.cells) if c.type == "triangle"]
-    check(len(blocks) == len(m.cells), "only triangles (%s)" % [c.type for c in m.cells])
+    others = [c.type for c in m.cells if c.type != "triangle" and not (lines and c.type == "line")]
+    check(not others, "only triangles%s (%s)" % (" and lines" if lines else "",
+                                                 [c.type for c in m.cells]))
     cells = np.concatenate([m.cells[i].data for i in blocks])
     data = {k: np.concatenate([v[i] for i in blocks]) for k, v in m.cell_data.items()}
     return cells, data
@@ -132,10 +135,64 @@ def check_vtu(path):
     check(strings(m.field_data.get("crs", [])) == [CRS], "crs field data")
 
 
+def edge_kind(u, v, w):
+    """docs/formats.md's kind of outline edge u-v of a triangle with third
+    corner w: which way it faces within the triangle against up dip."""
+    pu, pv, pw = PTS[u], PTS[v], PTS[w]
+    n = np.cross(pv - pu, pw - pu)
+    n = n / np.linalg.norm(n)
+    up = np.array([0.0, 0.0, 1.0]) - n[2] * n
+    e = pv - pu
+    o = (pu + pv) / 2 - pw
+    o = o - np.dot(o, e) / np.dot(e, e) * e
+    if np.linalg.norm(up) < 1e-6:
+        return "ends"
+    c = np.dot(o, up) / (np.linalg.norm(o) * np.linalg.norm(up))
+    if c > math.sqrt(0.5):
+        return "top" if pu[2] >= -1e-6 and pv[2] >= -1e-6 else "buried top"
+    return "bottom" if c < -math.sqrt(0.5) else "ends"
+
+
+def outline_edges():
+    """Every outline edge (a side of one triangle only, as a sorted pair of
+    vertex indices) with the name of its group, and every side's holders."""
+    holders = {}
+    for t, (a, b, c) in enumerate(TRIS):
+        for u, v, w in ((a, b, c), (b, c, a), (c, a, b)):
+            holders.setdefault((min(u, v), max(u, v)), []).append((t, w))
+    want = {}
+    for (u, v), hs in holders.items():
+        if len(hs) == 1:
+            t, w = hs[0]
+            want[(u, v)] = "%s: %s" % (msh_name(NAMES[TAGS[t]]), edge_kind(u, v, w))
+    return want, holders
+
+
+def check_msh_curves(m):
+    """The curves: every outline edge of a fault (a side of one triangle
+    only) in the group of its fault and kind, once; nothing else there."""
+    want, holders = outline_edges()
+    names1 = {v[0]: k for k, v in m.field_data.items() if v[1] == 1}
+    got, dup = {}, 0
+    for i, c in enumerate(m.cells):
+        if c.type != "line":
+            continue
+        for (a, b), p in zip(c.data, m.cell_data["gmsh:physical"][i]):
+            key = (min(a, b), max(a, b))
+            name = names1.get(int(p), "?")
+            if key in holders and len(holders[key]) == 1:
+                dup += key in got
+                got[key] = name
+    check(got == want and dup == 0,
+          "outline edges by fault and kind (%d of %d as expected, %d twice)" %
+          (sum(got.get(k) == n for k, n in want.items()), len(want), dup))
+
+
 def check_msh_meshio(path, grouped, phys):
     print("-- meshio", os.path.basename(path))
     m = meshio.read(path)
-    cells, data = meshio_triangles(m)
+    cells, data = meshio_triangles(m, lines=True)
+    check_msh_curves(m)
     order = BY_FAULT if grouped else list(range(NT))
     check(len(cells) == NT and len(m.points) == len(PTS),
           "%d triangles, %d points" % (len(cells), len(m.points)))
@@ -146,7 +203,7 @@ def check_msh_meshio(path, grouped, phys):
     check(np.array_equal(data.get("gmsh:geometrical"), [TAGS[t] + 1 for t in order]),
           "gmsh:geometrical per triangle")
     want = {msh_name(n): [phys[i], 2] for i, n in enumerate(NAMES)}
-    got = {k: list(v) for k, v in m.field_data.items()}
+    got = {k: list(v) for k, v in m.field_data.items() if v[1] == 2}
     check(got == want, "physical names %r" % got)
 
 
@@ -177,6 +234,20 @@ def check_msh_gmsh(path, phys):
                    for i, e in enumerate(etags[0])}
             check(all(got.get(t + 1) == tuple(int(v) + 1 for v in TRIS[t]) for t in want),
                   "group %d: nodes and winding of every triangle" % p)
+    # the curves as Gmsh reads them: every outline edge in its group
+    want, holders = outline_edges()
+    got = {}
+    for dim, p in gmsh.model.getPhysicalGroups(1):
+        name = gmsh.model.getPhysicalName(1, p)
+        for ent in gmsh.model.getEntitiesForPhysicalGroup(1, p):
+            etypes, _, enodes = gmsh.model.mesh.getElements(1, ent)
+            check(list(etypes) == [1], "curve %r: 2-node lines" % name)
+            for k in range(0, len(enodes[0]) if len(enodes) else 0, 2):
+                key = tuple(sorted((int(enodes[0][k]) - 1, int(enodes[0][k + 1]) - 1)))
+                if len(holders.get(key, ())) == 1:
+                    got[key] = name
+    check(got == want, "Gmsh: %d outline edges in their groups (of %d)" %
+          (sum(got.get(k) == n for k, n in want.items()), len(want)))
     gmsh.clear()
 
 

@@ -464,7 +464,9 @@ def beyond_outline(nodes, T, S, tol):
 
 def triangles_of(m, what):
     blocks = [i for i, c in enumerate(m.cells) if c.type == "triangle"]
-    others = sorted({c.type for c in m.cells if c.type != "triangle"})
+    # MSH carries the faults' outline and junction curves as lines
+    others = sorted({c.type for c in m.cells
+                     if c.type != "triangle" and not (c.type == "line" and what.endswith(".msh"))})
     check(not others, "%s: only triangles%s" % (what, " (also %s)" % others if others else ""))
     if not blocks:
         return np.zeros((0, 3), dtype=np.int64), {}

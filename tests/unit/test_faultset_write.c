@@ -189,10 +189,11 @@ static void test_msh41(void)
     CHECK(strncmp(buf,
                   "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Comments\n\"written by faultmesh " FM_VERSION_STRING
                   "\"\n\"crs EPSG:26711\"\n\"units metres, z up (negative below sea level)\"\n"
-                  "$EndComments\n$PhysicalNames\n3\n",
+                  "$EndComments\n$PhysicalNames\n",
                   strlen("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Comments\n\"written by faultmesh " FM_VERSION_STRING
                   "\"\n\"crs EPSG:26711\"\n\"units metres, z up (negative below sea level)\"\n"
-                  "$EndComments\n$PhysicalNames\n3\n")) == 0);
+                  "$EndComments\n$PhysicalNames\n")) == 0);
+    CHECK(strstr(buf, "\n1 1 \"CRFA-BPPM-WEST-Big_Pine_fault-CFM4: top\"\n") != NULL);
     CHECK(strstr(buf, "\n2 2 \"San Andreas fault (Mojave, 'south') 1857\"\n") != NULL);
     CHECK(strstr(buf, "\n2 3 \"Falla de San Andr\xc3\xa9s / Ca\xc3\xb1\xc3\xb3n\"\n") != NULL);
     /* An independent pass over $Nodes and $Elements: every node declared
@@ -244,8 +245,8 @@ static void test_msh41(void)
     CHECK_STR(next_line(&p), "$EndNodes");
     CHECK_STR(next_line(&p), "$Elements");
     CHECK(sscanf(next_line(&p), "%zu %zu %zu %zu", &nblocks, &nnodes, &lo, &hi) == 4);
-    CHECK_EQ(nblocks, 3);
-    CHECK_EQ(nnodes, NT);
+    CHECK(nblocks > 3); /* the faults' triangles, then their outline and junction curves */
+    CHECK(nnodes > NT);
     for (int f = 0; f < 3; f++) {
         int dim = 0, ent = 0, type = 0;
         size_t n = 0;
@@ -266,6 +267,53 @@ static void test_msh41(void)
                   c == tri[3 * (e - 1) + 2] + 1);
         }
     }
+    /* The curves: 2-node lines tagged after the triangles; every outline
+     * edge of a fault (a side of one of its triangles and of no other
+     * triangle) in exactly one of them, and nothing else but sides two
+     * faults share. */
+    int outline_seen[NT][3];
+    memset(outline_seen, 0, sizeof outline_seen);
+    size_t nlines = 0, bad_lines = 0;
+    for (size_t bl = 3; bl < nblocks; bl++) {
+        int dim = 0, ent = 0, type = 0;
+        size_t n = 0;
+        CHECK(sscanf(next_line(&p), "%d %d %d %zu", &dim, &ent, &type, &n) == 4);
+        CHECK(dim == 1 && type == 1);
+        for (size_t i = 0; i < n; i++) {
+            int e = 0, a = 0, b = 0;
+            CHECK(sscanf(next_line(&p), "%d %d %d", &e, &a, &b) == 3);
+            CHECK(e > NT);
+            nlines++;
+            int holders = 0, ht = -1, hk = -1, faults_mask = 0;
+            for (int t = 0; t < NT; t++)
+                for (int k = 0; k < 3; k++) {
+                    int u = tri[3 * t + k] + 1, v = tri[3 * t + (k + 1) % 3] + 1;
+                    if ((u == a && v == b) || (u == b && v == a)) {
+                        holders++;
+                        ht = t;
+                        hk = k;
+                        faults_mask |= 1 << tag[t];
+                    }
+                }
+            if (holders == 1)
+                outline_seen[ht][hk]++;
+            else if (!(faults_mask & (faults_mask - 1)))
+                bad_lines++; /* neither an outline edge nor one two faults share */
+        }
+    }
+    CHECK_EQ(bad_lines, 0);
+    CHECK(nlines + NT == nnodes);
+    for (int t = 0; t < NT; t++)
+        for (int k = 0; k < 3; k++) {
+            int u = tri[3 * t + k], v = tri[3 * t + (k + 1) % 3], holders = 0;
+            for (int s = 0; s < NT; s++)
+                for (int q = 0; q < 3; q++) {
+                    int a = tri[3 * s + q], b = tri[3 * s + (q + 1) % 3];
+                    holders += (a == u && b == v) || (a == v && b == u);
+                }
+            if (holders == 1)
+                CHECK_EQ(outline_seen[t][k], 1);
+        }
     CHECK_STR(next_line(&p), "$EndElements");
     free(buf);
     fm_mesh_destroy(m);
@@ -286,7 +334,9 @@ static void test_msh22_and_unused_vertex(void)
     CHECK(buf && strstr(buf, "$Nodes\n40\n1 400000.1 3750000.3 250.25\n") != NULL);
     CHECK(buf && strstr(buf, "\n41 1 2 3\n") == NULL); /* the unused vertex is left out */
     /* first triangle: fault 0, physical 1, entity 1; the 4th is fault 1 */
-    CHECK(buf && strstr(buf, "$Elements\n54\n1 2 2 1 1 1 2 7\n") != NULL);
+    /* then the curves' lines, as 2.2 lines (type 1) */
+    CHECK(buf && strstr(buf, "$Elements\n") && strstr(strstr(buf, "$Elements\n"), "\n1 2 2 1 1 1 2 7\n"));
+    CHECK(buf && strstr(buf, "\n55 1 2 ") != NULL);
     CHECK(buf && strstr(buf, "\n9 2 2 2 2 5 21 24\n") != NULL);
     free(buf);
     snprintf(path, sizeof path, "%s/b.msh", dir);
@@ -599,6 +649,7 @@ static void test_msh_conventions(void)
     CHECK_EQ(fm_msh_tags_make(FM_MSH_TAGS_TANDEM, two, 2, tags, &pn, &err), FM_OK);
     fm_faultset fs = {.mesh = m, .names = two, .nfaults = 2, .physical_tags = tags,
                       .physical_names = (const char *const *)pn, .msh_dense_nodes = 1,
+                      .msh_no_curves = 1,
                       .crs = "say \"x\""};
     char dir[4096], path[4200];
     tmp_dir(dir, sizeof dir, "fsw_conv");
