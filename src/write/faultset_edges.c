@@ -206,6 +206,7 @@ int fs_edge_groups_make(const fm_faultset *fs, fs_edge_group **out, size_t *nout
         g[m].name = name;
         g[m].fault = i < FS_EDGE_KINDS * nf ? (int32_t)(i / FS_EDGE_KINDS) : -1;
         g[m].kind = i < FS_EDGE_KINDS * nf ? (int)(i % FS_EDGE_KINDS) : -1;
+        g[m].set = i < FS_EDGE_KINDS * nf ? -1 : (int32_t)(i - FS_EDGE_KINDS * nf);
         m++;
     }
     free(side);

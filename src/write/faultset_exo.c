@@ -55,6 +55,9 @@ typedef struct exo_job {
     char qa_date[16], qa_time[16]; /* SOURCE_DATE_EPOCH's, else the epoch's (UTC) */
     char **info;         /* ninfo lines */
     size_t ninfo;
+    fs_edge_group *groups; /* the side sets: fault edges by kind, junction curves */
+    size_t ngroups;
+    char **gnames;       /* their short names */
 } exo_job;
 
 static char *cut_copy(const char *s, size_t max)
@@ -120,8 +123,28 @@ static int prepare(exo_job *j)
         full[i] = i < fs->nfaults ? fs->names[i] : fs->nodesets[i - fs->nfaults].name;
     j->names = fm_short_names(full, nn, EXO_NAME_MAX);
     free(full);
-    if (!j->names)
+    if (!j->names || fs_edge_groups_make(fs, &j->groups, &j->ngroups))
         return -1;
+    /* side set names that fit Exodus' 32 bytes whole: a fault's edges
+     * "fault<number>_<kind>" (names.csv gives the fault), a junction's
+     * those of its node set */
+    j->gnames = calloc(j->ngroups + 1, sizeof *j->gnames);
+    if (!j->gnames)
+        return -1;
+    for (size_t i = 0; i < j->ngroups; i++) {
+        const fs_edge_group *g = &j->groups[i];
+        char buf[64];
+        if (g->set >= 0)
+            snprintf(buf, sizeof buf, "%s", j->names[fs->nfaults + (size_t)g->set]);
+        else
+            snprintf(buf, sizeof buf, "fault%d_%s", (int)g->fault + 1,
+                     g->kind == FS_EDGE_TOP      ? "top"
+                     : g->kind == FS_EDGE_BURIED ? "buried_top"
+                     : g->kind == FS_EDGE_BOTTOM ? "bottom"
+                                                 : "ends");
+        if (!(j->gnames[i] = strdup(buf)))
+            return -1;
+    }
     size_t ncrs = fs->crs ? strlen(fs->crs) / (EXO_LINE - 5) + 2 : 0;
     j->info = calloc(ncrs + 4, sizeof *j->info);
     if (!j->info)
@@ -145,6 +168,38 @@ static void release(exo_job *j)
     for (size_t i = 0; i < j->ninfo; i++)
         free(j->info[i]);
     free(j->info);
+    for (size_t i = 0; j->gnames && i < j->ngroups; i++)
+        free(j->gnames[i]);
+    free(j->gnames);
+    fs_edge_groups_free(j->groups, j->ngroups);
+}
+
+/* The side sets (fs_edge_groups_make's groups): per edge the element
+ * holding it (its number: its place in the blocks + 1) and its side (TRI3:
+ * side k from node k to node k + 1); -ENOMEM or 0. */
+static int make_side_sets(const exo_job *j, ex_set *sets)
+{
+    size_t nt = fm_mesh_ntriangles(j->fs->mesh);
+    int32_t *elem = malloc((nt + 1) * sizeof *elem);
+    if (!elem)
+        return -ENOMEM;
+    for (size_t i = 0; i < nt; i++)
+        elem[j->torder[i]] = (int32_t)(i + 1);
+    int rc = 0;
+    for (size_t s = 0; s < j->ngroups && rc == 0; s++) {
+        const fs_edge_group *g = &j->groups[s];
+        int32_t *e = malloc((g->n + 1) * sizeof *e), *side = malloc((g->n + 1) * sizeof *side);
+        if (!e || !side)
+            rc = -ENOMEM;
+        for (size_t k = 0; e && side && k < g->n; k++) {
+            e[k] = elem[g->edge[k][2]];
+            side[k] = g->edge[k][3] + 1;
+        }
+        sets[s] = (ex_set){.id = (int64_t)(s + 1), .type = EX_SIDE_SET,
+                           .num_entry = (int64_t)g->n, .entry_list = e, .extra_list = side};
+    }
+    free(elem);
+    return rc;
 }
 
 static int cmp_i32(const void *a, const void *b)
@@ -217,7 +272,8 @@ static int put_all(int exo, const exo_job *j)
     if (rc < 0)
         return rc;
     rc = ex_put_init(exo, "faultmesh fault set", 3, (int64_t)j->nnodes,
-                         (int64_t)fm_mesh_ntriangles(fs->mesh), (int64_t)nf, (int64_t)ns, 0);
+                         (int64_t)fm_mesh_ntriangles(fs->mesh), (int64_t)nf, (int64_t)ns,
+                         (int64_t)j->ngroups);
     if (rc < 0)
         return rc;
     char *qa[1][4] = {{"faultmesh", FM_VERSION_STRING, (char *)j->qa_date, (char *)j->qa_time}};
@@ -253,10 +309,24 @@ static int put_all(int exo, const exo_job *j)
     for (size_t s = 0; s < ns; s++)
         free(sets[s].entry_list);
     free(sets);
+    ex_set *ss = calloc(j->ngroups + 1, sizeof *ss);
+    if (!ss)
+        rc = -ENOMEM;
+    if (rc >= 0)
+        rc = make_side_sets(j, ss);
+    if (rc >= 0 && j->ngroups)
+        rc = ex_put_sets(exo, j->ngroups, ss);
+    for (size_t s = 0; ss && s < j->ngroups; s++) {
+        free(ss[s].entry_list);
+        free(ss[s].extra_list);
+    }
+    free(ss);
     if (rc >= 0)
         rc = ex_put_names(exo, EX_ELEM_BLOCK, j->names);
     if (rc >= 0)
         rc = ex_put_names(exo, EX_NODE_SET, j->names);
+    if (rc >= 0 && j->ngroups)
+        rc = ex_put_names(exo, EX_SIDE_SET, j->gnames);
     if (rc < 0)
         return rc;
 

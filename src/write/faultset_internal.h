@@ -38,6 +38,7 @@ typedef struct fs_edge_group {
     char *name;         /* "FAULT: top" ("buried top", "bottom", "ends"), or the set's name */
     int32_t fault;      /* its fault, -1 for a junction curve */
     int kind;           /* FS_EDGE_*, -1 for a junction curve */
+    int32_t set;        /* the junction curve's node set, -1 for a fault's edges */
     int32_t (*edge)[4]; /* per edge: its two vertices, a triangle holding it, and which side
                            of that triangle it is (k: from corner k to corner k + 1) */
     size_t n, cap;

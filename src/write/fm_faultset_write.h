@@ -162,7 +162,11 @@ fm_status fm_msh_tags_make(fm_msh_tags conv, const char *const *fault_names, siz
  * fault name), its triangles in mesh order and winding; one node set per
  * fault (id = fault index + 1, name = the fault name, its nodes ascending)
  * then one per fs->nodesets entry (id = nfaults + k + 1, its name, its
- * vertices ascending, duplicates dropped). Node number = position among
+ * vertices ascending, duplicates dropped); one side set per edge group of
+ * the MSH curves (below: the faults' edges by kind, named
+ * "fault<number>_<kind>", then the junction curves, named as their node
+ * sets), each entry an element and its TRI3 side (k: node k to k + 1).
+ * Node number = position among
  * the vertices used by some triangle, in vertex order, + 1; element number
  * = position in the blocks' order + 1. Names longer than 255 bytes are
  * cut at a UTF-8 boundary (Exodus keeps at most 255).

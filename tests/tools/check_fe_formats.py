@@ -188,6 +188,50 @@ def check_exodus(out, faults, crs, junctions, verts, groups):
     return m
 
 
+def check_side_sets(out, conv):
+    """Exodus II side sets against the MSH's physical curves: the same
+    groups in the same order (side set k, curve k), each the same edges
+    (element and TRI3 side turned into its two nodes, node numbers into
+    vertices by node_num_map; MSH node tags are vertex + 1)."""
+    import gmsh
+    nc = netCDF4.Dataset(os.path.join(out, "mesh.exo"))
+    nmap = np.asarray(nc.variables["node_num_map"][:]) - 1
+    conn = []
+    b = 1
+    while "connect%d" % b in nc.variables:
+        conn.append(np.asarray(nc.variables["connect%d" % b][:]) - 1)
+        b += 1
+    conn = np.concatenate(conn) if conn else np.zeros((0, 3), int)
+    exo = []
+    k = 1
+    while "elem_ss%d" % k in nc.variables:
+        e = np.asarray(nc.variables["elem_ss%d" % k][:]) - 1
+        s = np.asarray(nc.variables["side_ss%d" % k][:]) - 1
+        check(bool(np.all((s >= 0) & (s <= 2))), "side set %d: TRI3 sides 1-3" % k)
+        a, c = conn[e, s], conn[e, (s + 1) % 3]
+        exo.append({tuple(sorted((int(nmap[x]), int(nmap[y])))) for x, y in zip(a, c)})
+        k += 1
+    nc.close()
+    if conv in ("tandem", "seissol"):
+        check(len(exo) > 0, "Exodus: %d side sets" % len(exo))
+        return
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.open(os.path.join(out, "mesh.msh"))
+    msh = []
+    for dim, p in sorted(gmsh.model.getPhysicalGroups(1)):
+        pairs = set()
+        for ent in gmsh.model.getEntitiesForPhysicalGroup(1, p):
+            _, _, nodes = gmsh.model.mesh.getElements(1, ent)
+            for q in range(0, len(nodes[0]) if len(nodes) else 0, 2):
+                pairs.add(tuple(sorted((int(nodes[0][q]) - 1, int(nodes[0][q + 1]) - 1))))
+        msh.append(pairs)
+    gmsh.finalize()
+    check(len(exo) == len(msh) and len(exo) > 0 and all(a == b for a, b in zip(exo, msh)),
+          "Exodus side sets = MSH physical curves (%d and %d groups, %d alike)" %
+          (len(exo), len(msh), sum(a == b for a, b in zip(exo, msh))))
+
+
 CONV = {"default", "tandem", "seissol", "pylith"}
 
 
@@ -300,6 +344,7 @@ def main():
     check_crs(out, crs, faults)
     check_exodus(out, faults, crs, junctions, verts, groups)
     check_msh(out, faults, crs, conv, verts, groups)
+    check_side_sets(out, conv)
     if FAILED:
         print("FAILED: %d checks" % len(FAILED))
         return 1
