@@ -172,7 +172,8 @@ fm_status fm_msh_tags_make(fm_msh_tags conv, const char *const *fault_names, siz
  * cut at a UTF-8 boundary (Exodus keeps at most 255).
  *
  * Title: "faultmesh fault set"; one QA record ("faultmesh", version, and
- * empty date and time, so that the same input gives the same bytes); info
+ * the date and time of SOURCE_DATE_EPOCH, else of the epoch, so that the
+ * same input gives the same bytes); info
  * records: the CRS ("crs: ...", over several 80-character lines when long),
  * units and the z convention. Created under a temporary name in the same
  * folder and renamed when closed (netCDF writes the file itself). */
