@@ -10,20 +10,9 @@
 #include "fm_tile.h"
 #include "remesh_run.h"
 #include "remesh_quads.h"
+#include "fm_vec3.h"
 
 #define D2R (3.14159265358979323846 / 180)
-
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 double quad_rake_from(const fm_tile *tl, const double *a, const double *b, const double *c,
                       double rake)
@@ -35,16 +24,16 @@ double quad_rake_from(const fm_tile *tl, const double *a, const double *b, const
     /* the triangle's slip (hanging wall against foot wall) in space */
     double s[3] = {sin(st), cos(st), 0}, n[3] = {sin(dp) * cos(st), -sin(dp) * sin(st), cos(dp)};
     double u[3], v[3], np[3], up[3];
-    cross3(n, s, u); /* up dip */
+    fm_cross3(n, s, u); /* up dip */
     for (int d = 0; d < 3; d++)
         v[d] = cos(rake * D2R) * s[d] + sin(rake * D2R) * u[d];
-    cross3(tl->dip, tl->strike, np);
+    fm_cross3(tl->dip, tl->strike, np);
     /* the rectangle's hanging wall is the triangle's other side */
-    if (dot3(np, n) < 0)
+    if (fm_dot3(np, n) < 0)
         for (int d = 0; d < 3; d++)
             v[d] = -v[d];
-    cross3(np, tl->strike, up);
-    double r = atan2(dot3(v, up), dot3(v, tl->strike)) / D2R;
+    fm_cross3(np, tl->strike, up);
+    double r = atan2(fm_dot3(v, up), fm_dot3(v, tl->strike)) / D2R;
     return r <= -180 ? r + 360 : r;
 }
 

@@ -12,18 +12,14 @@
 
 #include "fm_predicates.h"
 #include "plan_internal.h"
-
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+#include "fm_vec3.h"
 
 static void unit_normal(const double du[3], const double dv[3], double n[3])
 {
     n[0] = du[1] * dv[2] - du[2] * dv[1];
     n[1] = du[2] * dv[0] - du[0] * dv[2];
     n[2] = du[0] * dv[1] - du[1] * dv[0];
-    double l = sqrt(dot3(n, n));
+    double l = sqrt(fm_dot3(n, n));
     for (int k = 0; k < 3; k++)
         n[k] = l > 0 ? n[k] / l : 0;
 }
@@ -201,7 +197,7 @@ static int offset_stretch(const fm_fit_surface *S, const fm_fit_surface *T, int 
         int on_level = level && fabs(x[2] - *level) < 1e-6;
         double w[3] = {du[0] * dir[0] + dv[0] * dir[1], du[1] * dir[0] + dv[1] * dir[1],
                        du[2] * dir[0] + dv[2] * dir[1]};
-        double lw = sqrt(dot3(w, w));
+        double lw = sqrt(fm_dot3(w, w));
         if (!(lw > 0)) {
             rc = 1;
             break;
@@ -213,7 +209,7 @@ static int offset_stretch(const fm_fit_surface *S, const fm_fit_surface *T, int 
         double tdu[3], tdv[3], tn[3], tx[3];
         fm_fit_surface_eval(T, tuv[0], tuv[1], tx, tdu, tdv);
         unit_normal(tdu, tdv, tn);
-        double rate = fabs(dot3(tn, w)) / lw;
+        double rate = fabs(fm_dot3(tn, w)) / lw;
         double reach = H / lw; /* the most a node may move, in (u, v) */
         double sg = fmin(gap / fmax(rate, 1e-3) / lw, reach);
         double p[2], d = 0;

@@ -4,8 +4,7 @@
 
 #include "connect_internal.h"
 #include "connect_solve.h"
-
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+#include "fm_vec3.h"
 
 /* Residual F (4) and Jacobian J (4 x 4, row-major) at x. */
 static void residual(const fm_fit_surface *A, const fm_fit_surface *B, const double x[4],
@@ -24,10 +23,10 @@ static void residual(const fm_fit_surface *A, const fm_fit_surface *B, const dou
         }
     }
     double d[3] = {sa[0] - p0[0], sa[1] - p0[1], sa[2] - p0[2]};
-    F[3] = dot3(T, d);
+    F[3] = fm_dot3(T, d);
     if (J) {
-        J[12] = dot3(T, sau);
-        J[13] = dot3(T, sav);
+        J[12] = fm_dot3(T, sau);
+        J[13] = fm_dot3(T, sav);
         J[14] = 0;
         J[15] = 0;
     }
@@ -74,7 +73,7 @@ static double lm(const fm_fit_surface *A, const fm_fit_surface *B, double x[4], 
 {
     double F[4], J[16];
     residual(A, B, x, p0, T, F, J);
-    double f = dot3(F, F) + F[3] * F[3];
+    double f = fm_dot3(F, F) + F[3] * F[3];
     double mu = 1e-12;
     for (int it = 0; it < 60 && gap_norm(F) > tol; it++) {
         double M[16], g[4];
@@ -102,7 +101,7 @@ static double lm(const fm_fit_surface *A, const fm_fit_surface *B, double x[4], 
             }
             double xn[4] = {x[0] + y[0], x[1] + y[1], x[2] + y[2], x[3] + y[3]}, Fn[4], Jn[16];
             residual(A, B, xn, p0, T, Fn, Jn);
-            double fn = dot3(Fn, Fn) + Fn[3] * Fn[3];
+            double fn = fm_dot3(Fn, Fn) + Fn[3] * Fn[3];
             if (isfinite(fn) && fn <= f) {
                 memcpy(x, xn, sizeof xn);
                 memcpy(F, Fn, sizeof Fn);
@@ -141,7 +140,7 @@ double cn_solve_point(const fm_fit_surface *A, const fm_fit_surface *B, double x
         fm_fit_project(B, fa, uvb, fb, NULL);
         double d[3] = {fa[0] - fb[0], fa[1] - fb[1], fa[2] - fb[2]};
         memcpy(p, fb, sizeof p);
-        if (sqrt(dot3(d, d)) <= tol)
+        if (sqrt(fm_dot3(d, d)) <= tol)
             break;
     }
     double y[4] = {uva[0], uva[1], uvb[0], uvb[1]};
@@ -163,9 +162,9 @@ double cn_crossing_angle(const fm_fit_surface *A, const fm_fit_surface *B, const
                     au[0] * av[1] - au[1] * av[0]};
     double nb[3] = {bu[1] * bv[2] - bu[2] * bv[1], bu[2] * bv[0] - bu[0] * bv[2],
                     bu[0] * bv[1] - bu[1] * bv[0]};
-    double c = fabs(dot3(na, nb)) / sqrt(dot3(na, na) * dot3(nb, nb));
+    double c = fabs(fm_dot3(na, nb)) / sqrt(fm_dot3(na, na) * fm_dot3(nb, nb));
     double cr[3] = {na[1] * nb[2] - na[2] * nb[1], na[2] * nb[0] - na[0] * nb[2],
                     na[0] * nb[1] - na[1] * nb[0]};
-    double s = sqrt(dot3(cr, cr)) / sqrt(dot3(na, na) * dot3(nb, nb));
+    double s = sqrt(fm_dot3(cr, cr)) / sqrt(fm_dot3(na, na) * fm_dot3(nb, nb));
     return atan2(s, c) * (180.0 / 3.14159265358979323846);
 }

@@ -6,25 +6,14 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "fm_vec3.h"
 
 #define FM_PI 3.14159265358979323846
 #define DEG2RAD (FM_PI / 180.0)
 
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double *a, const double *b, double *r)
-{
-    r[0] = a[1] * b[2] - a[2] * b[1];
-    r[1] = a[2] * b[0] - a[0] * b[2];
-    r[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 static double normalize3(double *a)
 {
-    double n = sqrt(dot3(a, a));
+    double n = sqrt(fm_dot3(a, a));
     if (n > 0) {
         a[0] /= n;
         a[1] /= n;
@@ -42,9 +31,9 @@ void fm_fit_frame_options_default(fm_fit_frame_options *opt)
 void fm_fit_frame_to_local(const fm_fit_frame *f, const double xyz[3], double uvw[3])
 {
     double d[3] = {xyz[0] - f->origin[0], xyz[1] - f->origin[1], xyz[2] - f->origin[2]};
-    uvw[0] = dot3(d, f->u);
-    uvw[1] = dot3(d, f->v);
-    uvw[2] = dot3(d, f->w);
+    uvw[0] = fm_dot3(d, f->u);
+    uvw[1] = fm_dot3(d, f->v);
+    uvw[2] = fm_dot3(d, f->w);
 }
 
 void fm_fit_frame_to_world(const fm_fit_frame *f, const double uvw[3], double xyz[3])
@@ -62,7 +51,7 @@ static int affine_min_norm(const double (*P)[3], int m, double *alpha)
     int n = m + 1;
     for (int i = 0; i < m; i++) {
         for (int j = 0; j < m; j++)
-            A[i][j] = dot3(P[i], P[j]);
+            A[i][j] = fm_dot3(P[i], P[j]);
         A[i][m] = 1.0;
         A[i][n] = 0.0;
     }
@@ -109,13 +98,13 @@ static double min_norm_point(const double *nrm, size_t n, double x[3])
     lam[0] = 1.0;
     memcpy(x, nrm, 3 * sizeof(double));
     for (int major = 0; major < 1000; major++) {
-        double xx = dot3(x, x);
+        double xx = fm_dot3(x, x);
         if (xx < 1e-24)
             return 0.0;
         size_t best = 0;
         double bd = INFINITY;
         for (size_t i = 0; i < n; i++) {
-            double d = dot3(x, nrm + 3 * i);
+            double d = fm_dot3(x, nrm + 3 * i);
             if (d < bd) {
                 bd = d;
                 best = i;
@@ -172,17 +161,17 @@ static double min_norm_point(const double *nrm, size_t n, double x[3])
         if (m == 4) /* four affinely independent points with positive weights enclose the origin */
             return 0.0;
         /* Rounding can undo the step that theory guarantees; stop then. */
-        if (!(dot3(x, x) < xx * (1 - 1e-15)))
+        if (!(fm_dot3(x, x) < xx * (1 - 1e-15)))
             break;
     }
-    return sqrt(dot3(x, x));
+    return sqrt(fm_dot3(x, x));
 }
 
 static double min_dot(const double *nrm, size_t n, const double d[3])
 {
     double md = INFINITY;
     for (size_t i = 0; i < n; i++) {
-        double t = dot3(nrm + 3 * i, d);
+        double t = fm_dot3(nrm + 3 * i, d);
         if (t < md)
             md = t;
     }
@@ -196,11 +185,11 @@ static void long_axis(const fm_mesh *m, const fm_fit_frame *f, double axis[3])
     double a[3], b[3];
     double ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
     const double *ref = fabs(f->w[0]) < 0.9 ? ex : ey;
-    double t = dot3(ref, f->w);
+    double t = fm_dot3(ref, f->w);
     for (int k = 0; k < 3; k++)
         a[k] = ref[k] - t * f->w[k];
     normalize3(a);
-    cross3(f->w, a, b);
+    fm_cross3(f->w, a, b);
     const double *X = fm_mesh_vertices(m);
     const int32_t *T = fm_mesh_triangles(m);
     size_t nt = fm_mesh_ntriangles(m);
@@ -210,8 +199,8 @@ static void long_axis(const fm_mesh *m, const fm_fit_frame *f, double axis[3])
         for (int c = 0; c < 3; c++) {
             const double *q = X + 3 * (size_t)T[3 * i + c];
             double d[3] = {q[0] - f->origin[0], q[1] - f->origin[1], q[2] - f->origin[2]};
-            px[c] = dot3(d, a);
-            py[c] = dot3(d, b);
+            px[c] = fm_dot3(d, a);
+            py[c] = fm_dot3(d, b);
         }
         double ar = 0.5 * fabs((px[1] - px[0]) * (py[2] - py[0]) - (px[2] - px[0]) * (py[1] - py[0]));
         double cx = px[0] + px[1] + px[2], cy = py[0] + py[1] + py[2];
@@ -283,8 +272,8 @@ fm_status fm_fit_reference_frame(const fm_mesh *sheet, const fm_fit_frame_option
         double e1[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
         double e2[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
         double c3[3];
-        cross3(e1, e2, c3);
-        double a2 = sqrt(dot3(c3, c3));
+        fm_cross3(e1, e2, c3);
+        double a2 = sqrt(fm_dot3(c3, c3));
         if (!isfinite(a2)) {
             free(nrm);
             free(area);
@@ -367,7 +356,7 @@ fm_status fm_fit_reference_frame(const fm_mesh *sheet, const fm_fit_frame_option
     out->min_dot = min_dot(nrm, n, w);
     double md = 0, folded = 0;
     for (size_t i = 0; i < n; i++) {
-        double t = dot3(nrm + 3 * i, w);
+        double t = fm_dot3(nrm + 3 * i, w);
         md += area[i] * t;
         if (t <= 0)
             folded += area[i];
@@ -382,17 +371,17 @@ fm_status fm_fit_reference_frame(const fm_mesh *sheet, const fm_fit_frame_option
     out->dip_degrees = acos(fmin(1.0, fabs(w[2]))) / DEG2RAD;
     if (out->dip_degrees >= 10.0) {
         double ez[3] = {0, 0, 1}, v[3];
-        double t = dot3(ez, w);
+        double t = fm_dot3(ez, w);
         for (int k = 0; k < 3; k++)
             v[k] = -(ez[k] - t * w[k]);
         normalize3(v);
         memcpy(out->v, v, sizeof v);
-        cross3(out->v, out->w, out->u);
+        fm_cross3(out->v, out->w, out->u);
         normalize3(out->u);
         out->strike_axes = 1;
     } else {
         long_axis(sheet, out, out->u);
-        cross3(out->w, out->u, out->v);
+        fm_cross3(out->w, out->u, out->v);
         normalize3(out->v);
         out->strike_axes = 0;
     }

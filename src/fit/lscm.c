@@ -16,18 +16,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double *a, const double *b, double *r)
-{
-    r[0] = a[1] * b[2] - a[2] * b[1];
-    r[1] = a[2] * b[0] - a[0] * b[2];
-    r[2] = a[0] * b[1] - a[1] * b[0];
-}
+#include "fm_vec3.h"
 
 /* Turns and scales the map: v along the steepest descent of z over the
  * parameters (the height-field convention), or u along the long axis when
@@ -117,8 +106,8 @@ fm_status fm_fit_lscm(const fm_mesh *sheet, double *uv, size_t *flipped, const c
         const double *p2 = X + 3 * (size_t)T[3 * t + 2];
         double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
         double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]}, c[3];
-        cross3(e1, e2, c);
-        double a2 = sqrt(dot3(c, c));
+        fm_cross3(e1, e2, c);
+        double a2 = sqrt(fm_dot3(c, c));
         if (!(a2 > 0))
             continue;
         area3 += 0.5 * a2;
@@ -141,8 +130,8 @@ fm_status fm_fit_lscm(const fm_mesh *sheet, double *uv, size_t *flipped, const c
         if (!active[i])
             continue;
         double d[3] = {X[3 * i] - cen[0], X[3 * i + 1] - cen[1], X[3 * i + 2] - cen[2]};
-        if (dot3(d, d) > best) {
-            best = dot3(d, d);
+        if (fm_dot3(d, d) > best) {
+            best = fm_dot3(d, d);
             pa = i;
         }
     }
@@ -151,8 +140,8 @@ fm_status fm_fit_lscm(const fm_mesh *sheet, double *uv, size_t *flipped, const c
         if (!active[i])
             continue;
         double d[3] = {X[3 * i] - X[3 * pa], X[3 * i + 1] - X[3 * pa + 1], X[3 * i + 2] - X[3 * pa + 2]};
-        if (dot3(d, d) > best) {
-            best = dot3(d, d);
+        if (fm_dot3(d, d) > best) {
+            best = fm_dot3(d, d);
             pb = i;
         }
     }
@@ -177,17 +166,17 @@ fm_status fm_fit_lscm(const fm_mesh *sheet, double *uv, size_t *flipped, const c
             p[k] = X + 3 * (size_t)T[3 * t + k];
         double e1[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
         double e2[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]}, nrm[3];
-        cross3(e1, e2, nrm);
-        double a2 = sqrt(dot3(nrm, nrm)), L = sqrt(dot3(e1, e1));
+        fm_cross3(e1, e2, nrm);
+        double a2 = sqrt(fm_dot3(nrm, nrm)), L = sqrt(fm_dot3(e1, e1));
         if (!(a2 > 0))
             continue;
         /* The triangle's own frame: x along e1, y = n x x, so the corners
          * run counter-clockwise and the map keeps the sheet's orientation. */
         double xh[3] = {e1[0] / L, e1[1] / L, e1[2] / L}, yh[3];
-        cross3(nrm, xh, yh);
+        fm_cross3(nrm, xh, yh);
         for (int k = 0; k < 3; k++)
             yh[k] /= a2;
-        double z[3][2] = {{0, 0}, {L, 0}, {dot3(e2, xh), dot3(e2, yh)}};
+        double z[3][2] = {{0, 0}, {L, 0}, {fm_dot3(e2, xh), fm_dot3(e2, yh)}};
         double a[3], b[3];
         for (int j = 0; j < 3; j++) {
             a[j] = z[(j + 2) % 3][0] - z[(j + 1) % 3][0];
@@ -270,8 +259,8 @@ fm_status fm_fit_lscm(const fm_mesh *sheet, double *uv, size_t *flipped, const c
         const double *p2 = X + 3 * (size_t)T[3 * t + 2];
         double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
         double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]}, cr[3];
-        cross3(e1, e2, cr);
-        if (dot3(cr, cr) > 0) /* a triangle without area has no orientation to lose */
+        fm_cross3(e1, e2, cr);
+        if (fm_dot3(cr, cr) > 0) /* a triangle without area has no orientation to lose */
             nflip++;
     }
     *flipped = nflip;

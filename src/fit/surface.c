@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include "fm_vec3.h"
 
 void fm_fit_surface_destroy(fm_fit_surface *s)
 {
@@ -190,11 +191,6 @@ void fm_fit_surface_eval(const fm_fit_surface *s, double u, double v, double xyz
     }
 }
 
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Half the squared distance from the local point q to S(u, v). */
 static double half_dist2(const fm_fit_surface *s, const double q[3], double u, double v)
 {
@@ -218,11 +214,11 @@ fm_status fm_fit_project_from(const fm_fit_surface *s, const double q[3], double
     fm_fit_local_eval(s, u, v, P, D);
     for (int k = 0; k < 3; k++)
         r[k] = P[k] - q[k];
-    double f = 0.5 * dot3(r, r);
+    double f = 0.5 * fm_dot3(r, r);
     for (int it = 0; it < 60; it++) {
-        double gu = dot3(D[0], r), gv = dot3(D[1], r);
-        double Juu = dot3(D[0], D[0]), Juv = dot3(D[0], D[1]), Jvv = dot3(D[1], D[1]);
-        double Huu = Juu + dot3(r, D[2]), Huv = Juv + dot3(r, D[3]), Hvv = Jvv + dot3(r, D[4]);
+        double gu = fm_dot3(D[0], r), gv = fm_dot3(D[1], r);
+        double Juu = fm_dot3(D[0], D[0]), Juv = fm_dot3(D[0], D[1]), Jvv = fm_dot3(D[1], D[1]);
+        double Huu = Juu + fm_dot3(r, D[2]), Huv = Juv + fm_dot3(r, D[3]), Hvv = Jvv + fm_dot3(r, D[4]);
         double det = Huu * Hvv - Huv * Huv;
         if (!(Huu > 0 && det > 1e-12 * Huu * Hvv)) {
             Huu = Juu;
@@ -259,8 +255,8 @@ fm_status fm_fit_project_from(const fm_fit_surface *s, const double q[3], double
     if (st != FM_OK) {
         /* Converged to rounding even if the last step was refused? The
          * gradient is measured against the parameter speed. */
-        double g = hypot(dot3(D[0], r), dot3(D[1], r));
-        double speed = sqrt(fmax(dot3(D[0], D[0]), dot3(D[1], D[1])));
+        double g = hypot(fm_dot3(D[0], r), fm_dot3(D[1], r));
+        double speed = sqrt(fmax(fm_dot3(D[0], D[0]), fm_dot3(D[1], D[1])));
         if (g <= 1e-9 * speed * (1 + sqrt(2 * f)))
             st = FM_OK;
     }
@@ -270,8 +266,8 @@ fm_status fm_fit_project_from(const fm_fit_surface *s, const double q[3], double
         /* Positive on the side S_u x S_v points to: w for a height field. */
         double n[3] = {D[0][1] * D[1][2] - D[0][2] * D[1][1], D[0][2] * D[1][0] - D[0][0] * D[1][2],
                        D[0][0] * D[1][1] - D[0][1] * D[1][0]};
-        double nn = sqrt(dot3(n, n)), d = sqrt(2 * f);
-        *dist = nn > 0 ? -dot3(r, n) / nn : d;
+        double nn = sqrt(fm_dot3(n, n)), d = sqrt(2 * f);
+        *dist = nn > 0 ? -fm_dot3(r, n) / nn : d;
         /* Off the foot's normal only when the iteration stopped early. */
         if (fabs(*dist) < d * (1 - 1e-6))
             *dist = *dist < 0 ? -d : d;

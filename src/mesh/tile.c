@@ -5,23 +5,12 @@
 #include <string.h>
 
 #include "tile_internal.h"
+#include "fm_vec3.h"
 
 #define NBINS 256
 /* Below about 2 degrees a depth row no longer says where a tile ends down
  * dip; such tiles keep a width of 1 / sin(2 deg) ~ 29 times their row. */
 #define MIN_SIN 0.0348994967025
-
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* Unit normal of triangle t (zero when degenerate). */
 static void tri_normal(const double *x, const int32_t *tri, size_t t, double n[3])
@@ -30,8 +19,8 @@ static void tri_normal(const double *x, const int32_t *tri, size_t t, double n[3
                  *c = x + 3 * (size_t)tri[3 * t + 2];
     double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
     double g[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    cross3(e, g, n);
-    double l = sqrt(dot3(n, n));
+    fm_cross3(e, g, n);
+    double l = sqrt(fm_dot3(n, n));
     for (int d = 0; d < 3; d++)
         n[d] = l > 0 ? n[d] / l : 0;
 }
@@ -178,7 +167,7 @@ static int tile_piece(tiler *tl, int32_t fault, int32_t row, double sa, double s
             continue;
         double n[3];
         tri_normal(tl->x, tl->tri, (size_t)tl->seg[i], n);
-        double a = dot3(n, r), b = n[2], q = a * a + b * b;
+        double a = fm_dot3(n, r), b = n[2], q = a * a + b * b;
         if (q < 1e-12)
             continue;
         c2 += (hi - lo) * (a * a - b * b) / q;
@@ -189,7 +178,7 @@ static int tile_piece(tiler *tl, int32_t fault, int32_t row, double sa, double s
     if (n[2] < 0)
         for (int d = 0; d < 3; d++)
             n[d] = -n[d];
-    if (dot3(n, r) < 0) { /* dipping left: look the other way along the contour */
+    if (fm_dot3(n, r) < 0) { /* dipping left: look the other way along the contour */
         st[0] = -st[0];
         st[1] = -st[1];
     }
@@ -204,7 +193,7 @@ static int tile_piece(tiler *tl, int32_t fault, int32_t row, double sa, double s
         }
     }
     double dip[3];
-    cross3(st, n, dip);
+    fm_cross3(st, n, dip);
     double sd = fmax(-dip[2], tile_min_sin(ztop - zbot, tl->rowdw));
     fm_tile t = {.fault = fault, .triangle = tl->seg[mseg], .row = row, .length = len,
                  .width = (ztop - zbot) / sd};

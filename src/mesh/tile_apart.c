@@ -6,34 +6,23 @@
 
 #include "fm_predicates.h"
 #include "tile_internal.h"
+#include "fm_vec3.h"
 
 /* Clearance a cut leaves between a tile and the other tile's plane: far
  * above the rounding of UTM coordinates (1e-9 m), far below anything a
  * simulator resolves. */
 #define CLEARANCE 1e-3
 
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 static void normal_of(const fm_tile *t, double n[3])
 {
-    cross3(t->dip, t->strike, n); /* upward */
+    fm_cross3(t->dip, t->strike, n); /* upward */
 }
 
 double tile_distance(const fm_tile *t, const double p[3], double *plane, int *inside)
 {
     double r[3] = {p[0] - t->centre[0], p[1] - t->centre[1], p[2] - t->centre[2]}, n[3];
     normal_of(t, n);
-    double u = dot3(r, t->strike), v = dot3(r, t->dip), w = dot3(r, n);
+    double u = fm_dot3(r, t->strike), v = fm_dot3(r, t->dip), w = fm_dot3(r, n);
     double cu = fmin(fmax(u, -t->length / 2), t->length / 2);
     double cv = fmin(fmax(v, -t->width / 2), t->width / 2);
     if (plane)
@@ -71,11 +60,11 @@ static double cut(const fm_tile *a, const fm_tile *b, fm_tile *out)
     normal_of(b, n);
     double r[3] = {a->centre[0] - b->centre[0], a->centre[1] - b->centre[1],
                    a->centre[2] - b->centre[2]};
-    double g0 = dot3(n, r);
+    double g0 = fm_dot3(n, r);
     if (fabs(g0) <= CLEARANCE)
         return INFINITY;
     double sg = g0 > 0 ? 1 : -1, h0 = fabs(g0);
-    double hu = sg * dot3(n, a->strike), hv = sg * dot3(n, a->dip);
+    double hu = sg * fm_dot3(n, a->strike), hv = sg * fm_dot3(n, a->dip);
     double L = a->length, W = a->width;
     double best = INFINITY, bu[2] = {0, 0}, bv[2] = {0, 0};
     /* along strike: every v of the tile, u restricted */
@@ -136,7 +125,7 @@ static int separate_pair(size_t j, void *user)
         return 0;
     double r[3] = {c->c0[c->i][0] - c->c0[j][0], c->c0[c->i][1] - c->c0[j][1],
                    c->c0[c->i][2] - c->c0[j][2]};
-    if (sqrt(dot3(r, r)) > c->rad[c->i] + c->rad[j])
+    if (sqrt(fm_dot3(r, r)) > c->rad[c->i] + c->rad[j])
         return 0;
     for (int round = 0; round < 8 && tiles_meet(a, b); round++) {
         fm_tile ca, cb;

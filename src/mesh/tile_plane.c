@@ -12,11 +12,7 @@
 #include <string.h>
 
 #include "tile_internal.h"
-
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+#include "fm_vec3.h"
 
 /* Whether triangle t reaches into the tile's columns between zlo and zhi,
  * near its plane: within half the tile's larger side, so that the surface
@@ -30,12 +26,12 @@ static int reaches(const tile_walk *w, size_t t, const fm_tile *tl, double zlo, 
     for (int k = 0; k < 3; k++) {
         const double *p = w->x + 3 * (size_t)w->tri[3 * t + (size_t)k];
         double r[3] = {p[0] - tl->centre[0], p[1] - tl->centre[1], p[2] - tl->centre[2]};
-        double u = dot3(r, tl->strike);
+        double u = fm_dot3(r, tl->strike);
         ulo = fmin(ulo, u);
         uhi = fmax(uhi, u);
         z0 = fmin(z0, p[2]);
         z1 = fmax(z1, p[2]);
-        wmin = fmin(wmin, fabs(dot3(r, n)));
+        wmin = fmin(wmin, fabs(fm_dot3(r, n)));
     }
     return (uhi >= -tl->length / 2 || (w->open & 1)) && (ulo <= tl->length / 2 || (w->open & 2)) &&
            z1 >= zlo && z0 <= zhi &&
@@ -132,9 +128,9 @@ static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, dou
                 p[d] = bw[k][0] * c[0][d] + bw[k][1] * c[1][d] + bw[k][2] * c[2][d] -
                        tl->centre[d];
             if (p[2] + tl->centre[2] > ztop || p[2] + tl->centre[2] < zbot ||
-                fabs(dot3(p, tl->strike)) > tl->length / 2)
+                fabs(fm_dot3(p, tl->strike)) > tl->length / 2)
                 continue;
-            double a = dot3(p, rh), b = p[2];
+            double a = fm_dot3(p, rh), b = p[2];
             n += 1;
             sa += a;
             sb += b;

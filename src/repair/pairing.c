@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "fm_vec3.h"
 
 /* An edge with more triangles than this is not a junction of a few
  * surfaces but garbage (k^2 pairs would be tried): it is left unpaired. */
@@ -47,11 +48,6 @@ static int cmp_pair(const void *pa, const void *pb)
     return (a->j > b->j) - (a->j < b->j);
 }
 
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Angles around the edge of the k half-edges hs, into items. */
 static void fan_angles(const rep_tris *t, const double *xyz, const int32_t *hs, int32_t k,
                        fan_item *items)
@@ -61,17 +57,17 @@ static void fan_angles(const rep_tris *t, const double *xyz, const int32_t *hs, 
     const double *a = xyz + 3 * (size_t)(va < vb ? va : vb);
     const double *b = xyz + 3 * (size_t)(va < vb ? vb : va);
     double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    double ee = dot3(e, e);
+    double ee = fm_dot3(e, e);
     double u[3] = {0, 0, 0}, w[3] = {0, 0, 0};
     for (int32_t m = 0; m < k; m++) {
         int32_t h = hs[m], tr = h / 3, i = h % 3;
         const double *c = xyz + 3 * (size_t)t->v[3 * tr + (i + 2) % 3];
         double p[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        double s = ee > 0 ? dot3(p, e) / ee : 0;
+        double s = ee > 0 ? fm_dot3(p, e) / ee : 0;
         for (int d = 0; d < 3; d++)
             p[d] -= s * e[d]; /* component of the apex across the edge */
         if (m == 0) {
-            double len = sqrt(dot3(p, p)), el = sqrt(ee);
+            double len = sqrt(fm_dot3(p, p)), el = sqrt(ee);
             if (len > 0 && el > 0) {
                 for (int d = 0; d < 3; d++)
                     u[d] = p[d] / len;
@@ -80,7 +76,7 @@ static void fan_angles(const rep_tris *t, const double *xyz, const int32_t *hs, 
                 w[2] = (e[0] * u[1] - e[1] * u[0]) / el;
             }
         }
-        items[m].angle = atan2(dot3(p, w), dot3(p, u));
+        items[m].angle = atan2(fm_dot3(p, w), fm_dot3(p, u));
         items[m].he = h;
     }
 }

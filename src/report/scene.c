@@ -5,11 +5,7 @@
 #include <stdlib.h>
 
 #include "report_internal.h"
-
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+#include "fm_vec3.h"
 
 /* Adds the triangles of m whose colour is known: base (for every tag) or
  * per_tag[tag] (when base is NULL; tags past ntags or with a negative red
@@ -40,9 +36,9 @@ static int add_triangles(rp_scene *s, const fm_mesh *m, int32_t only, const rp_c
         const double *v[3] = {X + 3 * T[3 * t], X + 3 * T[3 * t + 1], X + 3 * T[3 * t + 2]};
         rp_tri *o = &s->t[s->n++];
         for (int k = 0; k < 3; k++) {
-            o->p[k][0] = dot3(v[k], cam->r);
-            o->p[k][1] = dot3(v[k], cam->u);
-            o->z[k] = dot3(v[k], cam->d);
+            o->p[k][0] = fm_dot3(v[k], cam->r);
+            o->p[k][1] = fm_dot3(v[k], cam->u);
+            o->z[k] = fm_dot3(v[k], cam->d);
         }
         double e1[3], e2[3], n[3];
         for (int k = 0; k < 3; k++) {
@@ -52,9 +48,9 @@ static int add_triangles(rp_scene *s, const fm_mesh *m, int32_t only, const rp_c
         n[0] = e1[1] * e2[2] - e1[2] * e2[1];
         n[1] = e1[2] * e2[0] - e1[0] * e2[2];
         n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        double len = sqrt(dot3(n, n));
+        double len = sqrt(fm_dot3(n, n));
         /* two-sided: a fault has no outside */
-        double lit = len > 0 ? fabs(dot3(n, cam->light)) / len : 0;
+        double lit = len > 0 ? fabs(fm_dot3(n, cam->light)) / len : 0;
         double b = cam->ambient + (1 - cam->ambient) * lit;
         for (int k = 0; k < 3; k++)
             o->rgb[k] = (float)(rgb[k] * b);

@@ -84,13 +84,13 @@ static void put_record_desc(fs_out *o, int kind, const char *name, const char *t
                       f[i].text);
 }
 
-static void put_num(fs_out *o, double v)
+void sim_put_num(fs_out *o, double v)
 {
     fs_out_char(o, ' ');
     fs_out_double(o, v);
 }
 
-static void put_int(fs_out *o, uint64_t v)
+void sim_put_int(fs_out *o, uint64_t v)
 {
     fs_out_char(o, ' ');
     fs_out_u64(o, v);
@@ -461,17 +461,17 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
                  fs->nfaults, nt);
         sim_eqsim_head(o, title, sph, rp, fs->crs, 0);
         fs_out_str(o, "200");
-        put_int(o, fs->nfaults);
-        put_int(o, nvtotal);
-        put_int(o, nt);
-        put_int(o, 0);
-        put_num(o, blat[0]);
-        put_num(o, blat[1]);
-        put_num(o, blon[0]);
-        put_num(o, blon[1]);
-        put_num(o, bz[0]);
-        put_num(o, bz[1]);
-        put_int(o, sph ? 0 : 1);
+        sim_put_int(o, fs->nfaults);
+        sim_put_int(o, nvtotal);
+        sim_put_int(o, nt);
+        sim_put_int(o, 0);
+        sim_put_num(o, blat[0]);
+        sim_put_num(o, blat[1]);
+        sim_put_num(o, blon[0]);
+        sim_put_num(o, blon[1]);
+        sim_put_num(o, bz[0]);
+        sim_put_num(o, bz[1]);
+        sim_put_int(o, sph ? 0 : 1);
         fs_out_char(o, '\n');
 
         for (size_t v = 0; v < nv; v++)
@@ -526,32 +526,32 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
                 sz[1] = fmax(sz[1], x[3 * (size_t)v + 2]);
             }
             fs_out_str(o, "201");
-            put_int(o, f + 1);
+            sim_put_int(o, f + 1);
             fs_out_char(o, ' ');
             fs_out_str(o, sect[f]);
-            put_int(o, nsv);
-            put_int(o, n);
-            put_int(o, 0);
-            put_num(o, sl[0]);
-            put_num(o, sl[1]);
-            put_num(o, so[0]);
-            put_num(o, so[1]);
-            put_num(o, sz[0]);
-            put_num(o, sz[1]);
-            put_num(o, 0);
-            put_num(o, das_hi);
-            put_int(o, f + 1);
+            sim_put_int(o, nsv);
+            sim_put_int(o, n);
+            sim_put_int(o, 0);
+            sim_put_num(o, sl[0]);
+            sim_put_num(o, sl[1]);
+            sim_put_num(o, so[0]);
+            sim_put_num(o, so[1]);
+            sim_put_num(o, sz[0]);
+            sim_put_num(o, sz[1]);
+            sim_put_num(o, 0);
+            sim_put_num(o, das_hi);
+            sim_put_int(o, f + 1);
             fs_out_char(o, '\n');
             for (size_t k = 0; k < nsv; k++) {
                 int32_t v = w.verts[k];
                 fs_out_str(o, "202");
-                put_int(o, vbase + k + 1);
-                put_num(o, lat[v]);
-                put_num(o, lon[v]);
-                put_num(o, x[3 * (size_t)v + 2]);
-                put_num(o, w.das[k]);
+                sim_put_int(o, vbase + k + 1);
+                sim_put_num(o, lat[v]);
+                sim_put_num(o, lon[v]);
+                sim_put_num(o, x[3 * (size_t)v + 2]);
+                sim_put_num(o, w.das[k]);
                 int flag = !w.trace[v] ? 0 : k == first ? 2 : k == last ? 3 : 1;
-                put_int(o, (uint64_t)flag);
+                sim_put_int(o, (uint64_t)flag);
                 fs_out_char(o, '\n');
             }
             for (size_t i = 0; i < n; i++) {
@@ -571,15 +571,15 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
                                       x + 3 * (size_t)c[2], &st_deg, &dip_deg);
                 }
                 fs_out_str(o, "203");
-                put_int(o, tbase + i + 1);
+                sim_put_int(o, tbase + i + 1);
                 for (int k = 0; k < 3; k++)
-                    put_int(o, vbase + (size_t)w.local[c[k]] + 1);
+                    sim_put_int(o, vbase + (size_t)w.local[c[k]] + 1);
                 size_t t = order[start[f] + i];
-                put_num(o, slip->rake_t ? slip->rake_t[t] : slip->rake[f]);
-                put_num(o, slip->slip_rate_t ? slip->slip_rate_t[t] : slip->slip_rate[f]);
-                put_num(o, 0);
-                put_num(o, st_deg);
-                put_num(o, dip_deg);
+                sim_put_num(o, slip->rake_t ? slip->rake_t[t] : slip->rake[f]);
+                sim_put_num(o, slip->slip_rate_t ? slip->slip_rate_t[t] : slip->slip_rate[f]);
+                sim_put_num(o, 0);
+                sim_put_num(o, st_deg);
+                sim_put_num(o, dip_deg);
                 fs_out_char(o, '\n');
             }
             for (size_t k = 0; k < nsv; k++) {

@@ -47,6 +47,12 @@ typedef struct fs_edge_group {
 int fs_edge_groups_make(const fm_faultset *fs, fs_edge_group **out, size_t *n);
 void fs_edge_groups_free(fs_edge_group *g, size_t n);
 
+/* A physical name as MSH's $PhysicalNames line ends: double-quoted, '"'
+ * written as '\'' and '\\' as '/', cut to FM_MSH_NAME_MAX bytes, then a
+ * newline (faultset_msh.c; see fm_faultset_write_msh). */
+struct fs_out;
+void fs_msh_put_name(struct fs_out *o, const char *name);
+
 /* Start of the last whole UTF-8 character at or before byte n of s (s is
  * valid UTF-8), so cutting there keeps the text valid. */
 size_t fs_utf8_cut(const char *s, size_t n);

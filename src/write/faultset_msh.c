@@ -10,7 +10,7 @@
 /* Neither Gmsh (text between the first two quotes) nor meshio (shlex)
  * has an escape the other understands, so the two troublesome bytes are
  * replaced; see the header. */
-static void put_name(fs_out *o, const char *name)
+void fs_msh_put_name(fs_out *o, const char *name)
 {
     size_t n = strlen(name);
     if (n > FM_MSH_NAME_MAX)
@@ -59,13 +59,13 @@ static void put_head(fs_out *o, const fm_faultset *fs, const char *version,
     fs_out_printf(o, "$PhysicalNames\n%zu\n", ngroups + ng);
     for (size_t i = 0; i < ng; i++) {
         fs_out_printf(o, "1 %zu ", i + 1);
-        put_name(o, g[i].name);
+        fs_msh_put_name(o, g[i].name);
     }
     for (size_t i = 0; i < fs->nfaults; i++) {
         if (!first_with_tag(fs, i))
             continue;
         fs_out_printf(o, "2 %d ", (int)fs_physical_tag(fs, i));
-        put_name(o, fs_physical_name(fs, i));
+        fs_msh_put_name(o, fs_physical_name(fs, i));
     }
     fs_out_str(o, "$EndPhysicalNames\n");
 }

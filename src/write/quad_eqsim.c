@@ -13,18 +13,6 @@
 
 #define DEG2RAD (3.14159265358979323846 / 180)
 
-static void put_num(fs_out *o, double v)
-{
-    fs_out_char(o, ' ');
-    fs_out_double(o, v);
-}
-
-static void put_int(fs_out *o, uint64_t v)
-{
-    fs_out_char(o, ' ');
-    fs_out_u64(o, v);
-}
-
 /* lat (or y) and lon (or x) of every corner. */
 static fm_status convert(const fm_quadset *qs, int sph, double *lat, double *lon,
                          fm_reproject **rp, const char *path, fm_error *err)
@@ -132,17 +120,17 @@ fm_status fm_quadset_write_eqsim(const char *path, const fm_quadset *qs, fm_eqsi
                  qs->nquads);
         sim_eqsim_head(o, title, sph, rp, qs->crs, 1);
         fs_out_str(o, "200");
-        put_int(o, nsec);
-        put_int(o, n);
-        put_int(o, 0);
-        put_int(o, qs->nquads);
-        put_num(o, n ? bl[0] : 0);
-        put_num(o, n ? bl[1] : 0);
-        put_num(o, n ? bo[0] : 0);
-        put_num(o, n ? bo[1] : 0);
-        put_num(o, n ? bz[0] : 0);
-        put_num(o, n ? bz[1] : 0);
-        put_int(o, sph ? 0 : 1);
+        sim_put_int(o, nsec);
+        sim_put_int(o, n);
+        sim_put_int(o, 0);
+        sim_put_int(o, qs->nquads);
+        sim_put_num(o, n ? bl[0] : 0);
+        sim_put_num(o, n ? bl[1] : 0);
+        sim_put_num(o, n ? bo[0] : 0);
+        sim_put_num(o, n ? bo[1] : 0);
+        sim_put_num(o, n ? bz[0] : 0);
+        sim_put_num(o, n ? bz[1] : 0);
+        sim_put_int(o, sph ? 0 : 1);
         fs_out_char(o, '\n');
         for (size_t a = 0; a < qs->nquads;) {
             size_t b = a + 1;
@@ -178,32 +166,32 @@ fm_status fm_quadset_write_eqsim(const char *path, const fm_quadset *qs, fm_eqsi
             }
             int32_t f = qs->fault[a];
             fs_out_str(o, "201");
-            put_int(o, (uint64_t)f + 1);
+            sim_put_int(o, (uint64_t)f + 1);
             fs_out_char(o, ' ');
             fs_out_str(o, sect[f]);
-            put_int(o, 4 * (b - a));
-            put_int(o, 0);
-            put_int(o, b - a);
-            put_num(o, sl[0]);
-            put_num(o, sl[1]);
-            put_num(o, so[0]);
-            put_num(o, so[1]);
-            put_num(o, sz[0]);
-            put_num(o, sz[1]);
-            put_num(o, 0);
-            put_num(o, dhi);
-            put_int(o, (uint64_t)f + 1);
+            sim_put_int(o, 4 * (b - a));
+            sim_put_int(o, 0);
+            sim_put_int(o, b - a);
+            sim_put_num(o, sl[0]);
+            sim_put_num(o, sl[1]);
+            sim_put_num(o, so[0]);
+            sim_put_num(o, so[1]);
+            sim_put_num(o, sz[0]);
+            sim_put_num(o, sz[1]);
+            sim_put_num(o, 0);
+            sim_put_num(o, dhi);
+            sim_put_int(o, (uint64_t)f + 1);
             fs_out_char(o, '\n');
             for (size_t v = 4 * a; v < 4 * b; v++) {
                 size_t i = v / 4, k = v % 4;
                 int on = qs->top && qs->top[i] && (k == 0 || k == 3);
                 fs_out_str(o, "202");
-                put_int(o, v + 1);
-                put_num(o, lat[v]);
-                put_num(o, lon[v]);
-                put_num(o, qs->corners[3 * v + 2]);
-                put_num(o, das[v]);
-                put_int(o, !on ? 0 : v == first ? 2 : v == last ? 3 : 1);
+                sim_put_int(o, v + 1);
+                sim_put_num(o, lat[v]);
+                sim_put_num(o, lon[v]);
+                sim_put_num(o, qs->corners[3 * v + 2]);
+                sim_put_num(o, das[v]);
+                sim_put_int(o, !on ? 0 : v == first ? 2 : v == last ? 3 : 1);
                 fs_out_char(o, '\n');
             }
             for (size_t i = a; i < b; i++) {
@@ -226,15 +214,15 @@ fm_status fm_quadset_write_eqsim(const char *path, const fm_quadset *qs, fm_eqsi
                     fm_quad_strike_dip(c, &sd, &dd);
                 }
                 fs_out_str(o, "204");
-                put_int(o, i + 1);
+                sim_put_int(o, i + 1);
                 for (int k = 0; k < 4; k++)
-                    put_int(o, 4 * i + (size_t)k + 1);
-                put_num(o, quad_rake(qs, i));
-                put_num(o, quad_rate(qs, i));
-                put_num(o, 0);
-                put_num(o, sd);
-                put_num(o, dd);
-                put_int(o, 1);
+                    sim_put_int(o, 4 * i + (size_t)k + 1);
+                sim_put_num(o, quad_rake(qs, i));
+                sim_put_num(o, quad_rate(qs, i));
+                sim_put_num(o, 0);
+                sim_put_num(o, sd);
+                sim_put_num(o, dd);
+                sim_put_int(o, 1);
                 fs_out_char(o, '\n');
             }
             a = b;

@@ -109,17 +109,6 @@ fm_status fm_quadset_write_vtu(const char *path, const fm_quadset *qs, fm_error 
     return st;
 }
 
-static void put_msh_name(fs_out *o, const char *name)
-{
-    size_t n = strlen(name);
-    if (n > FM_MSH_NAME_MAX)
-        n = fs_utf8_cut(name, FM_MSH_NAME_MAX);
-    fs_out_char(o, '"');
-    for (size_t i = 0; i < n; i++)
-        fs_out_char(o, name[i] == '"' ? '\'' : name[i] == '\\' ? '/' : name[i]);
-    fs_out_str(o, "\"\n");
-}
-
 fm_status fm_quadset_write_msh(const char *path, const fm_quadset *qs, fm_error *err)
 {
     fm_status st = quad_validate(qs, path, err);
@@ -150,7 +139,7 @@ fm_status fm_quadset_write_msh(const char *path, const fm_quadset *qs, fm_error 
     for (size_t f = 0; f < nf; f++)
         if (start[f + 1] > start[f]) {
             fs_out_printf(o, "2 %zu ", f + 1);
-            put_msh_name(o, qs->names[f]);
+            fs_msh_put_name(o, qs->names[f]);
         }
     fs_out_printf(o, "$EndPhysicalNames\n$Entities\n0 0 %zu 0\n", used);
     for (size_t f = 0; f < nf; f++) {

@@ -26,6 +26,9 @@ struct fs_out;
 struct fm_reproject;
 void sim_eqsim_head(struct fs_out *o, const char *title, int sph, const struct fm_reproject *rp,
                     const char *crs, int rectangles);
+/* A space and a number (shortest round-trip text) or a whole number. */
+void sim_put_num(struct fs_out *o, double v);
+void sim_put_int(struct fs_out *o, uint64_t v);
 /* Normal of the triangle of three corners given as lat, lon (degrees) and
  * elevation (m) in the east-north-up frame at their mean position. */
 void sim_enu_normal(const double lat[3], const double lon[3], const double z[3], double n[3]);
