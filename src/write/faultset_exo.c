@@ -283,7 +283,8 @@ static int put_all(int exo, const exo_job *j)
     /* the blocks: one per fault, TRI3 */
     int *id = malloc((nf + 1) * 4 * sizeof *id);
     char **type = malloc((nf + 1) * sizeof *type);
-    ex_set *sets = calloc(ns + 1, sizeof *sets);
+    /* the node sets, then the side sets, defined in one call */
+    ex_set *sets = calloc(ns + j->ngroups + 1, sizeof *sets);
     if (!id || !type || !sets) {
         free(id);
         free(type);
@@ -304,23 +305,15 @@ static int put_all(int exo, const exo_job *j)
     free(type);
     if (rc >= 0)
         rc = make_sets(j, sets);
-    if (rc >= 0 && ns)
-        rc = ex_put_sets(exo, ns, sets);
-    for (size_t s = 0; s < ns; s++)
-        free(sets[s].entry_list);
-    free(sets);
-    ex_set *ss = calloc(j->ngroups + 1, sizeof *ss);
-    if (!ss)
-        rc = -ENOMEM;
     if (rc >= 0)
-        rc = make_side_sets(j, ss);
-    if (rc >= 0 && j->ngroups)
-        rc = ex_put_sets(exo, j->ngroups, ss);
-    for (size_t s = 0; ss && s < j->ngroups; s++) {
-        free(ss[s].entry_list);
-        free(ss[s].extra_list);
+        rc = make_side_sets(j, sets + ns);
+    if (rc >= 0 && ns + j->ngroups)
+        rc = ex_put_sets(exo, ns + j->ngroups, sets);
+    for (size_t s = 0; s < ns + j->ngroups; s++) {
+        free(sets[s].entry_list);
+        free(sets[s].extra_list);
     }
-    free(ss);
+    free(sets);
     if (rc >= 0)
         rc = ex_put_names(exo, EX_ELEM_BLOCK, j->names);
     if (rc >= 0)
