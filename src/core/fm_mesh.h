@@ -82,6 +82,9 @@ double fm_triangle_min_angle(const double *a, const double *b, const double *c);
 /* Angle at p between q - p and r - p, degrees (atan2 of |cross| and dot:
  * accurate near 0 and 180). */
 double fm_angle_at(const double *p, const double *q, const double *r);
+/* Which side of a triangle (its 3 vertex indices) joins vertices u and v,
+ * either way: k when it runs from corner k to corner k + 1; -1 when none. */
+int fm_triangle_side(const int32_t *tri, int32_t u, int32_t v);
 /* Distance from p to the segment a-b (a point when a == b). */
 double fm_segment_distance3(const double *p, const double *a, const double *b);
 

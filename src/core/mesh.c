@@ -174,3 +174,13 @@ size_t fm_used_vertices(const int32_t *tri, size_t nt, size_t nv, int32_t *map)
             map[v] = (int32_t)used++;
     return used;
 }
+
+int fm_triangle_side(const int32_t *tri, int32_t u, int32_t v)
+{
+    for (int k = 0; k < 3; k++) {
+        int32_t a = tri[k], b = tri[(k + 1) % 3];
+        if ((a == u && b == v) || (a == v && b == u))
+            return k;
+    }
+    return -1;
+}

@@ -10,7 +10,6 @@
 #define NBINS 256
 /* Below about 2 degrees a depth row no longer says where a tile ends down
  * dip; such tiles keep a width of 1 / sin(2 deg) ~ 29 times their row. */
-#define MIN_SIN 0.0348994967025
 
 /* Unit normal of triangle t (zero when degenerate). */
 static void tri_normal(const double *x, const int32_t *tri, size_t t, double n[3])
@@ -42,7 +41,6 @@ static void crossing(const double *x, int32_t u, int32_t v, double level, double
 }
 
 typedef struct tiler {
-    const fm_mesh *set;
     const double *x;
     const int32_t *tri;
     const int32_t *nbr;  /* per triangle side: the triangle of the same fault across it, -1 at
@@ -174,26 +172,8 @@ static int tile_piece(tiler *tl, int32_t fault, int32_t row, double sa, double s
         s2 += (hi - lo) * 2 * a * b / q;
     }
     double th = (c2 == 0 && s2 == 0) ? 0 : atan2(s2, c2) / 2;
-    double n[3] = {cos(th) * r[0], cos(th) * r[1], sin(th)};
-    if (n[2] < 0)
-        for (int d = 0; d < 3; d++)
-            n[d] = -n[d];
-    if (fm_dot3(n, r) < 0) { /* dipping left: look the other way along the contour */
-        st[0] = -st[0];
-        st[1] = -st[1];
-    }
-    if (fabs(n[2]) < 1e-12) {
-        /* vertical: the strike in [0, 180), as the triangle writers have it */
-        double az = atan2(st[0], st[1]);
-        if (az < 0 || az >= 3.14159265358979323846) {
-            st[0] = -st[0];
-            st[1] = -st[1];
-            n[0] = -n[0];
-            n[1] = -n[1];
-        }
-    }
-    double dip[3];
-    fm_cross3(st, n, dip);
+    double n[3] = {cos(th) * r[0], cos(th) * r[1], sin(th)}, dip[3];
+    tile_frame(st, n, dip);
     double sd = fmax(-dip[2], tile_min_sin(ztop - zbot, tl->rowdw));
     fm_tile t = {.fault = fault, .triangle = tl->seg[mseg], .row = row, .length = len,
                  .width = (ztop - zbot) / sd};
@@ -314,14 +294,8 @@ static int walk(tiler *tl, size_t t, int kin, double level)
         if (nt < 0 || tl->stamp[nt] == tl->cur)
             break;
         /* the side of nt that is the same edge */
-        int32_t u = tl->tri[3 * t + (size_t)kout], v = tl->tri[3 * t + (size_t)(kout + 1) % 3];
-        kin = -1;
-        for (int i = 0; i < 3; i++) {
-            int32_t a = tl->tri[3 * (size_t)nt + (size_t)i],
-                    b = tl->tri[3 * (size_t)nt + (size_t)(i + 1) % 3];
-            if ((a == u && b == v) || (a == v && b == u))
-                kin = i;
-        }
+        kin = fm_triangle_side(tl->tri + 3 * (size_t)nt, tl->tri[3 * t + (size_t)kout],
+                               tl->tri[3 * t + (size_t)(kout + 1) % 3]);
         if (kin < 0)
             break;
         t = (size_t)nt;
@@ -415,7 +389,7 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
     dd[0] = 0;
     for (int k = 0; k < NBINS; k++) {
         double s = area[k] > 0 ? asin[k] / area[k] : sall;
-        dd[k + 1] = dd[k] + dz / fmax(s, MIN_SIN);
+        dd[k + 1] = dd[k] + dz / fmax(s, TILE_MIN_SIN);
     }
     double dtot = dd[NBINS];
     long nrows = lround(dtot / tl->size);
@@ -501,15 +475,12 @@ static int make_sides(const fm_mesh *set, tile_sides *sd, int32_t *nbr)
             sd->junction[k] = (unsigned char)junction;
         if (!junction && j - i == 2) {
             size_t t0 = sd->side[i].index, t1 = sd->side[i + 1].index;
-            uint32_t u = (uint32_t)(sd->side[i].key >> 32), v = (uint32_t)sd->side[i].key;
+            int32_t u = (int32_t)(sd->side[i].key >> 32), v = (int32_t)(sd->side[i].key & 0xffffffffu);
             for (int pass = 0; pass < 2; pass++) {
                 size_t t = pass ? t1 : t0, o = pass ? t0 : t1;
-                for (int k = 0; k < 3; k++) {
-                    uint32_t a = (uint32_t)tri[3 * t + (size_t)k],
-                             b = (uint32_t)tri[3 * t + (size_t)(k + 1) % 3];
-                    if ((a == u && b == v) || (a == v && b == u))
-                        nbr[3 * t + (size_t)k] = (int32_t)o;
-                }
+                int k = fm_triangle_side(tri + 3 * t, u, v);
+                if (k >= 0)
+                    nbr[3 * t + (size_t)k] = (int32_t)o;
             }
         }
         i = j;
@@ -535,7 +506,7 @@ fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_ti
     int32_t *stamp = calloc(nt + 1, sizeof *stamp);
     size_t *start = calloc(nfaults + 2, sizeof *start), *order = malloc((nt + 1) * sizeof *order);
     tile_sides sd = {0};
-    tiler tl = {.set = set, .x = fm_mesh_vertices(set), .tri = fm_mesh_triangles(set),
+    tiler tl = {.x = fm_mesh_vertices(set), .tri = fm_mesh_triangles(set),
                 .nbr = nbr, .stamp = stamp, .size = size, .out = t};
     int bad = !t || !nbr || !stamp || !start || !order;
     if (!bad) {

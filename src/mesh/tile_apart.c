@@ -13,15 +13,10 @@
  * simulator resolves. */
 #define CLEARANCE 1e-3
 
-static void normal_of(const fm_tile *t, double n[3])
-{
-    fm_cross3(t->dip, t->strike, n); /* upward */
-}
-
 double tile_distance(const fm_tile *t, const double p[3], double *plane, int *inside)
 {
     double r[3] = {p[0] - t->centre[0], p[1] - t->centre[1], p[2] - t->centre[2]}, n[3];
-    normal_of(t, n);
+    tile_normal(t, n);
     double u = fm_dot3(r, t->strike), v = fm_dot3(r, t->dip), w = fm_dot3(r, n);
     double cu = fmin(fmax(u, -t->length / 2), t->length / 2);
     double cv = fmin(fmax(v, -t->width / 2), t->width / 2);
@@ -33,6 +28,14 @@ double tile_distance(const fm_tile *t, const double p[3], double *plane, int *in
 }
 
 static double radius(const fm_tile *t) { return 0.5 * hypot(t->length, t->width); }
+
+static double max_radius(const fm_tiles *t)
+{
+    double r = 0;
+    for (size_t i = 0; i < t->n; i++)
+        r = fmax(r, radius(&t->tile[i]));
+    return r;
+}
 
 static int tiles_meet(const fm_tile *a, const fm_tile *b)
 {
@@ -57,7 +60,7 @@ static int tiles_meet(const fm_tile *a, const fm_tile *b)
 static double cut(const fm_tile *a, const fm_tile *b, fm_tile *out)
 {
     double n[3];
-    normal_of(b, n);
+    tile_normal(b, n);
     double r[3] = {a->centre[0] - b->centre[0], a->centre[1] - b->centre[1],
                    a->centre[2] - b->centre[2]};
     double g0 = fm_dot3(n, r);
@@ -149,7 +152,6 @@ static int separate_pair(size_t j, void *user)
 typedef struct split_ctx {
     fm_tiles *t;
     unsigned char *mark; /* 1: split along strike, 2: down dip */
-    double rmax;
     size_t i;
 } split_ctx;
 
@@ -210,9 +212,7 @@ static int mark_pair(size_t j, void *user)
  * two first, so that the cut takes less; -1 when memory runs out. */
 static int split_for_cuts(fm_tiles *t)
 {
-    double rmax = 0;
-    for (size_t i = 0; i < t->n; i++)
-        rmax = fmax(rmax, radius(&t->tile[i]));
+    double rmax = max_radius(t);
     unsigned char *mark = calloc(t->n + 1, 1);
     tile_grid g = {0};
     if (!mark || tile_grid_make(&g, t, rmax)) {
@@ -220,7 +220,7 @@ static int split_for_cuts(fm_tiles *t)
         free(g.e);
         return -1;
     }
-    split_ctx c = {t, mark, rmax, 0};
+    split_ctx c = {t, mark, 0};
     for (size_t i = 0; i < t->n; i++) {
         c.i = i;
         tile_grid_near(&g, t->tile[i].centre, 2 * rmax, mark_pair, &c);
@@ -303,7 +303,6 @@ typedef struct near_ctx {
     const double *p;
     int32_t fault;
     double best;    /* nearest tile of fault (measure_gap) */
-    double flat;    /* unused by the gap search */
     size_t count;   /* meeting pairs (count_meeting) */
     size_t i;
 } near_ctx;
@@ -398,8 +397,8 @@ static int measure_gaps(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, c
                     double pt[3];
                     for (int d = 0; d < 3; d++)
                         pt[d] = a[d] + (b[d] - a[d]) * k / 4.0;
-                    near_ctx ca = {t, pt, fa, reach, 0, 0, 0};
-                    near_ctx cb = {t, pt, fb, reach, 0, 0, 0};
+                    near_ctx ca = {t, pt, fa, reach, 0, 0};
+                    near_ctx cb = {t, pt, fb, reach, 0, 0};
                     tile_grid_near(g, pt, reach, nearest_of_fault, &ca);
                     tile_grid_near(g, pt, reach, nearest_of_fault, &cb);
                     double gap = fmax(ca.best, cb.best);
@@ -445,9 +444,7 @@ int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, tile_wal
     const double *x = fm_mesh_vertices(set);
     const int32_t *tri = fm_mesh_triangles(set), *tag = fm_mesh_tags(set);
     size_t nt = fm_mesh_ntriangles(set);
-    double rmax = 0;
-    for (size_t i = 0; i < t->n; i++)
-        rmax = fmax(rmax, radius(&t->tile[i]));
+    double rmax = max_radius(t);
     tile_grid g = {0};
     if (t->n && tile_grid_make(&g, t, rmax)) {
         free(g.e);
@@ -502,7 +499,7 @@ int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, tile_wal
         t->stats.area_ratio_min = 0;
     /* what still meets, counted by the same exact test */
     for (size_t i = 0; i < t->n; i++) {
-        near_ctx nc = {t, NULL, 0, 0, 0, 0, i};
+        near_ctx nc = {t, NULL, 0, 0, 0, i};
         tile_grid_near(&g, t->tile[i].centre, 2 * rmax, count_meeting, &nc);
         t->stats.meeting += nc.count;
     }

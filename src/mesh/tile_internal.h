@@ -2,8 +2,11 @@
 #ifndef FM_TILE_INTERNAL_H
 #define FM_TILE_INTERNAL_H
 
+#include <math.h>
+
 #include "fm_sort.h"
 #include "fm_tile.h"
+#include "fm_vec3.h"
 
 struct fm_tiles {
     fm_tile *tile;
@@ -60,6 +63,10 @@ double tile_flatness(const tile_walk *w, const fm_tile *tl);
 /* Appends a tile of the row ztop..zbot, dw wide down dip (tile.c). */
 int tile_push(fm_tiles *t, const fm_tile *tile, double ztop, double zbot, double dw, int open);
 
+/* Below about 2 degrees a depth row no longer says where a tile ends down
+ * dip (sin 2 deg). */
+#define TILE_MIN_SIN 0.0348994967025
+
 /* The least sine of dip a tile of a row dz deep and dw wide down dip (at
  * the fault's mean dip there) takes: a surface locally flatter than that
  * (or a dip of under 2 degrees) would give a tile reaching far beyond its
@@ -67,7 +74,38 @@ int tile_push(fm_tiles *t, const fm_tile *tile, double ztop, double zbot, double
 static inline double tile_min_sin(double dz, double dw)
 {
     double s = dw > 0 ? dz / (1.5 * dw) : 0;
-    return s > 0.0348994967025 ? s : 0.0348994967025;
+    return s > TILE_MIN_SIN ? s : TILE_MIN_SIN;
+}
+
+/* A tile's upward normal, dip x strike. */
+static inline void tile_normal(const fm_tile *t, double n[3])
+{
+    fm_cross3(t->dip, t->strike, n);
+}
+
+/* A tile's frame by the element convention of the simulator writers,
+ * from a horizontal unit strike st and a unit normal n across it (either
+ * way up): n made to point up, st turned round if the tile would dip to
+ * its left, a vertical tile's strike put in [0, 180); dip = st x n. */
+static inline void tile_frame(double st[3], double n[3], double dip[3])
+{
+    if (n[2] < 0)
+        for (int d = 0; d < 3; d++)
+            n[d] = -n[d];
+    if (n[0] * st[1] - n[1] * st[0] < 0) {
+        st[0] = -st[0];
+        st[1] = -st[1];
+    }
+    if (fabs(n[2]) < 1e-12) {
+        double az = atan2(st[0], st[1]);
+        if (az < 0 || az >= 3.14159265358979323846) {
+            st[0] = -st[0];
+            st[1] = -st[1];
+            n[0] = -n[0];
+            n[1] = -n[1];
+        }
+    }
+    fm_cross3(st, n, dip);
 }
 struct tile_walk;
 int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, struct tile_walk *w);

@@ -20,9 +20,8 @@
 static int reaches(const tile_walk *w, size_t t, const fm_tile *tl, double zlo, double zhi)
 {
     double ulo = INFINITY, uhi = -INFINITY, z0 = INFINITY, z1 = -INFINITY, wmin = INFINITY;
-    double n[3] = {tl->dip[1] * tl->strike[2] - tl->dip[2] * tl->strike[1],
-                   tl->dip[2] * tl->strike[0] - tl->dip[0] * tl->strike[2],
-                   tl->dip[0] * tl->strike[1] - tl->dip[1] * tl->strike[0]};
+    double n[3];
+    tile_normal(tl, n);
     for (int k = 0; k < 3; k++) {
         const double *p = w->x + 3 * (size_t)w->tri[3 * t + (size_t)k];
         double r[3] = {p[0] - tl->centre[0], p[1] - tl->centre[1], p[2] - tl->centre[2]};
@@ -140,7 +139,6 @@ static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, dou
         }
     }
     double sdmin = tile_min_sin(ztop - zbot, dw);
-    double zc = tl->centre[2];
     if (w->n) {
         ztop = fmin(ztop, zhi);
         zbot = fmax(zbot, zlo);
@@ -158,25 +156,7 @@ static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, dou
         double phi = 0.5 * atan2(2 * cab, caa - cbb);
         /* the normal is across the principal axis (cos phi, sin phi) */
         double nr[3] = {-sin(phi) * rh[0], -sin(phi) * rh[1], cos(phi)};
-        if (nr[2] < 0)
-            for (int d = 0; d < 3; d++)
-                nr[d] = -nr[d];
-        if (nr[0] * rh[0] + nr[1] * rh[1] < 0) { /* dipping left now */
-            st[0] = -st[0];
-            st[1] = -st[1];
-        }
-        if (fabs(nr[2]) < 1e-12) {
-            double az = atan2(st[0], st[1]);
-            if (az < 0 || az >= 3.14159265358979323846) {
-                st[0] = -st[0];
-                st[1] = -st[1];
-                nr[0] = -nr[0];
-                nr[1] = -nr[1];
-            }
-        }
-        dip[0] = st[1] * nr[2] - st[2] * nr[1];
-        dip[1] = st[2] * nr[0] - st[0] * nr[2];
-        dip[2] = st[0] * nr[1] - st[1] * nr[0];
+        tile_frame(st, nr, dip);
         /* through the samples' centroid */
         for (int d = 0; d < 3; d++)
             q[d] += ma * rh[d];
@@ -212,7 +192,6 @@ static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, dou
     for (int d = 0; d < 3; d++)
         tl->centre[d] = q[d] + s * dip[d];
     tl->centre[2] = level;
-    (void)zc;
     memcpy(tl->strike, st, sizeof st);
     memcpy(tl->dip, dip, sizeof dip);
     tl->width = width;
@@ -337,7 +316,7 @@ int tile_fit_planes(fm_tiles *t, tile_walk *w)
         }
         while (flat > tol) {
             fm_tile best[2];
-            double bb[2][4], bf = flat;
+            double bb[2][4], bf = flat, bf0 = flat;
             int found = 0;
             for (int dip = 0; dip < 2; dip++) {
                 const fm_tile *tl = &t->tile[i];
@@ -350,6 +329,7 @@ int tile_fit_planes(fm_tiles *t, tile_walk *w)
                 double f1 = fitted(w, &h[1], hb[1][0], hb[1][1], hb[1][2], (int)hb[1][3]);
                 if (fmax(f0, f1) < bf) {
                     bf = fmax(f0, f1);
+                    bf0 = f0;
                     memcpy(best, h, sizeof best);
                     memcpy(bb, hb, sizeof bb);
                     found = 1;
@@ -361,7 +341,7 @@ int tile_fit_planes(fm_tiles *t, tile_walk *w)
             memcpy(t->band[i], bb[0], sizeof bb[0]);
             if (tile_push(t, &best[1], bb[1][0], bb[1][1], bb[1][2], (int)bb[1][3]))
                 return -1;
-            flat = flat_of(w, &t->tile[i]);
+            flat = bf0; /* the kept half's, as fitted */
         }
     }
     return 0;

@@ -116,12 +116,7 @@ int fs_edge_groups_make(const fm_faultset *fs, fs_edge_group **out, size_t *nout
         if (one && !shared) {
             size_t t = side[i].index;
             int32_t u = (int32_t)(side[i].key >> 32), v = (int32_t)(side[i].key & 0xffffffffu);
-            int s = 0;
-            for (int k = 0; k < 3; k++) {
-                int32_t a = tri[3 * t + (size_t)k], b = tri[3 * t + (size_t)(k + 1) % 3];
-                if ((a == u && b == v) || (a == v && b == u))
-                    s = k;
-            }
+            int s = fm_triangle_side(tri + 3 * t, u, v);
             int32_t w = tri[3 * t + (size_t)(s + 2) % 3];
             int kind = edge_kind(x, u, v, w, zsurf);
             bad = add_edge(&g[FS_EDGE_KINDS * (size_t)f0 + (size_t)kind], u, v, (int32_t)t, s);
@@ -168,12 +163,7 @@ int fs_edge_groups_make(const fm_faultset *fs, fs_edge_group **out, size_t *nout
                 if (seen)
                     continue;
                 size_t t = side[i].index;
-                int s = 0;
-                for (int q = 0; q < 3; q++) {
-                    int32_t a = tri[3 * t + (size_t)q], b = tri[3 * t + (size_t)(q + 1) % 3];
-                    if ((a == u && b == v) || (a == v && b == u))
-                        s = q;
-                }
+                int s = fm_triangle_side(tri + 3 * t, u, v);
                 bad = add_edge(&g[FS_EDGE_KINDS * nf + (size_t)vset[a1]], u, v, (int32_t)t, s);
                 break;
             }

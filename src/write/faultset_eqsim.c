@@ -161,6 +161,61 @@ void sim_eqsim_head(fs_out *o, const char *title, int sph, const fm_reproject *r
     fs_out_str(o, "103 End_Descriptor\n");
 }
 
+void sim_bounds_init(sim_bounds *b)
+{
+    for (int k = 0; k < 2; k++)
+        b->lat[k] = b->lon[k] = b->z[k] = k ? -INFINITY : INFINITY;
+}
+
+void sim_bounds_add(sim_bounds *b, double lat, double lon, double z)
+{
+    b->lat[0] = fmin(b->lat[0], lat);
+    b->lat[1] = fmax(b->lat[1], lat);
+    b->lon[0] = fmin(b->lon[0], lon);
+    b->lon[1] = fmax(b->lon[1], lon);
+    b->z[0] = fmin(b->z[0], z);
+    b->z[1] = fmax(b->z[1], z);
+}
+
+static void put_bounds(fs_out *o, const sim_bounds *b)
+{
+    int empty = !(b->lat[0] <= b->lat[1]);
+    const double *r[3] = {b->lat, b->lon, b->z};
+    for (int k = 0; k < 3; k++)
+        for (int e = 0; e < 2; e++)
+            sim_put_num(o, empty ? 0 : r[k][e]);
+}
+
+void sim_eqsim_summary(fs_out *o, size_t nsec, size_t nv, size_t ntri, size_t nrect,
+                       const sim_bounds *b, int spherical)
+{
+    fs_out_str(o, "200");
+    sim_put_int(o, nsec);
+    sim_put_int(o, nv);
+    sim_put_int(o, ntri);
+    sim_put_int(o, nrect);
+    put_bounds(o, b);
+    sim_put_int(o, spherical ? 0 : 1);
+    fs_out_char(o, '\n');
+}
+
+void sim_eqsim_section(fs_out *o, size_t sid, const char *name, size_t nv, size_t ntri,
+                       size_t nrect, const sim_bounds *b, double das_hi)
+{
+    fs_out_str(o, "201");
+    sim_put_int(o, sid);
+    fs_out_char(o, ' ');
+    fs_out_str(o, name);
+    sim_put_int(o, nv);
+    sim_put_int(o, ntri);
+    sim_put_int(o, nrect);
+    put_bounds(o, b);
+    sim_put_num(o, 0);
+    sim_put_num(o, das_hi);
+    sim_put_int(o, sid);
+    fs_out_char(o, '\n');
+}
+
 fm_status fm_eqsim_check_crs(const char *crs, fm_error *err)
 {
     if (!crs || !crs[0])
@@ -435,16 +490,11 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
     }
     if (st == FM_OK)
         st = convert_vertices(fs, coords, used, lat, lon, &rp, path, err);
-    double blat[2] = {INFINITY, -INFINITY}, blon[2] = {INFINITY, -INFINITY},
-           bz[2] = {INFINITY, -INFINITY};
+    sim_bounds all;
+    sim_bounds_init(&all);
     for (size_t v = 0; st == FM_OK && v < nv; v++)
         if (used[v]) {
-            blat[0] = fmin(blat[0], lat[v]);
-            blat[1] = fmax(blat[1], lat[v]);
-            blon[0] = fmin(blon[0], lon[v]);
-            blon[1] = fmax(blon[1], lon[v]);
-            bz[0] = fmin(bz[0], x[3 * v + 2]);
-            bz[1] = fmax(bz[1], x[3 * v + 2]);
+            sim_bounds_add(&all, lat[v], lon[v], x[3 * v + 2]);
         }
     fm_atomic_file *af = NULL;
     fs_out *o = NULL;
@@ -460,19 +510,7 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
         snprintf(title, sizeof title, "faultmesh fault set: %zu sections, %zu triangles",
                  fs->nfaults, nt);
         sim_eqsim_head(o, title, sph, rp, fs->crs, 0);
-        fs_out_str(o, "200");
-        sim_put_int(o, fs->nfaults);
-        sim_put_int(o, nvtotal);
-        sim_put_int(o, nt);
-        sim_put_int(o, 0);
-        sim_put_num(o, blat[0]);
-        sim_put_num(o, blat[1]);
-        sim_put_num(o, blon[0]);
-        sim_put_num(o, blon[1]);
-        sim_put_num(o, bz[0]);
-        sim_put_num(o, bz[1]);
-        sim_put_int(o, sph ? 0 : 1);
-        fs_out_char(o, '\n');
+        sim_eqsim_summary(o, fs->nfaults, nvtotal, nt, 0, &all, sph);
 
         for (size_t v = 0; v < nv; v++)
             w.local[v] = -1;
@@ -514,34 +552,13 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
                     if (last == nsv || w.das[k] > w.das[last])
                         last = k;
                 }
-            double sl[2] = {INFINITY, -INFINITY}, so[2] = {INFINITY, -INFINITY},
-                   sz[2] = {INFINITY, -INFINITY};
+            sim_bounds sb;
+            sim_bounds_init(&sb);
             for (size_t k = 0; k < nsv; k++) {
                 int32_t v = w.verts[k];
-                sl[0] = fmin(sl[0], lat[v]);
-                sl[1] = fmax(sl[1], lat[v]);
-                so[0] = fmin(so[0], lon[v]);
-                so[1] = fmax(so[1], lon[v]);
-                sz[0] = fmin(sz[0], x[3 * (size_t)v + 2]);
-                sz[1] = fmax(sz[1], x[3 * (size_t)v + 2]);
+                sim_bounds_add(&sb, lat[v], lon[v], x[3 * (size_t)v + 2]);
             }
-            fs_out_str(o, "201");
-            sim_put_int(o, f + 1);
-            fs_out_char(o, ' ');
-            fs_out_str(o, sect[f]);
-            sim_put_int(o, nsv);
-            sim_put_int(o, n);
-            sim_put_int(o, 0);
-            sim_put_num(o, sl[0]);
-            sim_put_num(o, sl[1]);
-            sim_put_num(o, so[0]);
-            sim_put_num(o, so[1]);
-            sim_put_num(o, sz[0]);
-            sim_put_num(o, sz[1]);
-            sim_put_num(o, 0);
-            sim_put_num(o, das_hi);
-            sim_put_int(o, f + 1);
-            fs_out_char(o, '\n');
+            sim_eqsim_section(o, f + 1, sect[f], nsv, n, 0, &sb, das_hi);
             for (size_t k = 0; k < nsv; k++) {
                 int32_t v = w.verts[k];
                 fs_out_str(o, "202");

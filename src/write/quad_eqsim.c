@@ -103,53 +103,30 @@ fm_status fm_quadset_write_eqsim(const char *path, const fm_quadset *qs, fm_eqsi
     }
     if (st == FM_OK) {
         size_t nsec = 0;
-        double bl[2] = {INFINITY, -INFINITY}, bo[2] = {INFINITY, -INFINITY},
-               bz[2] = {INFINITY, -INFINITY};
-        for (size_t i = 0; i < n; i++) {
-            bl[0] = fmin(bl[0], lat[i]);
-            bl[1] = fmax(bl[1], lat[i]);
-            bo[0] = fmin(bo[0], lon[i]);
-            bo[1] = fmax(bo[1], lon[i]);
-            bz[0] = fmin(bz[0], qs->corners[3 * i + 2]);
-            bz[1] = fmax(bz[1], qs->corners[3 * i + 2]);
-        }
+        sim_bounds all;
+        sim_bounds_init(&all);
+        for (size_t i = 0; i < n; i++)
+            sim_bounds_add(&all, lat[i], lon[i], qs->corners[3 * i + 2]);
         for (size_t i = 0; i < qs->nquads; i++)
             nsec += i == 0 || qs->fault[i] != qs->fault[i - 1];
         char title[160];
         snprintf(title, sizeof title, "faultmesh fault set: %zu sections, %zu rectangles", nsec,
                  qs->nquads);
         sim_eqsim_head(o, title, sph, rp, qs->crs, 1);
-        fs_out_str(o, "200");
-        sim_put_int(o, nsec);
-        sim_put_int(o, n);
-        sim_put_int(o, 0);
-        sim_put_int(o, qs->nquads);
-        sim_put_num(o, n ? bl[0] : 0);
-        sim_put_num(o, n ? bl[1] : 0);
-        sim_put_num(o, n ? bo[0] : 0);
-        sim_put_num(o, n ? bo[1] : 0);
-        sim_put_num(o, n ? bz[0] : 0);
-        sim_put_num(o, n ? bz[1] : 0);
-        sim_put_int(o, sph ? 0 : 1);
-        fs_out_char(o, '\n');
+        sim_eqsim_summary(o, nsec, n, 0, qs->nquads, &all, sph);
         for (size_t a = 0; a < qs->nquads;) {
             size_t b = a + 1;
             while (b < qs->nquads && qs->fault[b] == qs->fault[a])
                 b++;
             double dir[2], dlo = INFINITY, dhi = -INFINITY;
             mean_strike(qs, a, b, dir);
-            double sl[2] = {INFINITY, -INFINITY}, so[2] = {INFINITY, -INFINITY},
-                   sz[2] = {INFINITY, -INFINITY};
+            sim_bounds sb;
+            sim_bounds_init(&sb);
             for (size_t v = 4 * a; v < 4 * b; v++) {
                 const double *p = qs->corners + 3 * v;
                 das[v] = dir[0] * p[0] + dir[1] * p[1];
                 dlo = fmin(dlo, das[v]);
-                sl[0] = fmin(sl[0], lat[v]);
-                sl[1] = fmax(sl[1], lat[v]);
-                so[0] = fmin(so[0], lon[v]);
-                so[1] = fmax(so[1], lon[v]);
-                sz[0] = fmin(sz[0], p[2]);
-                sz[1] = fmax(sz[1], p[2]);
+                sim_bounds_add(&sb, lat[v], lon[v], p[2]);
             }
             /* the trace: upper corners of the top row; 2 and 3 at its ends */
             size_t first = SIZE_MAX, last = SIZE_MAX;
@@ -165,23 +142,7 @@ fm_status fm_quadset_write_eqsim(const char *path, const fm_quadset *qs, fm_eqsi
                 }
             }
             int32_t f = qs->fault[a];
-            fs_out_str(o, "201");
-            sim_put_int(o, (uint64_t)f + 1);
-            fs_out_char(o, ' ');
-            fs_out_str(o, sect[f]);
-            sim_put_int(o, 4 * (b - a));
-            sim_put_int(o, 0);
-            sim_put_int(o, b - a);
-            sim_put_num(o, sl[0]);
-            sim_put_num(o, sl[1]);
-            sim_put_num(o, so[0]);
-            sim_put_num(o, so[1]);
-            sim_put_num(o, sz[0]);
-            sim_put_num(o, sz[1]);
-            sim_put_num(o, 0);
-            sim_put_num(o, dhi);
-            sim_put_int(o, (uint64_t)f + 1);
-            fs_out_char(o, '\n');
+            sim_eqsim_section(o, (size_t)f + 1, sect[f], 4 * (b - a), 0, b - a, &sb, dhi);
             for (size_t v = 4 * a; v < 4 * b; v++) {
                 size_t i = v / 4, k = v % 4;
                 int on = qs->top && qs->top[i] && (k == 0 || k == 3);

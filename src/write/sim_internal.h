@@ -26,6 +26,19 @@ struct fs_out;
 struct fm_reproject;
 void sim_eqsim_head(struct fs_out *o, const char *title, int sph, const struct fm_reproject *rp,
                     const char *crs, int rectangles);
+/* Latitude (or y), longitude (or x) and depth ranges of EQSim records 200
+ * and 201: sim_bounds_init, then sim_bounds_add per vertex. */
+typedef struct sim_bounds {
+    double lat[2], lon[2], z[2];
+} sim_bounds;
+void sim_bounds_init(sim_bounds *b);
+void sim_bounds_add(sim_bounds *b, double lat, double lon, double z);
+/* Record 200 (the fault system summary; the bounds 0 when empty) and
+ * record 201 (a section, sid also its fault id), each a line. */
+void sim_eqsim_summary(struct fs_out *o, size_t nsec, size_t nv, size_t ntri, size_t nrect,
+                       const sim_bounds *b, int spherical);
+void sim_eqsim_section(struct fs_out *o, size_t sid, const char *name, size_t nv, size_t ntri,
+                       size_t nrect, const sim_bounds *b, double das_hi);
 /* A space and a number (shortest round-trip text) or a whole number. */
 void sim_put_num(struct fs_out *o, double v);
 void sim_put_int(struct fs_out *o, uint64_t v);
