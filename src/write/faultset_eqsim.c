@@ -224,14 +224,10 @@ fm_status fm_eqsim_check_crs(const char *crs, fm_error *err)
     return fm_reproject_check(crs, "EPSG:4326", err);
 }
 
-/* Horizontal position of every used vertex in the file's coordinates:
- * lat (or y) and lon (or x). */
-static fm_status convert_vertices(const fm_faultset *fs, fm_eqsim_coords coords,
-                                  const unsigned char *used, double *lat, double *lon,
-                                  fm_reproject **rp, const char *path, fm_error *err)
+fm_status sim_latlon(const double *x, size_t nv, const unsigned char *used, const char *crs,
+                     fm_eqsim_coords coords, double *lat, double *lon, fm_reproject **rp,
+                     const char *path, fm_error *err)
 {
-    size_t nv = fm_mesh_nvertices(fs->mesh);
-    const double *x = fm_mesh_vertices(fs->mesh);
     if (coords == FM_EQSIM_RECTANGULAR) {
         for (size_t v = 0; v < nv; v++) {
             lat[v] = x[3 * v + 1];
@@ -241,16 +237,16 @@ static fm_status convert_vertices(const fm_faultset *fs, fm_eqsim_coords coords,
     }
     double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
     for (size_t v = 0; v < nv; v++)
-        if (used[v]) {
+        if (!used || used[v]) {
             bb[0] = fmin(bb[0], x[3 * v]);
             bb[1] = fmin(bb[1], x[3 * v + 1]);
             bb[2] = fmax(bb[2], x[3 * v]);
             bb[3] = fmax(bb[3], x[3 * v + 1]);
         }
-    *rp = fm_reproject_create(fs->crs, "EPSG:4326", bb, path, err);
+    *rp = fm_reproject_create(crs, "EPSG:4326", bb, path, err);
     fm_status st = *rp ? FM_OK : err ? err->code : FM_ERR_INVALID;
     for (size_t v = 0; v < nv && st == FM_OK; v++) {
-        if (!used[v]) {
+        if (used && !used[v]) {
             lat[v] = lon[v] = 0;
             continue;
         }
@@ -258,7 +254,7 @@ static fm_status convert_vertices(const fm_faultset *fs, fm_eqsim_coords coords,
             fabs(lat[v]) > 90)
             st = fm_error_set(err, FM_ERR_NUMERIC, path, 0,
                               "PROJ cannot convert vertex %zu (%.3f, %.3f) from '%s' to WGS 84",
-                              v, x[3 * v], x[3 * v + 1], fs->crs);
+                              v, x[3 * v], x[3 * v + 1], crs);
     }
     return st;
 }
@@ -489,7 +485,8 @@ fm_status fm_faultset_write_eqsim(const char *path, const fm_faultset *fs,
         nvtotal += nvsec[f];
     }
     if (st == FM_OK)
-        st = convert_vertices(fs, coords, used, lat, lon, &rp, path, err);
+        st = sim_latlon(fm_mesh_vertices(fs->mesh), nv, used, fs->crs, coords, lat, lon, &rp, path,
+                        err);
     sim_bounds all;
     sim_bounds_init(&all);
     for (size_t v = 0; st == FM_OK && v < nv; v++)

@@ -13,38 +13,6 @@
 
 #define DEG2RAD (3.14159265358979323846 / 180)
 
-/* lat (or y) and lon (or x) of every corner. */
-static fm_status convert(const fm_quadset *qs, int sph, double *lat, double *lon,
-                         fm_reproject **rp, const char *path, fm_error *err)
-{
-    size_t n = 4 * qs->nquads;
-    const double *c = qs->corners;
-    if (!sph) {
-        for (size_t i = 0; i < n; i++) {
-            lat[i] = c[3 * i + 1];
-            lon[i] = c[3 * i];
-        }
-        return FM_OK;
-    }
-    double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
-    for (size_t i = 0; i < n; i++) {
-        bb[0] = fmin(bb[0], c[3 * i]);
-        bb[1] = fmin(bb[1], c[3 * i + 1]);
-        bb[2] = fmax(bb[2], c[3 * i]);
-        bb[3] = fmax(bb[3], c[3 * i + 1]);
-    }
-    *rp = fm_reproject_create(qs->crs, "EPSG:4326", bb, path, err);
-    if (!*rp)
-        return err ? err->code : FM_ERR_INVALID;
-    for (size_t i = 0; i < n; i++)
-        if (fm_reproject_point(*rp, c[3 * i], c[3 * i + 1], &lon[i], &lat[i]) ||
-            fabs(lat[i]) > 90)
-            return fm_error_set(err, FM_ERR_NUMERIC, path, 0,
-                                "PROJ cannot convert corner (%.3f, %.3f) from '%s' to WGS 84",
-                                c[3 * i], c[3 * i + 1], qs->crs);
-    return FM_OK;
-}
-
 /* The section's mean strike direction (east, north): the axial mean of
  * its elements' strikes weighted by area, pointed the way most point. */
 static void mean_strike(const fm_quadset *qs, size_t a, size_t b, double dir[2])
@@ -81,9 +49,6 @@ fm_status fm_quadset_write_eqsim(const char *path, const fm_quadset *qs, fm_eqsi
         return fm_error_set(err, FM_ERR_INVALID, path, 0, "unknown EQSim coordinate system %d",
                             (int)coords);
     int sph = coords == FM_EQSIM_SPHERICAL;
-    if (sph && (!qs->crs || !qs->crs[0]))
-        return fm_error_set(err, FM_ERR_INVALID, path, 0,
-                            "spherical EQSim coordinates need a CRS (--crs)");
     size_t n = 4 * qs->nquads;
     double *lat = malloc((n + 1) * sizeof *lat), *lon = malloc((n + 1) * sizeof *lon);
     double *das = malloc((n + 1) * sizeof *das);
@@ -92,7 +57,7 @@ fm_status fm_quadset_write_eqsim(const char *path, const fm_quadset *qs, fm_eqsi
     if (!lat || !lon || !das || !sect)
         st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
     if (st == FM_OK)
-        st = convert(qs, sph, lat, lon, &rp, path, err);
+        st = sim_latlon(qs->corners, n, NULL, qs->crs, coords, lat, lon, &rp, path, err);
     fm_atomic_file *af = NULL;
     fs_out *o = NULL;
     if (st == FM_OK && !(af = fm_atomic_open(path, err)))

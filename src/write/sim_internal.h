@@ -39,6 +39,13 @@ void sim_eqsim_summary(struct fs_out *o, size_t nsec, size_t nv, size_t ntri, si
                        const sim_bounds *b, int spherical);
 void sim_eqsim_section(struct fs_out *o, size_t sid, const char *name, size_t nv, size_t ntri,
                        size_t nrect, const sim_bounds *b, double das_hi);
+/* lat (or y) and lon (or x) of the nv points x (3 doubles each) in the
+ * EQSim file's coordinates; spherical: from crs to WGS 84 by one PROJ
+ * operation (*rp, for the metadata) chosen for the points' extent. Points
+ * not used (used non-NULL and 0) are left out and get 0, 0. */
+fm_status sim_latlon(const double *x, size_t nv, const unsigned char *used, const char *crs,
+                     fm_eqsim_coords coords, double *lat, double *lon,
+                     struct fm_reproject **rp, const char *path, fm_error *err);
 /* A space and a number (shortest round-trip text) or a whole number. */
 void sim_put_num(struct fs_out *o, double v);
 void sim_put_int(struct fs_out *o, uint64_t v);
