@@ -52,10 +52,10 @@ static int edge_kind(const double *x, int32_t u, int32_t v, int32_t w, double zs
     return c < -c45 ? FS_EDGE_BOTTOM : FS_EDGE_ENDS;
 }
 
-/* The next free place in vertex v's list (inset counts what is filled). */
-static size_t inset_next(const size_t *vs, int32_t *inset, int32_t v)
+/* The next free place in vertex v's list (filled[v]: how many it holds). */
+static size_t next_free(const size_t *vs, int32_t *filled, int32_t v)
 {
-    return vs[v] + (size_t)inset[v]++;
+    return vs[v] + (size_t)filled[v]++;
 }
 
 static int add_edge(fs_edge_group *g, int32_t u, int32_t v, int32_t t, int side)
@@ -95,11 +95,11 @@ int fs_edge_groups_make(const fm_faultset *fs, fs_edge_group **out, size_t *nout
     size_t nv = fm_mesh_nvertices(fs->mesh);
     fm_keyed *side = fm_mesh_sides(fs->mesh, &ns);
     fs_edge_group *g = calloc(ngroups + 1, sizeof *g);
-    int32_t *inset = calloc(nv + 1, sizeof *inset);
-    if (!side || !g || !inset) {
+    int32_t *filled = calloc(nv + 1, sizeof *filled);
+    if (!side || !g || !filled) {
         free(side);
         free(g);
-        free(inset);
+        free(filled);
         return -1;
     }
     int bad = 0;
@@ -142,7 +142,7 @@ int fs_edge_groups_make(const fm_faultset *fs, fs_edge_group **out, size_t *nout
         for (size_t q = 0; q < fs->nodesets[k].n; q++) {
             int32_t v = fs->nodesets[k].vertices[q];
             if (v >= 0 && (size_t)v < nv)
-                vset[inset_next(vs, inset, v)] = (int32_t)k;
+                vset[next_free(vs, filled, v)] = (int32_t)k;
         }
     for (size_t i = 0; i < ns && !bad;) {
         size_t j = i + 1;
@@ -200,7 +200,7 @@ int fs_edge_groups_make(const fm_faultset *fs, fs_edge_group **out, size_t *nout
         m++;
     }
     free(side);
-    free(inset);
+    free(filled);
     if (bad) {
         fs_edge_groups_free(g, m);
         return -1;
