@@ -178,6 +178,62 @@ static void test_crossing_faults_cut_apart(void)
     fm_mesh_destroy(m);
 }
 
+/* A vertical fault whose top edge climbs along strike, from 4 km deep to
+ * sea level over 20 km (as a blind tip or a sea floor does): the middle
+ * contour of the top rows misses the deep end, which the quarter contours
+ * tile, and each tile's width follows the surface in its columns. Found on
+ * CFM faults (Padre Juan, San Pedro Escarpment) whose tiled area was 20 %
+ * short or 150 % over. */
+static void climbing(const void *ctx, double s, double t, double p[3])
+{
+    (void)ctx;
+    double top = -4000 + 4000 * s / 20000, bottom = -10000;
+    p[0] = 0;
+    p[1] = s;
+    p[2] = top + (bottom - top) * t / 10000;
+}
+
+static void test_climbing_top_edge(void)
+{
+    fm_mesh *m = fm_test_grid_mesh(20000, 10000, 250, climbing, NULL);
+    fm_tiles *t = NULL;
+    CHECK_EQ(fm_tiles_create(m, 1, 2000, &t, NULL), FM_OK);
+    const fm_tile_fault *f = fm_tiles_fault(t, 0);
+    /* 1.005; 0.973 without the quarter contours */
+    CHECK(fabs(f->area_tiles / f->area_triangles - 1) < 0.02);
+    for (size_t i = 0; i < fm_tiles_count(t); i++) {
+        const fm_tile *tl = fm_tiles_get(t, i);
+        CHECK(tl->width <= 1.5 * 2000);
+    }
+    fm_tiles_destroy(t);
+    fm_mesh_destroy(m);
+}
+
+/* A top edge with a valley: at sea level, dipping to 1.8 km deep over
+ * 8 km in the middle (a sea-floor canyon). The top row's middle contour
+ * stops on both sides of the valley; what lies below it must be counted
+ * about once. It is not quite: the contour's open ends and the quarter
+ * contours' tiles both take some of it (1.023 of the area). */
+static void valley(const void *ctx, double s, double t, double p[3])
+{
+    (void)ctx;
+    double d = fabs(s - 10000), top = d < 4000 ? -1800 * (1 - d / 4000) : 0, bottom = -10000;
+    p[0] = 0;
+    p[1] = s;
+    p[2] = top + (bottom - top) * t / 10000;
+}
+
+static void test_valley_in_top_edge(void)
+{
+    fm_mesh *m = fm_test_grid_mesh(20000, 10000, 250, valley, NULL);
+    fm_tiles *t = NULL;
+    CHECK_EQ(fm_tiles_create(m, 1, 2000, &t, NULL), FM_OK);
+    const fm_tile_fault *f = fm_tiles_fault(t, 0);
+    CHECK(fabs(f->area_tiles / f->area_triangles - 1) < 0.03);
+    fm_tiles_destroy(t);
+    fm_mesh_destroy(m);
+}
+
 static void test_bad_input(void)
 {
     fm_mesh *m = fm_test_grid_mesh(2000, 2000, 500, vertical, NULL);
@@ -191,4 +247,5 @@ static void test_bad_input(void)
 
 FM_TEST_MAIN(FM_CASE(test_planar_rows_and_columns), FM_CASE(test_curved_area),
              FM_CASE(test_tee_junction), FM_CASE(test_crossing_faults_cut_apart),
+             FM_CASE(test_climbing_top_edge), FM_CASE(test_valley_in_top_edge),
              FM_CASE(test_bad_input))
