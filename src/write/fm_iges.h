@@ -39,13 +39,25 @@
  * non-zero area, names and texts of printable ASCII. Nothing is written
  * unless every face passes.
  *
+ * What of a surface is written: the knot spans its outer loop reaches.
+ * A surface fitted past its outline (an extension margin, the rectangle
+ * around a slanting outline) keeps control points that shape only the
+ * part trimmed away; the B-spline restricted to the spans the loop's
+ * control polygon touches is the same surface there, exactly, and the 128
+ * holds only those spans, its range narrowed to match. Untrimmed faces
+ * are written whole.
+ *
  * The file: Start section = the description; Global section with "," and
- * ";" delimiters, native system id "faultmesh", 17 significant digits
- * declared, version flag 11 (5.3), drafting standard 0 (none), the units,
- * the largest absolute control-point coordinate, a minimum resolution and
- * the date (UTC, 15HYYYYMMDD.HHNNSS). Reals are the shortest decimal text
- * that reads back as the same double (at most 17 digits), always with a
- * decimal point, E exponent. Byte-for-byte deterministic for a fixed time.
+ * ";" delimiters, native system id "faultmesh", the significant digits of
+ * the reals written, version flag 11 (5.3), drafting standard 0 (none),
+ * the units, the largest absolute control-point coordinate, a minimum
+ * resolution and the date (UTC, 15HYYYYMMDD.HHNNSS). Parameter Data reals
+ * are rounded to `digits` significant digits (by default the fewest that
+ * move no coordinate by more than 1/100 of the resolution, which readers
+ * use as their tolerance: 10 for the whole CFM, in metres; about 40 % of
+ * the file is digits that no reader can see) or, with digits = 17, the
+ * shortest text that reads back as the same double; always with a decimal
+ * point, E exponent. Byte-for-byte deterministic for a fixed time.
  * Written through fm_atomic.h: the file appears complete or not at all. */
 #ifndef FM_IGES_H
 #define FM_IGES_H
@@ -114,6 +126,9 @@ typedef struct fm_iges_options {
     double resolution;         /* Global 19, in file units; 0 = automatic (default):
                                   1e-7 of the control points' bounding-box diagonal.
                                   Readers (OpenCASCADE) use it as their tolerance. */
+    int digits;                /* significant digits of the Parameter Data's reals, 1..17
+                                  (17: exact round trip); 0 = automatic (default),
+                                  see the file note above */
     long long time;            /* seconds since 1970-01-01 UTC for Global 18 and 25;
                                   default FM_IGES_TIME_AUTO */
 } fm_iges_options;

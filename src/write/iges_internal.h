@@ -22,6 +22,7 @@ typedef struct iges_lines {
     long de;        /* back-pointer written in columns 65-72 ('P' only) */
     size_t len;     /* characters waiting in buf */
     int need_delim; /* a parameter was placed and awaits its delimiter */
+    int digits;     /* significant digits of iges_real; 0 = shortest exact text */
     char buf[81];
 } iges_lines;
 
@@ -36,6 +37,10 @@ void iges_end(iges_lines *l);
 /* Shortest text that reads back as x, IGES style ("400000.", "1.5E-7");
  * buf needs 32 bytes. Independent of the C locale. */
 void iges_format_real(double x, char *buf);
+
+/* x rounded to `digits` (1..17) significant digits, IGES style, shortest
+ * form (no trailing zeros); buf needs 32 bytes. */
+void iges_format_real_digits(double x, int digits, char *buf);
 
 /* One fixed-layout line: data (padded/truncated to 72), section letter
  * and sequence number. */
@@ -52,6 +57,19 @@ fm_status iges_check_face(const char *path, size_t index, const fm_iges_face *f,
 
 /* The surface's parameter range with the "u0 == u1" default resolved. */
 void iges_face_range(const fm_iges_surface *s, double r[4]);
+
+/* The part of a face's surface that is written: control points
+ * [i0, i0 + ni) x [j0, j0 + nj), and the parameter range r (u0, u1, v0,
+ * v1) inside their knot range. */
+typedef struct iges_window {
+    size_t i0, ni, j0, nj;
+    double r[4];
+} iges_window;
+
+/* The knot spans the face's outer loop reaches (all of them when it has
+ * none): the B-spline restricted to them is the same surface there, so
+ * the control points that only shape the unused extension are left out. */
+void iges_face_window(const fm_iges_face *f, iges_window *w);
 
 /* 1 when every character is printable ASCII. */
 int iges_printable(const char *s);

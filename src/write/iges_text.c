@@ -2,6 +2,8 @@
 #include "iges_internal.h"
 #include "fm_dtoa.h"
 
+#include <limits.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -86,7 +88,10 @@ void iges_int(iges_lines *l, long long v)
 void iges_real(iges_lines *l, double v)
 {
     char t[32];
-    iges_format_real(v, t);
+    if (l->digits > 0 && l->digits < 17)
+        iges_format_real_digits(v, l->digits, t);
+    else
+        iges_format_real(v, t);
     place(l, t, strlen(t), "", 0, 0);
 }
 
@@ -154,6 +159,72 @@ void iges_format_real(double x, char *buf)
     char raw[40];
     fm_format_double(raw, x);
     normalise(raw, buf);
+}
+
+/* Digits d of |x| scaled to an integer of exactly `digits` digits, and
+ * the decimal exponent e of its first one: |x| ~ 0.d * 10^(e + 1). */
+static int scaled_digits(double a, int digits, unsigned long long *q)
+{
+    static const double p10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,
+                                 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19,
+                                 1e20, 1e21, 1e22};
+    const unsigned long long top = (unsigned long long)p10[digits];
+    int e = (int)floor(log10(a));
+    for (int tries = 0; tries < 3; tries++) {
+        int k = digits - 1 - e;
+        if (k > 22 || k < -22)
+            return INT_MIN;
+        double scaled = k >= 0 ? a * p10[k] : a / p10[-k];
+        *q = (unsigned long long)llround(scaled);
+        /* log10's floor can be one off near a power of ten, and rounding
+         * can carry into a new digit */
+        if (*q >= top)
+            e++;
+        else if (*q < top / 10)
+            e--;
+        else
+            return e;
+    }
+    return INT_MIN;
+}
+
+void iges_format_real_digits(double x, int digits, char *buf)
+{
+    if (x == 0 || !isfinite(x)) {
+        iges_format_real(x, buf);
+        return;
+    }
+    unsigned long long q;
+    int e = scaled_digits(fabs(x), digits, &q);
+    if (e == INT_MIN || e < -6 || e >= digits) {
+        char raw[40];
+        snprintf(raw, sizeof raw, "%.*E", digits - 1, x);
+        normalise(raw, buf);
+        return;
+    }
+    char d[24];
+    for (int i = digits - 1; i >= 0; i--, q /= 10)
+        d[i] = (char)('0' + q % 10);
+    size_t k = 0;
+    if (x < 0)
+        buf[k++] = '-';
+    if (e < 0) {
+        buf[k++] = '0';
+        buf[k++] = '.';
+        for (int i = -1; i > e; i--)
+            buf[k++] = '0';
+        for (int i = 0; i < digits; i++)
+            buf[k++] = d[i];
+    } else {
+        for (int i = 0; i <= e; i++)
+            buf[k++] = d[i];
+        buf[k++] = '.';
+        for (int i = e + 1; i < digits; i++)
+            buf[k++] = d[i];
+    }
+    while (buf[k - 1] == '0')
+        k--;
+    buf[k] = '\0';
 }
 
 int iges_printable(const char *s)

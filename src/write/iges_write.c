@@ -29,6 +29,8 @@ typedef struct iges_walk {
     const fm_iges_face *faces;
     size_t nfaces;
     const unsigned char *rev; /* per face 1 + nholes flags, faces in order */
+    const iges_window *win;   /* per face: what of its surface is written */
+    int digits;               /* of the reals in the Parameter Data */
     iges_entity *ents;
     size_t nents, next;       /* entities, and the next to emit */
     iges_lines pd;
@@ -75,13 +77,12 @@ static void end(iges_walk *w, size_t e)
         w->ents[e].pd_lines = w->pd.seq + 1 - w->ents[e].pd_first;
 }
 
-static void emit_surface(iges_walk *w, const fm_iges_surface *s)
+static void emit_surface(iges_walk *w, const fm_iges_surface *s, const iges_window *win)
 {
     size_t e = begin(w, 128, 0, STATUS_DEPENDENT, NULL);
     iges_lines *l = &w->pd;
-    size_t n = s->nu * s->nv;
-    iges_int(l, (long long)s->nu - 1);
-    iges_int(l, (long long)s->nv - 1);
+    iges_int(l, (long long)win->ni - 1);
+    iges_int(l, (long long)win->nj - 1);
     iges_int(l, s->degree_u);
     iges_int(l, s->degree_v);
     /* Closed and periodic flags 0: readers recompute closure from the
@@ -91,18 +92,21 @@ static void emit_surface(iges_walk *w, const fm_iges_surface *s)
     iges_int(l, s->weights ? 0 : 1);
     iges_int(l, 0);
     iges_int(l, 0);
-    for (size_t i = 0; i < s->nu + (size_t)s->degree_u + 1; i++)
-        iges_real(l, s->knots_u[i]);
-    for (size_t i = 0; i < s->nv + (size_t)s->degree_v + 1; i++)
-        iges_real(l, s->knots_v[i]);
-    for (size_t i = 0; i < n; i++)
-        iges_real(l, s->weights ? s->weights[i] : 1.0);
-    for (size_t i = 0; i < 3 * n; i++)
-        iges_real(l, s->ctrl[i]);
-    double r[4];
-    iges_face_range(s, r);
+    for (size_t i = 0; i < win->ni + (size_t)s->degree_u + 1; i++)
+        iges_real(l, s->knots_u[win->i0 + i]);
+    for (size_t j = 0; j < win->nj + (size_t)s->degree_v + 1; j++)
+        iges_real(l, s->knots_v[win->j0 + j]);
+    for (size_t j = 0; j < win->nj; j++)
+        for (size_t i = 0; i < win->ni; i++)
+            iges_real(l, s->weights ? s->weights[(win->j0 + j) * s->nu + win->i0 + i] : 1.0);
+    for (size_t j = 0; j < win->nj; j++)
+        for (size_t i = 0; i < win->ni; i++) {
+            const double *c = s->ctrl + 3 * ((win->j0 + j) * s->nu + win->i0 + i);
+            for (int d = 0; d < 3; d++)
+                iges_real(l, c[d]);
+        }
     for (int i = 0; i < 4; i++)
-        iges_real(l, r[i]);
+        iges_real(l, win->r[i]);
     end(w, e);
 }
 
@@ -193,10 +197,11 @@ static size_t entities_of_face(const fm_iges_face *f)
     return n;
 }
 
-static void emit_face(iges_walk *w, const fm_iges_face *f, const unsigned char *rev)
+static void emit_face(iges_walk *w, const fm_iges_face *f, const unsigned char *rev,
+                      const iges_window *win)
 {
     size_t surf = w->next;
-    emit_surface(w, &f->surface);
+    emit_surface(w, &f->surface, win);
     size_t outer = 0;
     int has_outer = 1;
     if (f->outer) {
@@ -251,10 +256,11 @@ static void emit_face(iges_walk *w, const fm_iges_face *f, const unsigned char *
 static void walk_faces(iges_walk *w, FILE *fp, long first_seq)
 {
     iges_lines_init(&w->pd, fp, 'P', first_seq);
+    w->pd.digits = w->digits;
     w->next = 0;
     const unsigned char *rev = w->rev;
     for (size_t i = 0; i < w->nfaces; i++) {
-        emit_face(w, &w->faces[i], rev);
+        emit_face(w, &w->faces[i], rev, &w->win[i]);
         rev += 1 + w->faces[i].nholes;
     }
 }
@@ -296,6 +302,7 @@ typedef struct iges_global {
     const char *file_name, *product, *author, *organization;
     char date[40]; /* YYYYMMDD.HHNNSS */
     int unit_flag;
+    int digits; /* significant digits of the Parameter Data's reals */
     double scale, resolution, max_coord;
 } iges_global;
 
@@ -313,7 +320,7 @@ static long write_global(FILE *fp, const iges_global *g)
     iges_int(&l, 38);  /* single precision: max power of ten, digits */
     iges_int(&l, 6);
     iges_int(&l, 308); /* double precision: max power of ten, digits */
-    iges_int(&l, 15);
+    iges_int(&l, g->digits);
     iges_str(&l, g->product);
     iges_real(&l, g->scale);
     iges_int(&l, g->unit_flag);
@@ -345,23 +352,41 @@ static void write_directory(FILE *fp, const iges_entity *ents, size_t n)
     }
 }
 
-static void control_box(const fm_iges_face *faces, size_t n, double *max_coord, double *diag)
+/* Bounds of the control points written. */
+static void control_box(const fm_iges_face *faces, const iges_window *win, size_t n,
+                        double *max_coord, double *diag)
 {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     *max_coord = 0;
-    for (size_t i = 0; i < n; i++) {
-        const fm_iges_surface *s = &faces[i].surface;
-        for (size_t k = 0; k < s->nu * s->nv; k++)
-            for (int d = 0; d < 3; d++) {
-                double x = s->ctrl[3 * k + (size_t)d];
-                lo[d] = fmin(lo[d], x);
-                hi[d] = fmax(hi[d], x);
-                *max_coord = fmax(*max_coord, fabs(x));
-            }
+    for (size_t f = 0; f < n; f++) {
+        const fm_iges_surface *s = &faces[f].surface;
+        const iges_window *w = &win[f];
+        for (size_t j = w->j0; j < w->j0 + w->nj; j++)
+            for (size_t i = w->i0; i < w->i0 + w->ni; i++)
+                for (int d = 0; d < 3; d++) {
+                    double x = s->ctrl[3 * (j * s->nu + i) + (size_t)d];
+                    lo[d] = fmin(lo[d], x);
+                    hi[d] = fmax(hi[d], x);
+                    *max_coord = fmax(*max_coord, fabs(x));
+                }
     }
     *diag = n ? sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                      (hi[2] - lo[2]) * (hi[2] - lo[2]))
               : 0;
+}
+
+/* The fewest significant digits that round no coordinate of magnitude up
+ * to max_coord by more than a hundredth of the resolution: every reader
+ * takes points closer than the resolution as one, so the rounding is
+ * invisible to it, and the file is half the size of exact texts. */
+static int auto_digits(double max_coord, double resolution)
+{
+    if (!(max_coord > 0) || !(resolution > 0))
+        return 17;
+    /* rounding to d digits moves x by at most 10^(floor(log10 x) + 1 - d) / 2 */
+    double e = floor(log10(max_coord)) + 1;
+    int d = (int)ceil(e - log10(2 * resolution / 100));
+    return d < 6 ? 6 : d > 17 ? 17 : d;
 }
 
 static fm_status check_options(const char *path, const fm_iges_options *o, fm_error *err)
@@ -373,6 +398,8 @@ static fm_status check_options(const char *path, const fm_iges_options *o, fm_er
         return fm_error_set(err, FM_ERR_INVALID, path, 0, "model scale must be positive");
     if (!isfinite(o->resolution) || o->resolution < 0)
         return fm_error_set(err, FM_ERR_INVALID, path, 0, "resolution must be >= 0");
+    if (o->digits < 0 || o->digits > 17)
+        return fm_error_set(err, FM_ERR_INVALID, path, 0, "digits must be 0..17");
     if (o->time != FM_IGES_TIME_AUTO && (o->time < 0 || o->time >= 253402300800LL))
         return fm_error_set(err, FM_ERR_INVALID, path, 0, "time outside years 1970..9999");
     const char *texts[] = {o->author, o->organization, o->product_id};
@@ -432,7 +459,22 @@ fm_status fm_iges_write(const char *path, const fm_iges_face *faces, size_t nfac
         if (!st)
             nents += entities_of_face(&faces[i]);
     }
-    iges_walk w = {faces, nfaces, rev, NULL, nents, 0, {0}};
+    iges_window *win = NULL;
+    if (!st) {
+        win = calloc(nfaces ? nfaces : 1, sizeof *win);
+        if (!win)
+            st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        for (size_t i = 0; win && i < nfaces; i++)
+            iges_face_window(&faces[i], &win[i]);
+    }
+    iges_global g = {0};
+    double diag = 0;
+    if (!st) {
+        control_box(faces, win, nfaces, &g.max_coord, &diag);
+        g.resolution = opt->resolution > 0 ? opt->resolution : diag > 0 ? 1e-7 * diag : 1e-7;
+        g.digits = opt->digits ? opt->digits : auto_digits(g.max_coord, g.resolution);
+    }
+    iges_walk w = {faces, nfaces, rev, win, g.digits, NULL, nents, 0, {0}};
     if (!st && 2 * nents > (size_t)IGES_MAX_SEQ)
         st = fm_error_set(err, FM_ERR_INVALID, path, 0, "too many entities for IGES (%zu)", nents);
     if (!st) {
@@ -448,7 +490,6 @@ fm_status fm_iges_write(const char *path, const fm_iges_face *faces, size_t nfac
                               w.pd.seq);
     }
     if (!st) {
-        iges_global g = {0};
         const char *base = strrchr(path, '/');
         g.file_name = base ? base + 1 : path;
         char product[256];
@@ -461,9 +502,6 @@ fm_status fm_iges_write(const char *path, const fm_iges_face *faces, size_t nfac
         g.organization = opt->organization;
         g.unit_flag = opt->unit_flag;
         g.scale = opt->model_scale;
-        double diag;
-        control_box(faces, nfaces, &g.max_coord, &diag);
-        g.resolution = opt->resolution > 0 ? opt->resolution : diag > 0 ? 1e-7 * diag : 1e-7;
         time_t tt = (time_t)resolve_time(opt->time);
         struct tm tm;
         if (!gmtime_r(&tt, &tm))
@@ -476,6 +514,7 @@ fm_status fm_iges_write(const char *path, const fm_iges_face *faces, size_t nfac
         st = write_file(path, &w, &g, desc, err);
     }
     free(w.ents);
+    free(win);
     free(rev);
     return st;
 }

@@ -128,6 +128,7 @@ static void options(fm_iges_options *o)
     o->author = "faultmesh tests";
     o->organization = "faultmesh";
     o->time = 1700000000; /* 2023-11-14 22:13:20 UTC */
+    o->digits = 17; /* exact texts, so that the reals can be compared bit for bit */
 }
 
 static int write_samples(const char *dir, fm_error *err)
@@ -576,6 +577,73 @@ static void test_deterministic(void)
     free_igs(&g);
 }
 
+/* A loop in a corner of face B: only the knot spans it reaches are
+ * written, and by default the reals are rounded within 1/100 of the
+ * resolution. */
+static void test_window_and_digits(void)
+{
+    char path[1024];
+    tmp_path(path, sizeof path, "iges_w.igs");
+    static const double sq[5][2] = {{1200, 1500}, {2800, 1500}, {2800, 3300}, {1200, 3300},
+                                    {1200, 1500}};
+    double ctrl[4][4];
+    fm_iges_curve2d sides[4];
+    for (int k = 0; k < 4; k++) {
+        double c[4] = {sq[k][0], sq[k][1], sq[k + 1][0], sq[k + 1][1]};
+        memcpy(ctrl[k], c, sizeof c);
+        sides[k] = (fm_iges_curve2d){1, 2, line_knots, ctrl[k], NULL};
+    }
+    fm_iges_loop loop = {sides, 4};
+    fm_iges_face f = face_b();
+    f.outer = &loop;
+    fm_iges_options o;
+    options(&o);
+    o.digits = 0;
+    fm_error err;
+    CHECK_EQ(fm_iges_write(path, &f, 1, &o, &err), FM_OK);
+    igs g;
+    read_igs(path, &g);
+    if (!g.ok)
+        return;
+    ent *s = NULL;
+    for (int k = 0; k < g.ne; k++)
+        if (g.e[k].type == 128)
+            s = &g.e[k];
+    CHECK(s != NULL);
+    CHECK_EQ(g.ngpar, 26);
+    if (!s || g.ngpar != 26) {
+        free_igs(&g);
+        return;
+    }
+    /* u: spans [1000, 2000] and [2000, 3000] -> control points 1..5;
+     * v: spans [1000, 4000] -> 1..6. */
+    CHECK_EQ(atoi(s->par[1]) + 1, 5);
+    CHECK_EQ(atoi(s->par[2]) + 1, 6);
+    int at = 10;
+    for (int i = 0; i < 5 + 4; i++)
+        CHECK(par(s, at++) == b_ku[1 + i]);
+    for (int j = 0; j < 6 + 4; j++)
+        CHECK(par(s, at++) == b_kv[1 + j]);
+    at += 5 * 6; /* weights */
+    double res = strtod(g.gpar[18], NULL), worst = 0;
+    int digits = atoi(g.gpar[10]);
+    CHECK(digits >= 6 && digits < 17);
+    for (int j = 0; j < 6; j++)
+        for (int i = 0; i < 5; i++)
+            for (int d = 0; d < 3; d++)
+                worst = fmax(worst, fabs(par(s, at++) - b_ctrl[3 * ((size_t)(1 + j) * 13 +
+                                                                     (size_t)(1 + i)) +
+                                                                (size_t)d]));
+    CHECK(res > 0 && worst <= res / 100);
+    CHECK(worst > 0); /* rounded, not exact: the default is not 17 digits */
+    CHECK_EQ(par(s, at), 1000.0);
+    CHECK_EQ(par(s, at + 1), 3000.0);
+    CHECK_EQ(par(s, at + 2), 1000.0);
+    CHECK_EQ(par(s, at + 3), 4000.0);
+    CHECK_EQ(s->npar, at + 4);
+    free_igs(&g);
+}
+
 static void test_rejects(void)
 {
     char path[1024];
@@ -659,6 +727,7 @@ int main(int argc, char **argv)
         FM_CASE(test_trimmed_face),
         FM_CASE(test_untrimmed_face),
         FM_CASE(test_deterministic),
+        FM_CASE(test_window_and_digits),
         FM_CASE(test_rejects),
     };
     return fm_test_run(cases, sizeof cases / sizeof cases[0]);
