@@ -94,6 +94,35 @@ const double *fm_model_sample_distance(const fm_model *m, size_t sheet);
 size_t fm_model_ncuts(const fm_model *m);
 const double *fm_model_cut(const fm_model *m, size_t cut, size_t *npoints, long sheets[2]);
 
+/* A fitted model on disk, for the fit cache (fm_model_cache.h): fitting
+ * is most of a run and does not depend on the mesh size, so a later run
+ * reads the model instead of fitting again. What it reads is the model
+ * written, bit for bit: every field of every sheet (surface, trimming
+ * loops, samples, report, statistics and times included) and the cuts,
+ * so whatever is made of it is what would be made of the fit.
+ *
+ * Format (all numbers little-endian; doubles as their IEEE-754 bits):
+ *   8 bytes   magic "FMMODEL" 0x1a
+ *   u32       format version, FM_MODEL_FORMAT_VERSION
+ *   u32       0 (reserved)
+ *   32 bytes  the cache key (fm_model_cache.h; zeros from fm_model_save)
+ *   u64       payload length L
+ *   L bytes   payload: the sheets, then the cuts, field by field
+ *             (model_store.c, store_parts.c); counts as u64, ints as
+ *             32 bits, arrays preceded by a flag saying whether present
+ *   32 bytes  SHA-256 of everything before it
+ * so that a truncated, extended or damaged file is detected and rejected
+ * (then the caller fits again). The version is raised whenever the
+ * payload's layout changes (the build stops on a new field of a stored
+ * structure until it is stored). Written through fm_atomic.h: the file
+ * appears whole or not at all. */
+#define FM_MODEL_FORMAT_VERSION 1
+
+fm_status fm_model_save(const fm_model *m, const char *path, fm_error *err);
+/* Fails (FM_ERR_IO, or FM_ERR_PARSE for a file that is not a whole model
+ * of this format version) with *out NULL. */
+fm_status fm_model_load(const char *path, fm_model **out, fm_error *err);
+
 #ifdef __cplusplus
 }
 #endif

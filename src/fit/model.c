@@ -12,23 +12,6 @@
 #include "fm_sort.h"
 #include "model_internal.h"
 
-typedef struct sheet_model {
-    fm_fit_surface *surface;
-    fm_trim_loop **loops; /* outer first */
-    double *loop_scale;   /* per loop: largest 3D length of a unit (u, v) step */
-    size_t nloops;
-    fm_mesh *samples;
-    double *sample_dist;
-    fm_sheet_report report;
-} sheet_model;
-
-struct fm_model {
-    sheet_model *sheets;
-    size_t nsheets;
-    fm_split_cut *cuts; /* where rings were cut into disks */
-    size_t ncuts;
-};
-
 void fm_model_options_default(fm_model_options *opt)
 {
     fm_fit_options_default(&opt->fit);

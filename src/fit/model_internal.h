@@ -8,7 +8,9 @@
 #include "fm_core.h"
 #include "fm_fit.h"
 #include "fm_mesh.h"
+#include "fm_model.h"
 #include "fm_repair.h"
+#include "fm_trim.h"
 
 /* A bucket grid over 2D segments of closed polylines, for nearest-segment
  * queries in the parameter plane. */
@@ -65,5 +67,24 @@ typedef struct fm_model_split {
 fm_status fm_model_split_sheet(const char *name, const fm_surface *s, size_t sheet,
                                const fm_fit_options *fit, fm_model_split *out, fm_error *err);
 void fm_model_split_free(fm_model_split *sp);
+
+/* --- model.c; model_store.c reads and writes them --- */
+
+typedef struct sheet_model {
+    fm_fit_surface *surface;
+    fm_trim_loop **loops; /* outer first */
+    double *loop_scale;   /* per loop: largest 3D length of a unit (u, v) step */
+    size_t nloops;
+    fm_mesh *samples;
+    double *sample_dist;
+    fm_sheet_report report;
+} sheet_model;
+
+struct fm_model {
+    sheet_model *sheets;
+    size_t nsheets;
+    fm_split_cut *cuts; /* where rings were cut into disks */
+    size_t ncuts;
+};
 
 #endif
