@@ -422,7 +422,9 @@ static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **c
                                        : cli.verbose ? PROGRESS_VERBOSE
                                                      : PROGRESS_NORMAL,
                                0);
+    settle_cache(&cli);
     int rc = run(&cli, files, nfiles);
+    release_cache(&cli);
     progress_destroy(cli.prog);
     fm_input_list_free(files, nfiles);
     sim_cli_free(&cli.sim);
@@ -532,7 +534,9 @@ static int demo_main(remesh_cli *cli_in, int argc, char **argv)
                                        : cli.verbose ? PROGRESS_VERBOSE
                                                      : PROGRESS_NORMAL,
                                0);
+    settle_cache(&cli);
     int rc = nfiles < 0 ? FM_EXIT_FAILURES : run(&cli, files, nfiles);
+    release_cache(&cli);
     progress_destroy(cli.prog);
     if (nfiles >= 0)
         fm_input_list_free(files, nfiles);

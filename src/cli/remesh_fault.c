@@ -9,6 +9,7 @@
 #include "fm_check.h"
 #include "fm_clock.h"
 #include "fm_closest.h"
+#include "fm_model_cache.h"
 #include "fm_sort.h"
 #include "fm_tsurf.h"
 #include "remesh_cad.h"
@@ -176,6 +177,21 @@ static fm_status fit_object(const remesh_cli *cli, const char *path, const fm_me
         mopt.fit.extend = fmax(mopt.fit.extend, 1.5 * r->mesh.top_extend + r->mesh.size);
     if (r->connect)
         mopt.fit.extend = fmax(mopt.fit.extend, 2 * r->join);
+    /* The cache's key is made of the object as read and the options the
+     * fit is given here, so a model read from it is this fault's, with
+     * these options, as this build fits it (fm_model_cache.h). A file
+     * the cache rejects is fitted again and stored anew. */
+    unsigned char key[FM_MODEL_KEY_BYTES];
+    if (cli->cache) {
+        fm_model_key(orig, &cli->repair, &mopt, key);
+        fm_error cerr;
+        r->cache_rejected = fm_model_cache_get(cli->cache, key, model, &cerr) != FM_OK;
+        r->fit_cache = *model ? FIT_CACHE_HIT : FIT_CACHE_MISS;
+        if (*model) {
+            r->t_fit = fm_clock_seconds() - t0;
+            return FM_OK;
+        }
+    }
     fm_status st = fm_repair(orig, &cli->repair, &surf, err);
     /* else it would pass for a fault wholly above sea level ("empty") */
     if (st == FM_OK && fm_surface_nsheets(surf) == 0)
@@ -186,6 +202,10 @@ static fm_status fit_object(const remesh_cli *cli, const char *path, const fm_me
     if (st == FM_OK)
         st = fm_model_build(path, surf, &mopt, model, err);
     fm_surface_destroy(surf);
+    if (st == FM_OK && cli->cache) {
+        fm_error cerr;
+        r->cache_unstored = fm_model_cache_put(cli->cache, key, *model, &cerr) != FM_OK;
+    }
     r->t_fit = fm_clock_seconds() - t0;
     return st;
 }

@@ -62,6 +62,13 @@ void remesh_usage(FILE *fp)
             "                        connect, exclude, rake, slip_rate by name pattern\n"
             "                        (options beside it override it; see docs/guide.md)\n"
             "  --no-report-html      skip DIR/report.html\n"
+            "  --cache DIR           keep each fault's fitted model in DIR and read it back\n"
+            "                        in later runs (another size, a few faults changed, a\n"
+            "                        new release): only what changed is fitted again, with\n"
+            "                        the same outputs byte for byte (default: on, in\n"
+            "                        $XDG_CACHE_HOME/faultmesh or ~/.cache/faultmesh; safe\n"
+            "                        to delete; see docs/guide.md)\n"
+            "  --no-cache            fit every fault, reading and keeping no models\n"
             "  --elements tri|quad   triangles (default), or rectangles of about SIZE x SIZE\n"
             "                        along strike and down dip for the simulators that read\n"
             "                        only rectangles: mesh.vtu, mesh.msh, mesh.rsqsim and\n"
@@ -194,6 +201,14 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     } else if (!strcmp(a, "--no-report-html")) {
         cli->html = 0;
         return 1;
+    } else if (!strcmp(a, "--cache")) {
+        if (!val || !val[0])
+            return fm_cli_missing(a);
+        cli->cache_dir = val;
+        cli->no_cache = 0;
+    } else if (!strcmp(a, "--no-cache")) {
+        cli->no_cache = 1;
+        return 1;
     } else if (!strcmp(a, "--elements")) {
         if (!val)
             return fm_cli_missing(a);
@@ -301,7 +316,7 @@ void cli_defaults(remesh_cli *cli)
 
 /* Flags whose default is on: `key = false` in a settings file is their
  * --no- option, `key = true` the default. */
-static const char *const on_by_default[] = {"connect", "split", "report_html"};
+static const char *const on_by_default[] = {"connect", "split", "report_html", "cache"};
 
 static int is_on_by_default(const char *key)
 {
@@ -314,7 +329,8 @@ static int is_on_by_default(const char *key)
 /* Paths the file names, taken from its folder. */
 static int path_key(const char *key)
 {
-    return !strcmp(key, "output") || !strcmp(key, "slip") || !strcmp(key, "metadata");
+    return !strcmp(key, "output") || !strcmp(key, "slip") || !strcmp(key, "metadata") ||
+           !strcmp(key, "cache");
 }
 
 int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninputs)

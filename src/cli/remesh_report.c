@@ -175,6 +175,7 @@ static void json_fault(fm_json *j, const remesh_cli *cli, const run_state *rs,
         outputs_json_missing(j, rs->outputs, r->set_index);
     if (r->error)
         fm_json_kv_string(j, "error", r->error);
+    cache_json_fault(j, r);
     if (r->fc.line) {
         /* what the settings file changed for it, and where */
         fm_json_key(j, "settings");
@@ -465,6 +466,7 @@ void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp)
     fprintf(fp, "  %-14s read and fit %.1f s, connect %.1f s, mesh %.1f s, merge and check "
                 "%.1f s, write %.1f s; %.1f s in all\n",
             "time", rs->time[0], rs->time[1], rs->time[2], rs->time[3], rs->time[4], T);
+    cache_print(cli, rs, fp);
     if (rs->outputs)
         outputs_print(rs->outputs, fp);
     for (size_t i = 0; i < rs->nres; i++) {
@@ -522,6 +524,7 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
         quads_json(&j, sa, (const char *const *)rs->names);
     if (rs->outputs)
         outputs_json(&j, rs->outputs);
+    cache_json(&j, cli, rs);
     fm_json_key(&j, "summary");
     fm_json_begin_object(&j);
     fm_json_kv_int(&j, "faults", (int64_t)rs->nres);

@@ -49,6 +49,10 @@ typedef struct remesh_cli {
     size_t max_triangles; /* refuse a fault or run expected to need more (0: no limit) */
     unsigned formats;     /* --formats: the outputs written (FMT_* bits; report.json always) */
     int quads;            /* --elements quad: rectangles instead of triangles */
+    const char *cache_dir; /* --cache DIR; NULL: the default place (remesh_cache.c) */
+    int no_cache;          /* --no-cache */
+    char *cache;           /* the fit cache of the run (settle_cache); NULL: none */
+    char *cache_note;      /* why there is none, when one was wanted; NULL: none */
 } remesh_cli;
 
 /* The outputs --formats chooses among, by name: vtu msh stl obj exo ts igs
@@ -68,6 +72,13 @@ int formats_parse(const char *list, unsigned *out);
 
 /* Messages fault_warnings gives at most. */
 #define FM_MAX_WARNINGS 4
+
+/* A fault's model and the fit cache (remesh_cache.c). */
+typedef enum fit_cache_use {
+    FIT_CACHE_NONE = 0, /* not looked up: no cache, or not fitted */
+    FIT_CACHE_MISS,     /* fitted (and stored) */
+    FIT_CACHE_HIT       /* read from the cache */
+} fit_cache_use;
 
 /* What one fault came to, for report.json. */
 typedef struct fault_result {
@@ -104,6 +115,9 @@ typedef struct fault_result {
     int want_cad;               /* model.igs is written: make its faces */
     fm_cad_face **cad;          /* its faces in model.igs */
     size_t ncad;
+    fit_cache_use fit_cache;    /* whether its model came from the fit cache */
+    int cache_rejected;         /* a file was there under its key but was rejected */
+    int cache_unstored;         /* its model could not be stored */
 } fault_result;
 
 /* Which faults an output file holds: all of them (the set's files),
@@ -197,6 +211,17 @@ typedef struct curve_filter {
     fm_keyed *keep;
     size_t nkeep;
 } curve_filter;
+
+/* remesh_cache.c: the fit cache's folder, from --cache DIR, else
+ * $XDG_CACHE_HOME/faultmesh, else $HOME/.cache/faultmesh; none with
+ * --no-cache, or (cli->cache_note says why, on stderr too unless quiet)
+ * when it cannot be made: the run goes on without. */
+void settle_cache(remesh_cli *cli);
+void release_cache(remesh_cli *cli);
+/* The fit cache's lines: per fault "fit_cached", the run's "fit_cache". */
+void cache_json_fault(fm_json *j, const fault_result *r);
+void cache_json(fm_json *j, const remesh_cli *cli, const run_state *rs);
+void cache_print(const remesh_cli *cli, const run_state *rs, FILE *fp);
 
 /* remesh_fault.c */
 int curve_pieces(const fm_connect_plan *plan, size_t f, size_t nsheets, const fm_keyed *edge,

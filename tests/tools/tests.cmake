@@ -129,6 +129,14 @@ set_tests_properties(gnu_options PROPERTIES TIMEOUT 600)
 add_test(NAME help
   COMMAND bash ${FM_TOOLS}/help_test.sh $<TARGET_FILE:faultmesh_cli> ${CMAKE_SOURCE_DIR}/src/cli
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/help ${CMAKE_BINARY_DIR})
+# fit_cache: fitted models kept and read back (issue 20, "fit once"): all
+# hits on a second run and at another size, outputs byte-identical with and
+# without the cache, damaged models refitted, the default place, the
+# settings file, a cache that cannot be made, two runs at once
+add_test(NAME fit_cache
+  COMMAND bash ${FM_TOOLS}/fit_cache_test.sh $<TARGET_FILE:faultmesh_cli>
+          ${CMAKE_CURRENT_BINARY_DIR}/tmp/fit_cache)
+set_tests_properties(fit_cache PROPERTIES TIMEOUT 600)
 add_test(NAME remesh_progress
   COMMAND bash ${FM_TOOLS}/remesh_progress_check.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_progress)
