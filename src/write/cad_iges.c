@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "fm_cad_write.h"
+#include "cad_internal.h"
 #include "faultset_internal.h"
 #include "fm_iges.h"
 #include "fm_reproject.h"
@@ -17,11 +18,7 @@ struct fm_cad_face {
     size_t nu, nv;
     double *knots_u, *knots_v, *ctrl;
     double dom[4];
-    /* one degree-1 curve per stretch; points of curve c at
-     * pts[2 first[c]] .. (count[c] of them), knots at knots + kfirst[c] */
-    size_t ncurves, nloops;
-    size_t *curve_first, *curve_count, *loop_first; /* loop_first: nloops + 1 curves */
-    double *pts, *knots;
+    cad_curves cv; /* the trims */
 };
 
 void fm_cad_face_destroy(fm_cad_face *f)
@@ -32,11 +29,7 @@ void fm_cad_face_destroy(fm_cad_face *f)
     free(f->knots_u);
     free(f->knots_v);
     free(f->ctrl);
-    free(f->curve_first);
-    free(f->curve_count);
-    free(f->loop_first);
-    free(f->pts);
-    free(f->knots);
+    cad_curves_free(&f->cv);
     free(f);
 }
 
@@ -68,32 +61,20 @@ fm_status fm_cad_face_create(const char *name, const fm_fit_surface *s, const do
     f->knots_u = dup_doubles(ku, nku);
     f->knots_v = dup_doubles(kv, nkv);
     f->ctrl = malloc((3 * f->nu * f->nv + 1) * sizeof *f->ctrl);
-    /* Curves: a loop with k > 0 corners has k, one without has 1. Each
-     * has its points and the closing one. */
-    size_t npts = start[nloops] - start[0], ncurves = 0;
-    for (size_t l = 0; l < nloops; l++) {
-        size_t k = 0;
-        for (size_t i = start[l]; corner && i < start[l + 1]; i++)
-            k += corner[i] != 0;
-        ncurves += k ? k : 1;
-    }
-    f->curve_first = malloc((ncurves + 1) * sizeof *f->curve_first);
-    f->curve_count = malloc((ncurves + 1) * sizeof *f->curve_count);
-    f->loop_first = malloc((nloops + 1) * sizeof *f->loop_first);
-    f->pts = malloc((2 * (npts + ncurves) + 1) * sizeof *f->pts);
-    f->knots = malloc(((npts + 3 * ncurves) + 1) * sizeof *f->knots);
-    if (!f->name || !f->knots_u || !f->knots_v || !f->ctrl || !f->curve_first ||
-        !f->curve_count || !f->loop_first || !f->pts || !f->knots) {
+    size_t npts = start[nloops] - start[0];
+    unsigned char *brk = malloc(npts + 1);
+    if (!f->name || !f->knots_u || !f->knots_v || !f->ctrl || !brk) {
+        free(brk);
         fm_cad_face_destroy(f);
         return fm_error_set(err, FM_ERR_NOMEM, what, 0, "out of memory");
     }
     strcpy(f->name, name ? name : "");
     fm_fit_surface_control_points(s, f->ctrl);
     double tol = 1e-7 * hypot(f->dom[1] - f->dom[0], f->dom[3] - f->dom[2]);
-    size_t w = 0;
     for (size_t l = 0; l < nloops; l++) {
         size_t a = start[l], n = start[l + 1] - start[l];
         if (n < 3) {
+            free(brk);
             fm_cad_face_destroy(f);
             return fm_error_set(err, FM_ERR_INVALID, what, 0, "CAD face loop %zu of %zu points",
                                 l, n);
@@ -105,6 +86,7 @@ fm_status fm_cad_face_create(const char *name, const fm_fit_surface *s, const do
                              "CAD face: trimming point (%.17g, %.17g) outside the surface's "
                              "rectangle [%.17g, %.17g] x [%.17g, %.17g]",
                              uv[2 * i], uv[2 * i + 1], f->dom[0], f->dom[1], f->dom[2], f->dom[3]);
+                free(brk);
                 fm_cad_face_destroy(f);
                 return FM_ERR_INVALID;
             }
@@ -117,44 +99,18 @@ fm_status fm_cad_face_create(const char *name, const fm_fit_surface *s, const do
             area += p[0] * q[1] - q[0] * p[1];
         }
         if (!(fabs(0.5 * area) > 1e-12 * (f->dom[1] - f->dom[0]) * (f->dom[3] - f->dom[2]))) {
+            free(brk);
             fm_cad_face_destroy(f);
             return fm_error_set(err, FM_ERR_INVALID, what, 0,
                                 "CAD face loop %zu encloses no area", l);
         }
-        /* the first corner starts the first curve; none: point 0 */
-        size_t s0 = 0;
-        while (corner && s0 < n && !corner[a + s0])
-            s0++;
-        if (s0 == n)
-            s0 = 0;
-        f->loop_first[l] = f->ncurves;
-        size_t done = 0;
-        while (done < n) {
-            size_t c = f->ncurves++;
-            f->curve_first[c] = w;
-            size_t cnt = 0;
-            /* points from this corner up to and including the next one */
-            do {
-                size_t i = a + (s0 + done) % n;
-                memcpy(f->pts + 2 * w++, uv + 2 * i, 2 * sizeof *f->pts);
-                cnt++;
-                done++;
-            } while (done < n && !(corner && corner[a + (s0 + done) % n]));
-            size_t i = a + (s0 + done) % n;
-            memcpy(f->pts + 2 * w++, uv + 2 * i, 2 * sizeof *f->pts);
-            f->curve_count[c] = cnt + 1;
-        }
+        cad_loop_breaks(uv + 2 * a, n, corner ? corner + a : NULL, brk + (a - start[0]));
     }
-    f->loop_first[nloops] = f->ncurves;
-    f->nloops = nloops;
-    /* knots of curve c: clamped, degree 1, one span per segment */
-    size_t kw = 0;
-    for (size_t c = 0; c < f->ncurves; c++) {
-        size_t m = f->curve_count[c];
-        f->knots[kw++] = 0;
-        for (size_t i = 0; i < m; i++)
-            f->knots[kw++] = (double)i;
-        f->knots[kw++] = (double)(m - 1);
+    fm_status st = cad_curves_make(&f->cv, uv, start, nloops, brk);
+    free(brk);
+    if (st != FM_OK) {
+        fm_cad_face_destroy(f);
+        return fm_error_set(err, FM_ERR_NOMEM, what, 0, "out of memory");
     }
     *out = f;
     return FM_OK;
@@ -200,8 +156,8 @@ fm_status fm_cad_write_iges_reprojected(const char *path, const fm_cad_face *con
         return err ? err->code : FM_ERR_NUMERIC;
     size_t ncurves = 0, nloops = 0;
     for (size_t i = 0; i < n; i++) {
-        ncurves += faces[i]->ncurves;
-        nloops += faces[i]->nloops;
+        ncurves += faces[i]->cv.ncurves;
+        nloops += faces[i]->cv.nloops;
     }
     fm_iges_face *out = calloc(n + 1, sizeof *out);
     fm_iges_curve2d *cv = calloc(ncurves + 1, sizeof *cv);
@@ -229,23 +185,22 @@ fm_status fm_cad_write_iges_reprojected(const char *path, const fm_cad_face *con
         g->surface.u1 = f->dom[1];
         g->surface.v0 = f->dom[2];
         g->surface.v1 = f->dom[3];
-        size_t kw = 0;
-        for (size_t c = 0; c < f->ncurves; c++) {
-            cv[cw + c].degree = 1;
-            cv[cw + c].n = f->curve_count[c];
-            cv[cw + c].knots = f->knots + kw;
-            cv[cw + c].ctrl = f->pts + 2 * f->curve_first[c];
-            kw += f->curve_count[c] + 2;
+        const cad_curves *fc = &f->cv;
+        for (size_t c = 0; c < fc->ncurves; c++) {
+            cv[cw + c].degree = fc->degree[c];
+            cv[cw + c].n = fc->count[c];
+            cv[cw + c].knots = fc->knots + fc->kfirst[c];
+            cv[cw + c].ctrl = fc->pts + 2 * fc->first[c];
         }
-        for (size_t l = 0; l < f->nloops; l++) {
-            lp[lw + l].curves = cv + cw + f->loop_first[l];
-            lp[lw + l].ncurves = f->loop_first[l + 1] - f->loop_first[l];
+        for (size_t l = 0; l < fc->nloops; l++) {
+            lp[lw + l].curves = cv + cw + fc->loop_first[l];
+            lp[lw + l].ncurves = fc->loop_first[l + 1] - fc->loop_first[l];
         }
         g->outer = &lp[lw];
         g->holes = lp + lw + 1;
-        g->nholes = f->nloops - 1;
-        cw += f->ncurves;
-        lw += f->nloops;
+        g->nholes = fc->nloops - 1;
+        cw += fc->ncurves;
+        lw += fc->nloops;
     }
     char desc[512];
     snprintf(desc, sizeof desc,

@@ -2,14 +2,16 @@
  *
  * One IGES 5.3 trimmed surface (144) per connected part of each sheet's
  * mesh: the sheet's fitted B-spline surface (128, fm_fit_surface as is:
- * same knots, exact control net) trimmed by the domain the mesher meshed,
- * given as closed polygons in the surface's (u, v) plane through the
- * mesh's boundary nodes (degree-1 126 curves). A polygon is cut into one
- * curve per stretch between corners (where the boundary passes from the
- * outline to a shared intersection curve or the sea-level line), joined
- * by a 102, so that CAD tools see each stretch as an edge of its own and
- * can sew two faces along the curve they share: their trimming curves
- * pass through the same nodes, each on its own surface.
+ * same knots and control net, written over the spans the trim reaches)
+ * trimmed by the domain the mesher meshed, given as closed polygons in the
+ * surface's (u, v) plane through the mesh's boundary nodes. A polygon is
+ * cut into one curve per stretch between corners (where the boundary
+ * passes from the outline to a shared intersection curve or the sea-level
+ * line, and where it turns sharply), joined by a 102, so that CAD tools
+ * see each stretch as an edge of its own and can sew two faces along the
+ * curve they share; each stretch is the C2 cubic (126) through its nodes,
+ * so two faces' trims pass through the same nodes, each on its own
+ * surface.
  *
  * The faces keep copies of what they need (the model may be freed before
  * the file is written). */

@@ -23,7 +23,8 @@ give (nothing of the writer's code or report):
               chords, as far from a surface that bends within H as that
               bend (a few CFM faults: hundreds of metres at 1 km);
   boundary    mesh boundary nodes (edges of one triangle of the fault) lie
-              on the faces' boundary curves (sampled every H / 50) within
+              on the faces' boundary curves (OpenCASCADE's closest point on
+              the curve nearest among samples every H / 50) within
               --node-tol H (nodes at sea level are counted apart: the
               mesher may have lifted them onto the line); the faces'
               boundaries lie near the mesh boundary edges, by the same
@@ -245,10 +246,10 @@ def main():
     # boundary samples of every face, in metres
     t0 = time.time()
     step = H / 50
-    fb = {}
+    fb, fbc = {}, {}
     for name, tags in by_fault.items():
         for tag in tags:
-            pts = []
+            pts, cid = [], []
             for _, c in gmsh.model.getBoundary([(2, tag)], oriented=False):
                 c = abs(c)
                 lo, hi = gmsh.model.getParametrizationBounds(1, c)
@@ -256,7 +257,15 @@ def main():
                 n = max(2, int(math.ceil(length / step)) + 1)
                 ts = np.linspace(lo[0], hi[0], n)
                 pts.append(np.asarray(gmsh.model.getValue(1, c, ts)).reshape(-1, 3) / scale)
+                cid.append(np.full(n, c))
             fb[tag] = np.vstack(pts) if pts else np.zeros((0, 3))
+            fbc[tag] = np.concatenate(cid) if cid else np.zeros(0, int)
+
+    def on_curve(p, curve):
+        """Distance of point p (metres) to a face boundary curve, exactly:
+        a node inside a trim curve lies between its samples."""
+        q = gmsh.model.getClosestPoint(1, int(curve), list(np.asarray(p) * scale))[0]
+        return float(np.linalg.norm(np.asarray(q) / scale - p))
     print("face boundaries sampled every %.0f m: %d points (%.1f s)"
           % (step, sum(len(p) for p in fb.values()), time.time() - t0))
 
@@ -332,16 +341,22 @@ def main():
     # boundary is a seam between two sheets, an edge inside the mesh: left
     # out.
     t0 = time.time()
-    node_tol = a.node_tol * H + step / 2
+    node_tol = a.node_tol * H  # distances to the curves themselves, not to samples
     worst_node, name_node, seam, bfar, lifted, lift_max = 0.0, "", 0, {}, 0, 0.0
     for name, f in faults.items():
         tags = by_fault.get(name, [])
         if not tags or len(f["boundary"]) == 0:
             continue
         tree = cKDTree(np.vstack([fb[t] for t in tags]))
+        cids = np.concatenate([fbc[t] for t in tags])
         E = f["boundary"]
         nodes = np.unique(E.ravel())
-        d, _ = tree.query(X[nodes])
+        d, near_i = tree.query(X[nodes])
+        # the curves of the 8 nearest samples: the nearest sample can lie
+        # on another face's curve where two sheets' faces meet
+        near8 = tree.query(X[nodes], k=min(8, tree.n))[1].reshape(len(nodes), -1)
+        d = np.array([min([dd] + [on_curve(X[v], c) for c in set(cids[i8])])
+                      for v, dd, i8 in zip(nodes, d, near8)])
         level = X[nodes, 2] == 0
         off = level & (d > node_tol)
         lifted += int(off.sum())
@@ -362,8 +377,7 @@ def main():
           % (time.time() - t0, seam))
     check(worst_node <= node_tol,
           "mesh boundary nodes below sea level on the faces' trim curves: within %.2f m at most "
-          "(%s; tolerance %.1f m with the samples %.0f m apart)"
-          % (worst_node, name_node, node_tol, step))
+          "(%s; tolerance %.1f m)" % (worst_node, name_node, node_tol))
     print("info  %d mesh boundary nodes at sea level lie off the trims (the mesher put them on "
           "the line), by %.1f m at most" % (lifted, lift_max))
     bd = np.array(list(bfar.values()))
@@ -386,7 +400,7 @@ def main():
         trees = {}
         for name, tags in by_fault.items():
             allb = np.vstack([fb[t] for t in tags])
-            trees[name] = (cKDTree(allb), allb)
+            trees[name] = (cKDTree(allb), allb, np.concatenate([fbc[t] for t in tags]))
         bset = {n: {(int(e[0]), int(e[1])) for e in f["boundary"]} for n, f in faults.items()}
         node_off, gaps, mids, onto = [], [], [], []
         for fa, fbn, e in je:
@@ -399,7 +413,11 @@ def main():
                 if e in bset[x]:
                     d, i = trees[x][0].query(probe)
                     near[x] = trees[x][1][i]
-                    node_off.append(max(d[0], d[-1]))
+                    i8 = trees[x][0].query(probe[[0, -1]], k=min(8, trees[x][0].n))[1]
+                    i8 = i8.reshape(2, -1)
+                    node_off.append(max(min([d[k]] + [on_curve(probe[k], c)
+                                                      for c in set(trees[x][2][i8[e]])])
+                                        for e, k in enumerate((0, -1))))
                     # the trim between the nodes lies on the other fault's mesh
                     onto.append(tri_near[y].dist(near[x][1:4]).max() if y in tri_near else 0)
             if len(near) == 2:

@@ -5,6 +5,7 @@
  * at the corners given, points outside the surface refused, a fixed date
  * without SOURCE_DATE_EPOCH). Gmsh reading whole files is checked by
  * tests/tools/check_cad.py. */
+#include "cad_internal.h"
 #include "fm_cad_write.h"
 #include "fm_fit.h"
 #include "fm_mesh.h"
@@ -173,6 +174,92 @@ static int count_entities(const char *text, int type)
     return n;
 }
 
+/* The cubic B-spline (knots k, control points d, 2 each) at t. */
+static void eval_cubic(const double *k, size_t n, const double *d, double t, double out[2])
+{
+    size_t s = 3;
+    while (s + 1 < n && k[s + 1] <= t)
+        s++;
+    double p[4][2];
+    for (int j = 0; j < 4; j++)
+        memcpy(p[j], d + 2 * (s - 3 + (size_t)j), sizeof p[j]);
+    for (int r = 1; r <= 3; r++)
+        for (int j = 3; j >= r; j--) {
+            size_t i = s - 3 + (size_t)j;
+            double a = (t - k[i]) / (k[i + 4 - (size_t)r] - k[i]);
+            for (int c = 0; c < 2; c++)
+                p[j][c] = (1 - a) * p[j - 1][c] + a * p[j][c];
+        }
+    memcpy(out, p[3], sizeof p[3]);
+}
+
+/* A trim through unevenly spaced nodes on a circle: the cubic passes
+ * through every node and stays near the circle between them; too few or
+ * repeated nodes are left a polygon; breaks fall at sharp turns only. */
+static void test_trim_curves(void)
+{
+    enum { N = 9 };
+    const double R = 5000, pi = 3.14159265358979323846;
+    static const double ang[N] = {0, 5, 12, 20, 26, 35, 41, 50, 60};
+    double q[2 * N], ctrl[2 * (N + 2)], knots[N + 6], work[4 * N];
+    for (int i = 0; i < N; i++) {
+        q[2 * i] = 400000 + R * cos(ang[i] * pi / 180);
+        q[2 * i + 1] = 3700000 + R * sin(ang[i] * pi / 180);
+    }
+    CHECK_EQ(cad_trim_cubic(q, N, ctrl, knots, work), 1);
+    double worst_node = 0, worst_arc = 0;
+    for (int i = 0; i < N; i++) {
+        double t = i == 0 ? knots[0] : i == N - 1 ? knots[N + 5] : knots[3 + i], p[2];
+        eval_cubic(knots, N + 2, ctrl, t, p);
+        worst_node = fmax(worst_node, hypot(p[0] - q[2 * i], p[1] - q[2 * i + 1]));
+    }
+    for (int k = 0; k <= 200; k++) {
+        double t = knots[0] + (knots[N + 5] - knots[0]) * k / 200.0, p[2];
+        eval_cubic(knots, N + 2, ctrl, t, p);
+        worst_arc = fmax(worst_arc, fabs(hypot(p[0] - 400000, p[1] - 3700000) - R));
+    }
+    CHECK(worst_node < 1e-6);
+    /* nearer the circle than the polygon, whose widest gap (9 degrees)
+     * is 15.4 m off it at its middle */
+    CHECK(worst_arc < R * (1 - cos(4.5 * pi / 180)));
+    CHECK_EQ(cad_trim_cubic(q, 2, ctrl, knots, work), 0);
+    double rep[6] = {0, 0, 1, 1, 1, 1};
+    CHECK_EQ(cad_trim_cubic(rep, 3, ctrl, knots, work), 0);
+
+    double square[] = {0, 0, 50, 0, 100, 0, 100, 100, 50, 110, 0, 100};
+    unsigned char brk[6], corner[6] = {0, 1, 0, 0, 0, 0};
+    cad_loop_breaks(square, 6, corner, brk);
+    static const unsigned char want[6] = {1, 1, 1, 1, 0, 1};
+    for (int i = 0; i < 6; i++)
+        CHECK_EQ(brk[i], want[i]);
+}
+
+/* Smooth trims that would cross keep their polygons: the cubic through a
+ * zigzag outline bulges above its chords near the peaks, across a hole
+ * the polygons keep clear of. */
+static void test_trim_crossing(void)
+{
+    double uv[] = {0, 0, 10, 3.6, 20, 0, 30, 3.6, 40, 0, 40, 20, 0, 20, /* outer */
+                   12, 3.0, 14, 10, 16, 2.2};                         /* hole */
+    size_t start[] = {0, 7, 10};
+    unsigned char brk[10];
+    cad_loop_breaks(uv, 7, NULL, brk);
+    cad_loop_breaks(uv + 14, 3, NULL, brk + 7);
+    CHECK(!brk[1] && !brk[2] && !brk[3]); /* turns of 40 degrees: one stretch */
+    cad_curves cv;
+    CHECK_EQ(cad_curves_make(&cv, uv, start, 1, brk), FM_OK);
+    int cubic = 0;
+    for (size_t c = 0; c < cv.ncurves; c++)
+        cubic += cv.degree[c] == 3;
+    CHECK_EQ(cubic, 1); /* alone, the zigzag is a cubic */
+    cad_curves_free(&cv);
+    CHECK_EQ(cad_curves_make(&cv, uv, start, 2, brk), FM_OK);
+    CHECK_EQ(cv.nloops, 2);
+    for (size_t c = 0; c < cv.ncurves; c++)
+        CHECK_EQ(cv.degree[c], 1);
+    cad_curves_free(&cv);
+}
+
 static void test_faces(void)
 {
     fm_fit_surface *s = plane();
@@ -213,10 +300,12 @@ static void test_faces(void)
         if (text) {
             CHECK_EQ(count_entities(text, 144), 2);
             CHECK_EQ(count_entities(text, 128), 2);
-            /* 3 curves for the outer loop of face 0, 1 for its hole, 1
-             * for face 1's loop; a composite for the 3 */
-            CHECK_EQ(count_entities(text, 126), 5);
-            CHECK_EQ(count_entities(text, 102), 1);
+            /* 4 curves for the outer loop of face 0 (3 corners and
+             * the square's fourth, sharp, vertex), 3 for its hole (a
+             * triangle: sharp everywhere), 4 for face 1's loop; a
+             * composite for each */
+            CHECK_EQ(count_entities(text, 126), 11);
+            CHECK_EQ(count_entities(text, 102), 3);
             CHECK_EQ(count_entities(text, 142), 3);
             CHECK_EQ(count_entities(text, 406), 2);
             CHECK(strstr(text, "CRS: EPSG:26711") != NULL);
@@ -240,4 +329,5 @@ static void test_faces(void)
 }
 
 FM_TEST_MAIN(FM_CASE(test_annulus), FM_CASE(test_pinches), FM_CASE(test_bad_mesh),
-             FM_CASE(test_faces))
+             FM_CASE(test_faces), FM_CASE(test_trim_curves),
+             FM_CASE(test_trim_crossing))
