@@ -180,18 +180,28 @@ static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, dou
             open = (open & 1) << 1 | (open & 2) >> 1;
         area += clipped(c, tl->centre, st, tl->length, open, zbot, ztop, m);
     }
-    double width = dz / sd, level = (ztop + zbot) / 2;
+    double width = dz / sd, s = 0;
     if (area > 0 && tl->length > 0) {
         /* within the depth span, at the plane's own dip however flat */
         double sdt = -dip[2];
         width = fmin(sdt > 1e-9 ? dz / sdt : INFINITY, area / tl->length);
-        double h = width * fmax(sdt, 0) / 2;
-        level = fmin(fmax(m[2] / area, zbot + h), ztop - h);
+        /* down the plane to the surface's centroid (across the strike
+         * only: along it the columns stay where they are) */
+        double r[3] = {m[0] / area - q[0], m[1] / area - q[1], m[2] / area - q[2]};
+        s = fm_dot3(r, dip);
+        /* and the tile inside its depth span where the plane is steep
+         * enough for depth to say where it is; on a flatter one (a
+         * detachment) a few metres of depth are kilometres down dip, and
+         * the centroid, on the surface, is the better guide */
+        if (sdt >= TILE_MIN_SIN) {
+            double h = width * sdt / 2, z = q[2] + s * dip[2];
+            double zc = fmin(fmax(z, zbot + h), ztop - h);
+            if (zc != z)
+                s = (zc - q[2]) / dip[2];
+        }
     }
-    double s = dip[2] < -1e-12 ? (level - q[2]) / dip[2] : 0;
     for (int d = 0; d < 3; d++)
         tl->centre[d] = q[d] + s * dip[d];
-    tl->centre[2] = level;
     memcpy(tl->strike, st, sizeof st);
     memcpy(tl->dip, dip, sizeof dip);
     tl->width = width;
@@ -229,8 +239,9 @@ static void span(const fm_tile *tl, double *ztop, double *zbot)
 }
 
 /* The flatness of a tile as it stands; its triangle made the one of its
- * surface nearest its centre (a half's centre is not its whole's). */
-static double flat_of(tile_walk *w, fm_tile *tl)
+ * surface nearest its centre (a half's centre is not its whole's), and
+ * *off how far that triangle's centroid is. */
+static double flat_of(tile_walk *w, fm_tile *tl, double *off)
 {
     double lo, hi;
     span(tl, &hi, &lo);
@@ -249,6 +260,7 @@ static double flat_of(tile_walk *w, fm_tile *tl)
             tl->triangle = w->list[k];
         }
     }
+    *off = sqrt(best);
     return tile_flatness(w, tl);
 }
 
@@ -256,11 +268,21 @@ static double flat_of(tile_walk *w, fm_tile *tl)
  * says, fitted; its flatness. */
 static double fitted(tile_walk *w, fm_tile *tl, double ztop, double zbot, double dw, int open)
 {
+    fm_tile before = *tl;
     w->open = open;
     tile_region(w, tl, zbot, ztop);
     refit(tl, w, ztop, zbot, dw);
     w->open = 0;
-    return flat_of(w, tl);
+    double off, flat = flat_of(w, tl, &off);
+    /* Where the fault is nearly flat, a depth band holds pieces of it
+     * scattered far apart, and a plane through them all can stand off
+     * the surface (by kilometres on the CFM's detachments): the tile
+     * keeps the frame it was made with, centred on its contour. */
+    if (off > fmax(before.length, before.width)) {
+        *tl = before;
+        flat = flat_of(w, tl, &off);
+    }
+    return flat;
 }
 
 /* Halves of tile tl (of row band b): along strike (dip 0) or down dip. */

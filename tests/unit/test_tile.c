@@ -234,6 +234,39 @@ static void test_valley_in_top_edge(void)
     fm_mesh_destroy(m);
 }
 
+/* A detachment: 20 x 20 km dipping about one degree east, undulating by
+ * 60 m along strike. A depth row holds kilometres of it down dip; the
+ * tiles must still sit on it (a centre moved down such a plane to a row's
+ * level went thousands of kilometres on the CFM's detachments). */
+static void detachment(const void *ctx, double s, double t, double p[3])
+{
+    (void)ctx;
+    p[0] = 400000 + t;
+    p[1] = 3700000 + s;
+    p[2] = -5000 - 0.0005 * t + 60 * sin(s / 3000) + 40 * sin(t / 1700);
+}
+
+static void test_detachment_tiles_on_it(void)
+{
+    fm_mesh *m = fm_test_grid_mesh(20000, 20000, 500, detachment, NULL);
+    fm_tiles *t = NULL;
+    CHECK_EQ(fm_tiles_create(m, 1, 2000, &t, NULL), FM_OK);
+    const double *x = fm_mesh_vertices(m);
+    double worst = 0;
+    for (size_t i = 0; i < fm_tiles_count(t); i++) {
+        const fm_tile *tl = fm_tiles_get(t, i);
+        double best = INFINITY;
+        for (size_t v = 0; v < fm_mesh_nvertices(m); v++)
+            best = fmin(best, hypot(hypot(x[3 * v] - tl->centre[0], x[3 * v + 1] - tl->centre[1]),
+                                    x[3 * v + 2] - tl->centre[2]));
+        worst = fmax(worst, best);
+    }
+    CHECK(fm_tiles_count(t) > 0);
+    CHECK(worst < 500); /* within a grid spacing of a vertex: on the surface */
+    fm_tiles_destroy(t);
+    fm_mesh_destroy(m);
+}
+
 static void test_bad_input(void)
 {
     fm_mesh *m = fm_test_grid_mesh(2000, 2000, 500, vertical, NULL);
@@ -248,4 +281,4 @@ static void test_bad_input(void)
 FM_TEST_MAIN(FM_CASE(test_planar_rows_and_columns), FM_CASE(test_curved_area),
              FM_CASE(test_tee_junction), FM_CASE(test_crossing_faults_cut_apart),
              FM_CASE(test_climbing_top_edge), FM_CASE(test_valley_in_top_edge),
-             FM_CASE(test_bad_input))
+             FM_CASE(test_detachment_tiles_on_it), FM_CASE(test_bad_input))
