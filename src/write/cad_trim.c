@@ -13,6 +13,7 @@
  * Piegl and Tiller, The NURBS Book, 9.2). */
 #include "cad_internal.h"
 #include "fm_predicates.h"
+#include "iges_internal.h"
 #include "fm_sort.h"
 
 #include <math.h>
@@ -149,21 +150,11 @@ static size_t curve_samples(const cad_curves *cv, size_t c, double *out)
         memcpy(out, d, 2 * n * sizeof *out);
         return n;
     }
+    const fm_iges_curve2d curve = {3, n, k, d, NULL};
     size_t w = 0;
     for (size_t s = 3; s < n; s++)
-        for (int j = 0; j < CAD_SAMPLES; j++) {
-            double t = k[s] + (k[s + 1] - k[s]) * j / CAD_SAMPLES, p[4][2];
-            for (int i = 0; i < 4; i++)
-                memcpy(p[i], d + 2 * (s - 3 + (size_t)i), sizeof p[i]);
-            for (int r = 1; r <= 3; r++)
-                for (int i = 3; i >= r; i--) {
-                    size_t g = s - 3 + (size_t)i;
-                    double al = (t - k[g]) / (k[g + 4 - (size_t)r] - k[g]);
-                    for (int e = 0; e < 2; e++)
-                        p[i][e] = (1 - al) * p[i - 1][e] + al * p[i][e];
-                }
-            memcpy(out + 2 * w++, p[3], sizeof p[3]);
-        }
+        for (int j = 0; j < CAD_SAMPLES; j++)
+            iges_curve_eval(&curve, k[s] + (k[s + 1] - k[s]) * j / CAD_SAMPLES, out + 2 * w++);
     memcpy(out + 2 * w++, d + 2 * (n - 1), 2 * sizeof *out);
     return w;
 }
