@@ -198,7 +198,6 @@ fm_status fm_run_execute(fm_run *run, fm_run_result **out, fm_error *err)
     *out = NULL;
     if (!run)
         return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "no run");
-    atomic_store(&run->ctl->cancelled, 0);
     if (!run->prepared) {
         fm_status st = fm_run_prepare(run, run->paths, run->npaths, err);
         if (st != FM_OK)
@@ -226,6 +225,8 @@ fm_status fm_run_execute(fm_run *run, fm_run_result **out, fm_error *err)
     extend_fit(&res->cli);
     settle_cache(&res->cli);
     fm_status st = run_execute(res, run->paths, run->npaths, err);
+    /* a cancel ends this execution only */
+    atomic_store(&run->ctl->cancelled, 0);
     if (st != FM_OK)
         return st;
     adopt_ctl(res);
