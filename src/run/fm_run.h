@@ -148,6 +148,40 @@ void fm_run_options_default(fm_run_options *opt);
 void fm_fault_settings_lookup(const fm_fault_rule *rules, size_t nrules, const char *name,
                               fm_fault_settings *out);
 
+/* The options one at a time, by a key whose values never change (gaps
+ * leave room by group), as the installed library and the Python package
+ * will set them: fm_run_set_int/double/string on a run's copy of its
+ * options. Strings set here are copied and kept by the run and by its
+ * results. */
+typedef enum fm_run_option {
+    FM_OPT_SIZE = 100,         /* double > 0: mesh.size, m */
+    FM_OPT_TOP = 101,          /* int: fm_top_mode */
+    FM_OPT_TOP_EXTEND = 102,   /* double >= 0: mesh.top_extend, m */
+    FM_OPT_SEA_LEVEL = 103,    /* double: mesh.sea_level, m */
+    FM_OPT_CONNECT = 200,      /* int 0/1 */
+    FM_OPT_JOIN_DISTANCE = 201, /* double > 0, m */
+    FM_OPT_KEEP = 202,         /* int: fm_connect_keep */
+    FM_OPT_CARVE = 203,        /* int 0/1: the last guard */
+    FM_OPT_MAX_TRIANGLES = 204, /* int >= 0 (0: no limit) */
+    FM_OPT_THREADS = 300,      /* int 1..1024 */
+    FM_OPT_CRS = 400,          /* string; NULL: from the inputs, else EPSG:26711 */
+    FM_OPT_CRS_OUT = 401,      /* string; NULL: the run's */
+    FM_OPT_CACHE_DIR = 402,    /* string; NULL: the default place */
+    FM_OPT_CACHE = 403,        /* int 0/1: the fit cache */
+    FM_OPT_MSH_VERSION = 500,  /* int: fm_msh_version */
+    FM_OPT_MSH_TAGS = 501,     /* int: fm_msh_tags */
+    FM_OPT_FORMATS = 502,      /* int: FM_OUT_* mask, not 0 */
+    FM_OPT_REPORT_HTML = 503,  /* int 0/1 */
+    FM_OPT_QUADS = 504,        /* int 0/1: rectangles */
+    FM_OPT_SLIP = 600,         /* string: slip table CSV; NULL: none */
+    FM_OPT_METADATA = 601,     /* string: CFM metadata CSV; NULL: found beside the inputs */
+    FM_OPT_EQSIM_COORDS = 602, /* int: fm_eqsim_coords */
+    FM_OPT_KINEMATICS = 603,   /* string: one more sections file (at most
+                                  FM_RUN_MAX_KINEMATICS); NULL: none again */
+    FM_OPT_KINEMATICS_DISTANCE = 604, /* double > 0, m */
+    FM_OPT_KINEMATICS_FALLBACK = 605  /* double >= 0, mm/yr */
+} fm_run_option;
+
 typedef enum fm_log_level {
     FM_LOG_ERROR = 1,
     FM_LOG_WARN = 2,
@@ -184,6 +218,17 @@ void fm_run_set_log(fm_run *run, fm_log_level max_level, fm_log_fn fn, void *use
 void fm_run_set_progress(fm_run *run, fm_progress_fn fn, void *user);
 /* From any thread: the run ends with FM_ERR_CANCELLED. */
 void fm_run_interrupt(fm_run *run);
+
+/* FM_ERR_INVALID (and why) for a value out of the option's bounds, an
+ * option of another type, or an unknown one. */
+fm_status fm_run_set_int(fm_run *run, fm_run_option opt, int64_t v, fm_error *err);
+fm_status fm_run_set_double(fm_run *run, fm_run_option opt, double v, fm_error *err);
+fm_status fm_run_set_string(fm_run *run, fm_run_option opt, const char *v, fm_error *err);
+/* The bounds of a numeric option; FM_ERR_INVALID for a string or unknown
+ * one. */
+fm_status fm_run_option_bounds(fm_run_option opt, double *lo, double *hi);
+/* The run's options as they stand. */
+const fm_run_options *fm_run_get_options(const fm_run *run);
 
 /* An input: a TSurf file (borrowed). Faults come out in the order of the
  * files and of the objects in each. */

@@ -456,5 +456,6 @@ void fm_run_result_destroy(fm_run_result *res)
     release_cache(&res->cli);
     sim_cli_free(&res->cli.sim);
     run_ctl_destroy(res->ctl);
+    run_strings_unref(res->strings);
     free(res);
 }

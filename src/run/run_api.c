@@ -7,15 +7,6 @@
 
 #include "run_internal.h"
 
-struct fm_run {
-    fm_run_options opt;
-    run_ctl *ctl;
-    const char **paths;
-    size_t npaths, cap;
-    sim_cli sim;  /* the simulator data fm_run_prepare read */
-    int prepared;
-};
-
 void fm_run_options_default(fm_run_options *o)
 {
     memset(o, 0, sizeof *o);
@@ -86,6 +77,7 @@ void fm_run_destroy(fm_run *run)
 {
     if (!run)
         return;
+    run_strings_unref(run->strings);
     sim_cli_free(&run->sim);
     free(run->paths);
     run_ctl_destroy(run->ctl);
@@ -127,12 +119,17 @@ fm_status fm_run_add_path(fm_run *run, const char *path, fm_error *err)
     return FM_OK;
 }
 
-fm_status fm_run_prepare(fm_run *run, const char *const *near, size_t nnear, fm_error *err)
+void run_unprepare(fm_run *run)
 {
-    const fm_run_options *o = &run->opt;
     sim_cli_free(&run->sim);
     memset(&run->sim, 0, sizeof run->sim);
     run->prepared = 0;
+}
+
+fm_status fm_run_prepare(fm_run *run, const char *const *near, size_t nnear, fm_error *err)
+{
+    const fm_run_options *o = &run->opt;
+    run_unprepare(run);
     sim_cli *sc = &run->sim;
     sc->slip_path = o->slip_path;
     sc->metadata_path = o->metadata_path;
@@ -215,6 +212,7 @@ fm_status fm_run_execute(fm_run *run, fm_run_result **out, fm_error *err)
     ctl->progress = run->ctl->progress;
     ctl->progress_user = run->ctl->progress_user;
     res->ctl = ctl;
+    res->strings = run_strings_ref(run->strings);
     settings_of(run, &res->cli);
     res->cli.ctl = run->ctl;
     /* the simulator data go with the result */

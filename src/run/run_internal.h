@@ -340,8 +340,32 @@ void print_loss(const run_state *rs, FILE *fp);
  * the jobs are released). */
 fm_status write_report_html(const remesh_cli *cli, const run_state *rs, fm_error *err);
 
+/* Strings the setters copied (run_set.c), kept while the run or one of
+ * its results points into them. */
+typedef struct run_strings {
+    atomic_int refs;
+    char **v;
+    size_t n;
+} run_strings;
+run_strings *run_strings_ref(run_strings *s); /* NULL stays NULL */
+void run_strings_unref(run_strings *s);
+
+/* run_api.c, run_set.c: a run (fm_run.h) */
+struct fm_run {
+    fm_run_options opt;
+    run_ctl *ctl;
+    const char **paths;
+    size_t npaths, cap;
+    sim_cli sim;  /* the simulator data fm_run_prepare read */
+    int prepared;
+    run_strings *strings; /* what the setters copied; NULL: none */
+};
+/* Options changed: what fm_run_prepare read is read again. */
+void run_unprepare(fm_run *run);
+
 /* run.c, run_api.c: a run's result (fm_run.h) */
 struct fm_run_result {
+    run_strings *strings; /* the setters' strings its settings point into */
     remesh_cli cli;       /* the run's settings; its sim data and cache are the result's */
     run_state rs;
     output_log outputs;

@@ -303,5 +303,82 @@ static void test_bad_options(void)
     fm_run_destroy(run);
 }
 
+/* The setters by key: bounds, types, strings kept by the run and its
+ * results, the same run as the options struct gives. */
+static void test_setters(void)
+{
+    fm_run *run = fm_run_create(NULL);
+    fm_error err;
+    fm_error_clear(&err);
+    const fm_run_options *o = fm_run_get_options(run);
+    CHECK_EQ(fm_run_set_double(run, FM_OPT_SIZE, 2000, &err), FM_OK);
+    CHECK(o->mesh.size == 2000);
+    CHECK_EQ(fm_run_set_double(run, FM_OPT_SIZE, -1, &err), FM_ERR_INVALID);
+    CHECK(strstr(err.message, "size") != NULL);
+    CHECK_EQ(fm_run_set_int(run, FM_OPT_SIZE, 5, &err), FM_ERR_INVALID);
+    CHECK_EQ(fm_run_set_int(run, (fm_run_option)9999, 5, &err), FM_ERR_INVALID);
+    CHECK_EQ(fm_run_set_int(run, FM_OPT_THREADS, 0, &err), FM_ERR_INVALID);
+    CHECK_EQ(fm_run_set_int(run, FM_OPT_THREADS, 2, &err), FM_OK);
+    CHECK_EQ(o->jobs, 2);
+    CHECK_EQ(fm_run_set_int(run, FM_OPT_TOP, FM_TOP_KEEP, &err), FM_OK);
+    CHECK_EQ(o->mesh.top, FM_TOP_KEEP);
+    CHECK_EQ(fm_run_set_int(run, FM_OPT_FORMATS, 0, &err), FM_ERR_INVALID);
+    CHECK_EQ(fm_run_set_int(run, FM_OPT_CACHE, 0, &err), FM_OK);
+    CHECK_EQ(o->no_cache, 1);
+    double lo, hi;
+    CHECK_EQ(fm_run_option_bounds(FM_OPT_THREADS, &lo, &hi), FM_OK);
+    CHECK(lo == 1 && hi == 1024);
+    CHECK_EQ(fm_run_option_bounds(FM_OPT_CRS, &lo, &hi), FM_ERR_INVALID);
+    char crs[64];
+    snprintf(crs, sizeof crs, "%s", "local metres (synthetic)");
+    CHECK_EQ(fm_run_set_string(run, FM_OPT_CRS, crs, &err), FM_OK);
+    memset(crs, 'x', sizeof crs - 1); /* copied: the caller's buffer is free again */
+    CHECK_STR(o->crs, "local metres (synthetic)");
+    CHECK_EQ(fm_run_set_double(run, FM_OPT_SIZE, 1000, &err), FM_OK);
+    CHECK_EQ(fm_run_set_int(run, FM_OPT_TOP, FM_TOP_CUT, &err), FM_OK);
+    CHECK_EQ(fm_run_set_int(run, FM_OPT_REPORT_HTML, 0, &err), FM_OK);
+    CHECK_EQ(fm_run_set_int(run, FM_OPT_EQSIM_COORDS, FM_EQSIM_RECTANGULAR, &err), FM_OK);
+    for (int k = 0; k < FM_RUN_MAX_KINEMATICS; k++)
+        CHECK_EQ(fm_run_set_string(run, FM_OPT_KINEMATICS, "k.geojson", &err), FM_OK);
+    CHECK_EQ(fm_run_set_string(run, FM_OPT_KINEMATICS, "k.geojson", &err), FM_ERR_INVALID);
+    CHECK_EQ(fm_run_set_string(run, FM_OPT_KINEMATICS, NULL, &err), FM_OK);
+    CHECK_EQ(o->nkin, 0);
+    if (inputs()) {
+        fm_run_destroy(run);
+        return;
+    }
+    for (size_t i = 0; i < nfiles; i++)
+        fm_run_add_path(run, files[i], &err);
+    fm_run_result *res = NULL;
+    CHECK_EQ(fm_run_execute(run, &res, &err), FM_OK);
+    /* a string set after the run went leaves the result's alone */
+    CHECK_EQ(fm_run_set_string(run, FM_OPT_CRS, "EPSG:32611", &err), FM_OK);
+    CHECK_STR(o->crs, "EPSG:32611");
+
+    /* the same as the options struct */
+    fm_run_options ref;
+    options(&ref, 2);
+    seen s = {0};
+    fm_run *run2 = make_run(&ref, &s);
+    fm_run_result *res2 = NULL;
+    CHECK_EQ(fm_run_execute(run2, &res2, &err), FM_OK);
+    const fm_mesh *a = fm_run_result_mesh(res), *b = fm_run_result_mesh(res2);
+    CHECK(a && b && fm_mesh_ntriangles(a) == fm_mesh_ntriangles(b) &&
+          fm_mesh_nvertices(a) == fm_mesh_nvertices(b));
+    fm_run_destroy(run);
+    char out[600];
+    snprintf(out, sizeof out, "%s/test_run/out_set", FM_TMP_DIR);
+    CHECK_EQ(fm_mkdir_p(out, &err), FM_OK);
+    CHECK_EQ(fm_run_result_write(res, out, FM_OUT_VTU, &err), FM_OK);
+    char path[700];
+    snprintf(path, sizeof path, "%s/report.json", out);
+    char *json = fm_test_read_file(path, NULL);
+    CHECK(json && strstr(json, "\"crs\": \"local metres (synthetic)\""));
+    free(json);
+    fm_run_result_destroy(res);
+    fm_run_result_destroy(res2);
+    fm_run_destroy(run2);
+}
+
 FM_TEST_MAIN(FM_CASE(test_whole_run), FM_CASE(test_rules), FM_CASE(test_cancel),
-             FM_CASE(test_bad_options))
+             FM_CASE(test_bad_options), FM_CASE(test_setters))
