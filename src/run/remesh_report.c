@@ -1,5 +1,6 @@
-/* `faultmesh remesh`: what each fault and junction came to, on stdout
- * and in report.json. */
+/* A run: what each fault and junction came to, in the summary text
+ * (fm_run_result_summary; the CLI prints it on stdout), the per-fault log
+ * record and report.json. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
