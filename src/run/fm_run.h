@@ -230,9 +230,20 @@ fm_status fm_run_option_bounds(fm_run_option opt, double *lo, double *hi);
 /* The run's options as they stand. */
 const fm_run_options *fm_run_get_options(const fm_run *run);
 
-/* An input: a TSurf file (borrowed). Faults come out in the order of the
+/* An input (copied): a TSurf file, or a folder, whose .ts files are taken
+ * as fm_run_list_inputs lists them. Faults come out in the order of the
  * files and of the objects in each. */
 fm_status fm_run_add_path(fm_run *run, const char *path, fm_error *err);
+
+/* The .ts (or .TS) files paths name: files as given, folders searched
+ * recursively, each folder's entries in byte order (hidden ones left
+ * out), a folder reached again (a symbolic link looping back) skipped
+ * with a FM_LOG_WARN record to log (may be NULL). Their number, the list
+ * in *out (fm_run_list_free), or -1 and err saying why (a path that is
+ * not there, a folder that cannot be read, memory). */
+long fm_run_list_inputs(const char *const *paths, size_t npaths, fm_log_fn log, void *user,
+                        char ***out, fm_error *err);
+void fm_run_list_free(char **list, long n);
 
 /* Reads what the simulator attributes need (the slip table, the CFM
  * metadata named or found beside one of near, the kinematics sections)

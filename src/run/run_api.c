@@ -1,8 +1,10 @@
 /* fm_run.h: the options and their defaults, the run handle, and what a
  * result says of each fault. */
+#include <errno.h>
 #include <fnmatch.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "run_internal.h"
@@ -79,6 +81,8 @@ void fm_run_destroy(fm_run *run)
         return;
     run_strings_unref(run->strings);
     sim_cli_free(&run->sim);
+    for (size_t i = 0; i < run->npaths; i++)
+        free(run->paths[i]);
     free(run->paths);
     run_ctl_destroy(run->ctl);
     free(run);
@@ -103,20 +107,41 @@ void fm_run_interrupt(fm_run *run)
         atomic_store(&run->ctl->cancelled, 1);
 }
 
-fm_status fm_run_add_path(fm_run *run, const char *path, fm_error *err)
+/* One file more (a copy of path). */
+static fm_status add_file(fm_run *run, const char *path, fm_error *err)
 {
-    if (!run || !path)
-        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "no input path");
     if (run->npaths == run->cap) {
         size_t cap = run->cap ? 2 * run->cap : 16;
-        const char **p = realloc(run->paths, cap * sizeof *p);
+        char **p = realloc(run->paths, cap * sizeof *p);
         if (!p)
             return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
         run->paths = p;
         run->cap = cap;
     }
-    run->paths[run->npaths++] = path;
+    if (!(run->paths[run->npaths] = strdup(path)))
+        return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    run->npaths++;
     return FM_OK;
+}
+
+fm_status fm_run_add_path(fm_run *run, const char *path, fm_error *err)
+{
+    if (!run || !path)
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "no input path");
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return fm_error_set(err, FM_ERR_IO, path, 0, "%s", strerror(errno));
+    if (!S_ISDIR(sb.st_mode))
+        return add_file(run, path, err);
+    char **list = NULL;
+    long n = run_list_inputs(&path, 1, run->ctl, &list, err);
+    if (n < 0)
+        return err ? err->code : FM_ERR_IO;
+    fm_status st = FM_OK;
+    for (long i = 0; i < n && st == FM_OK; i++)
+        st = add_file(run, list[i], err);
+    run_list_free(list, n);
+    return st;
 }
 
 void run_unprepare(fm_run *run)
@@ -196,7 +221,7 @@ fm_status fm_run_execute(fm_run *run, fm_run_result **out, fm_error *err)
     if (!run)
         return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "no run");
     if (!run->prepared) {
-        fm_status st = fm_run_prepare(run, run->paths, run->npaths, err);
+        fm_status st = fm_run_prepare(run, (const char *const *)run->paths, run->npaths, err);
         if (st != FM_OK)
             return st;
     }
@@ -222,7 +247,7 @@ fm_status fm_run_execute(fm_run *run, fm_run_result **out, fm_error *err)
     run->prepared = 0;
     extend_fit(&res->cli);
     settle_cache(&res->cli);
-    fm_status st = run_execute(res, run->paths, run->npaths, err);
+    fm_status st = run_execute(res, (const char *const *)run->paths, run->npaths, err);
     /* a cancel ends this execution only */
     atomic_store(&run->ctl->cancelled, 0);
     if (st != FM_OK)

@@ -354,7 +354,7 @@ void run_strings_unref(run_strings *s);
 struct fm_run {
     fm_run_options opt;
     run_ctl *ctl;
-    const char **paths;
+    char **paths;         /* the input files (owned) */
     size_t npaths, cap;
     sim_cli sim;  /* the simulator data fm_run_prepare read */
     int prepared;
@@ -362,6 +362,11 @@ struct fm_run {
 };
 /* Options changed: what fm_run_prepare read is read again. */
 void run_unprepare(fm_run *run);
+
+/* run_inputs.c: fm_run_list_inputs with the run's log. */
+long run_list_inputs(const char *const *args, size_t nargs, run_ctl *log, char ***out,
+                     fm_error *err);
+void run_list_free(char **list, long n);
 
 /* run.c, run_api.c: a run's result (fm_run.h) */
 struct fm_run_result {

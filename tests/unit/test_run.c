@@ -380,5 +380,39 @@ static void test_setters(void)
     fm_run_destroy(run2);
 }
 
-FM_TEST_MAIN(FM_CASE(test_whole_run), FM_CASE(test_rules), FM_CASE(test_cancel),
+/* A folder as input: its .ts files in byte order, as the CLI lists them. */
+static void test_folder(void)
+{
+    if (inputs())
+        return;
+    fm_error err;
+    fm_error_clear(&err);
+    char **list = NULL;
+    const char *dir = in_dir;
+    seen s = {0};
+    long n = fm_run_list_inputs(&dir, 1, on_log, &s, &list, &err);
+    CHECK_EQ(n, (long)nfiles);
+    for (long i = 0; i < n && (size_t)i < nfiles; i++)
+        CHECK_STR(list[i], files[i]);
+    fm_run_list_free(list, n);
+    const char *missing = "/nonexistent/folder";
+    CHECK_EQ(fm_run_list_inputs(&missing, 1, NULL, NULL, &list, &err), -1);
+    CHECK(strstr(err.message, missing) != NULL);
+
+    fm_run_options o;
+    options(&o, 2);
+    fm_run *run = fm_run_create(&o);
+    CHECK_EQ(fm_run_add_path(run, missing, &err), FM_ERR_IO);
+    char copy[512];
+    snprintf(copy, sizeof copy, "%s", in_dir);
+    CHECK_EQ(fm_run_add_path(run, copy, &err), FM_OK);
+    memset(copy, 0, sizeof copy); /* copied */
+    fm_run_result *res = NULL;
+    CHECK_EQ(fm_run_execute(run, &res, &err), FM_OK);
+    CHECK_EQ(fm_run_result_nfaults(res), nfiles);
+    fm_run_result_destroy(res);
+    fm_run_destroy(run);
+}
+
+FM_TEST_MAIN(FM_CASE(test_whole_run), FM_CASE(test_folder), FM_CASE(test_rules), FM_CASE(test_cancel),
              FM_CASE(test_bad_options), FM_CASE(test_setters))
