@@ -232,7 +232,8 @@ const fm_run_options *fm_run_get_options(const fm_run *run);
 
 /* An input (copied): a TSurf file, or a folder, whose .ts files are taken
  * as fm_run_list_inputs lists them. Faults come out in the order of the
- * files and of the objects in each. */
+ * files and of the objects in each. A file that cannot be read is a fault
+ * that fails (in the result), as one that cannot be parsed. */
 fm_status fm_run_add_path(fm_run *run, const char *path, fm_error *err);
 
 /* The .ts (or .TS) files paths name: files as given, folders searched

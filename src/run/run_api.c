@@ -1,6 +1,5 @@
 /* fm_run.h: the options and their defaults, the run handle, and what a
  * result says of each fault. */
-#include <errno.h>
 #include <fnmatch.h>
 #include <stdlib.h>
 #include <string.h>
@@ -128,10 +127,10 @@ fm_status fm_run_add_path(fm_run *run, const char *path, fm_error *err)
 {
     if (!run || !path)
         return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "no input path");
+    /* a file that cannot be read (gone, a dangling link) is a fault that
+     * fails, said in the result, as when it cannot be parsed */
     struct stat sb;
-    if (stat(path, &sb) != 0)
-        return fm_error_set(err, FM_ERR_IO, path, 0, "%s", strerror(errno));
-    if (!S_ISDIR(sb.st_mode))
+    if (stat(path, &sb) != 0 || !S_ISDIR(sb.st_mode))
         return add_file(run, path, err);
     char **list = NULL;
     long n = run_list_inputs(&path, 1, run->ctl, &list, err);

@@ -402,14 +402,17 @@ static void test_folder(void)
     fm_run_options o;
     options(&o, 2);
     fm_run *run = fm_run_create(&o);
-    CHECK_EQ(fm_run_add_path(run, missing, &err), FM_ERR_IO);
+    /* a file that is not there: a fault that fails */
+    CHECK_EQ(fm_run_add_path(run, missing, &err), FM_OK);
     char copy[512];
     snprintf(copy, sizeof copy, "%s", in_dir);
     CHECK_EQ(fm_run_add_path(run, copy, &err), FM_OK);
     memset(copy, 0, sizeof copy); /* copied */
     fm_run_result *res = NULL;
     CHECK_EQ(fm_run_execute(run, &res, &err), FM_OK);
-    CHECK_EQ(fm_run_result_nfaults(res), nfiles);
+    CHECK_EQ(fm_run_result_nfaults(res), nfiles + 1);
+    CHECK_EQ(fm_run_result_nfailed(res), 1);
+    CHECK_STR(fm_run_result_fault_status(res, 0, NULL), "error");
     fm_run_result_destroy(res);
     fm_run_destroy(run);
 }
