@@ -5,7 +5,6 @@
 
 #include <ctype.h>
 #include <errno.h>
-#include <fnmatch.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -377,35 +376,6 @@ config *config_read(const char *path)
         return NULL;
     }
     return c;
-}
-
-void config_fault_lookup(const config *c, const char *name, fault_config *out)
-{
-    memset(out, 0, sizeof *out);
-    for (size_t i = 0; c && i < c->nfault; i++) {
-        const cfg_section *s = &c->fault[i];
-        int hit = 0;
-        for (size_t k = 0; k < s->nmatch && !hit; k++)
-            hit = fnmatch(s->match[k], name, 0) == 0;
-        if (!hit)
-            continue;
-        const fault_config *f = &s->set;
-        if (f->has_size)
-            out->has_size = 1, out->size = f->size;
-        if (f->has_top)
-            out->has_top = 1, out->top = f->top, out->top_extend = f->top_extend;
-        if (f->has_join)
-            out->has_join = 1, out->join = f->join;
-        if (f->has_connect)
-            out->has_connect = 1, out->connect = f->connect;
-        if (f->has_exclude)
-            out->has_exclude = 1, out->exclude = f->exclude;
-        if (f->has_rake)
-            out->has_rake = 1, out->rake = f->rake;
-        if (f->has_rate)
-            out->has_rate = 1, out->slip_rate_mm_yr = f->slip_rate_mm_yr;
-        out->line = s->line;
-    }
 }
 
 const char *config_path(config *c, const char *p)

@@ -8,14 +8,14 @@
  * Top-level keys are the command's options (config_apply turns them into
  * the same arguments, so they are checked the same way); [[fault]]
  * sections carry `match` (a shell pattern or a list of them, on the fault
- * name) and the overrides config_fault_lookup resolves. Every error names
+ * name) and the overrides the run resolves (fm_fault_settings_lookup). Every error names
  * the file and line. */
 #ifndef FM_CLI_CONFIG_H
 #define FM_CLI_CONFIG_H
 
 #include <stddef.h>
 
-#include "fm_remesh.h"
+#include "fm_run.h"
 
 typedef enum { CFG_STRING, CFG_NUMBER, CFG_BOOL, CFG_ARRAY } cfg_type;
 
@@ -29,19 +29,9 @@ typedef struct cfg_entry {
 } cfg_entry;
 
 
-/* What [[fault]] sections say about one fault: each field is set only
- * where a matching section gives it (has_*); later sections override
- * earlier ones. */
-typedef struct fault_config {
-    int has_size, has_top, has_join, has_connect, has_exclude, has_rake, has_rate;
-    double size;
-    fm_top_mode top;
-    double top_extend;
-    double join;
-    int connect, exclude;
-    double rake, slip_rate_mm_yr;
-    long line; /* the last section that matched, 0 if none */
-} fault_config;
+/* What [[fault]] sections say about one fault (fm_run.h): each field is
+ * set only where a section gives it (has_*). */
+typedef fm_fault_settings fault_config;
 
 typedef struct cfg_section {
     cfg_entry *e;
@@ -65,8 +55,6 @@ typedef struct config {
 /* NULL after printing FILE:LINE: why (or that memory ran out). */
 config *config_read(const char *path);
 void config_free(config *c);
-
-void config_fault_lookup(const config *c, const char *name, fault_config *out);
 
 /* A path in the file, taken from the file's folder; owned by c (NULL when
  * memory runs out). */

@@ -1,7 +1,6 @@
 /* realpath */
 #define _XOPEN_SOURCE 700
 
-#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,40 +8,29 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "fm_run.h"
 
-typedef struct {
-    char **v;
-    long n, cap;
-} strvec;
-
-static int push(strvec *s, const char *str)
+/* The run module lists them (fm_run_list_inputs); what it has to say is
+ * said here as the command has always said it. */
+static void say(void *user, fm_log_level level, const char *message)
 {
-    if (s->n == s->cap) {
-        long cap = s->cap ? 2 * s->cap : 64;
-        char **p = realloc(s->v, (size_t)cap * sizeof *p);
-        if (!p)
-            return -1;
-        s->v = p;
-        s->cap = cap;
-    }
-    size_t len = strlen(str) + 1;
-    char *copy = malloc(len);
-    if (!copy)
-        return -1;
-    memcpy(copy, str, len);
-    s->v[s->n++] = copy;
-    return 0;
+    (void)user;
+    (void)level;
+    fprintf(stderr, "faultmesh: %s\n", message);
 }
 
-static int cmp_str(const void *a, const void *b)
+long fm_input_list(char *const *args, size_t nargs, char ***out)
 {
-    return strcmp(*(char *const *)a, *(char *const *)b);
+    fm_error err;
+    long n = fm_run_list_inputs((const char *const *)args, nargs, say, NULL, out, &err);
+    if (n < 0)
+        fprintf(stderr, "faultmesh: %s\n", err.message);
+    return n;
 }
 
-static int has_ts_suffix(const char *name)
+void fm_input_list_free(char **list, long n)
 {
-    size_t n = strlen(name);
-    return n > 3 && (!strcmp(name + n - 3, ".ts") || !strcmp(name + n - 3, ".TS"));
+    fm_run_list_free(list, n);
 }
 
 static char *join(const char *dir, const char *name)
@@ -57,124 +45,6 @@ static char *join(const char *dir, const char *name)
         p[k++] = '/';
     memcpy(p + k, name, b + 1);
     return p;
-}
-
-/* Folders read so far, by device and inode: a symbolic link back up the
- * tree (ln -s . x) would otherwise have the walk read everything again,
- * or for ever with two such links. */
-typedef struct seen_dirs {
-    dev_t *dev;
-    ino_t *ino;
-    size_t n, cap;
-} seen_dirs;
-
-/* 1 when dir (stat sb) was read already, 0 after noting it, -1 when out
- * of memory. */
-static int seen_before(seen_dirs *s, const struct stat *sb)
-{
-    for (size_t i = 0; i < s->n; i++)
-        if (s->dev[i] == sb->st_dev && s->ino[i] == sb->st_ino)
-            return 1;
-    if (s->n == s->cap) {
-        size_t cap = s->cap ? 2 * s->cap : 64;
-        dev_t *d = realloc(s->dev, cap * sizeof *d);
-        if (d)
-            s->dev = d;
-        ino_t *i = d ? realloc(s->ino, cap * sizeof *i) : NULL;
-        if (!d || !i)
-            return -1;
-        s->ino = i;
-        s->cap = cap;
-    }
-    s->dev[s->n] = sb->st_dev;
-    s->ino[s->n++] = sb->st_ino;
-    return 0;
-}
-
-static int walk(const char *dir, strvec *out, seen_dirs *seen)
-{
-    DIR *d = opendir(dir);
-    if (!d) {
-        fprintf(stderr, "faultmesh: %s: cannot open folder: %s\n", dir, strerror(errno));
-        return -1;
-    }
-    strvec names = {0};
-    struct dirent *e;
-    int rc = 0;
-    while ((e = readdir(d)) != NULL) {
-        if (e->d_name[0] == '.')
-            continue; /* hidden files, temporary outputs, . and .. */
-        if (push(&names, e->d_name)) {
-            rc = -1;
-            break;
-        }
-    }
-    closedir(d);
-    if (names.n > 1) /* qsort is not to be given the NULL of an empty folder */
-        qsort(names.v, (size_t)names.n, sizeof *names.v, cmp_str);
-    for (long i = 0; i < names.n && rc == 0; i++) {
-        char *path = join(dir, names.v[i]);
-        struct stat sb;
-        if (!path) {
-            rc = -1;
-        } else if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
-            int again = seen_before(seen, &sb);
-            if (again < 0)
-                rc = -1;
-            else if (again)
-                fprintf(stderr, "faultmesh: %s: a folder read already (a symbolic link loops "
-                                "back to it), skipped\n", path);
-            else
-                rc = walk(path, out, seen);
-        } else if (has_ts_suffix(names.v[i])) {
-            rc = push(out, path);
-        }
-        free(path);
-    }
-    for (long i = 0; i < names.n; i++)
-        free(names.v[i]);
-    free(names.v);
-    return rc;
-}
-
-long fm_input_list(char *const *args, size_t nargs, char ***out)
-{
-    strvec list = {0};
-    seen_dirs seen = {0};
-    long n = -1;
-    for (size_t i = 0; i < nargs; i++) {
-        struct stat sb;
-        if (stat(args[i], &sb) != 0) {
-            fprintf(stderr, "faultmesh: %s: %s\n", args[i], strerror(errno));
-            goto done;
-        }
-        int rc = 0;
-        if (!S_ISDIR(sb.st_mode))
-            rc = push(&list, args[i]);
-        else if ((rc = seen_before(&seen, &sb)) == 0)
-            rc = walk(args[i], &list, &seen);
-        else if (rc > 0) {
-            fprintf(stderr, "faultmesh: %s: a folder read already, skipped\n", args[i]);
-            rc = 0;
-        }
-        if (rc)
-            goto done;
-    }
-    *out = list.v;
-    n = list.n;
-done:
-    if (n < 0)
-        fm_input_list_free(list.v, list.n);
-    free(seen.dev);
-    free(seen.ino);
-    return n;
-}
-
-void fm_input_list_free(char **list, long n)
-{
-    for (long i = 0; i < n; i++)
-        free(list[i]);
-    free(list);
 }
 
 /* The absolute, symbolic-link-free form of path, which need not exist

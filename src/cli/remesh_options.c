@@ -5,7 +5,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "remesh_run.h"
+#include "cli.h"
+#include "remesh_cli.h"
 
 void remesh_usage(FILE *fp)
 {
@@ -82,7 +83,8 @@ void remesh_usage(FILE *fp)
             "  -v, --verbose         a line per fault and per stage as well\n"
             "                        (default: a progress bar on a terminal, log lines\n"
             "                        otherwise, on stderr; the summary on stdout)\n"
-            SIM_CLI_HELP);
+            );
+    fputs(fm_cli_sim_help, fp);
     fputs(fm_cli_repair_help, fp);
 }
 
@@ -120,7 +122,7 @@ int formats_parse(const char *list, unsigned *out)
 int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
 {
     const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
-    int sc = sim_cli_option(argc, argv, i, &cli->sim);
+    int sc = sim_option(argc, argv, i, &cli->o);
     if (sc != 0)
         return sc;
     if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
@@ -128,18 +130,18 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
             return fm_cli_missing(a);
         cli->dir = val;
     } else if (!strcmp(a, "--size")) {
-        if (fm_parse_positive(a, val, &cli->mesh.size))
+        if (fm_parse_positive(a, val, &cli->o.mesh.size))
             return -1;
     } else if (!strcmp(a, "--top")) {
         if (val && !strcmp(val, "cut")) {
-            cli->mesh.top = FM_TOP_CUT;
+            cli->o.mesh.top = FM_TOP_CUT;
         } else if (val && !strcmp(val, "keep")) {
-            cli->mesh.top = FM_TOP_KEEP;
+            cli->o.mesh.top = FM_TOP_KEEP;
         } else if (val && !strcmp(val, "extend")) {
-            cli->mesh.top = FM_TOP_EXTEND;
+            cli->o.mesh.top = FM_TOP_EXTEND;
             (*i)++;
             const char *d = *i + 1 < argc ? argv[*i + 1] : NULL;
-            if (fm_parse_double("--top extend", d, &cli->mesh.top_extend))
+            if (fm_parse_double("--top extend", d, &cli->o.mesh.top_extend))
                 return -1;
         } else {
             fprintf(stderr, "faultmesh: --top takes cut, keep or extend D\n");
@@ -147,9 +149,9 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
         }
     } else if (!strcmp(a, "--msh-version")) {
         if (val && !strcmp(val, "4.1"))
-            cli->msh = FM_MSH_41;
+            cli->o.msh = FM_MSH_41;
         else if (val && !strcmp(val, "2.2"))
-            cli->msh = FM_MSH_22;
+            cli->o.msh = FM_MSH_22;
         else {
             fprintf(stderr, "faultmesh: --msh-version takes 4.1 or 2.2\n");
             return -1;
@@ -159,7 +161,7 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
         int found = 0;
         for (int c = FM_MSH_TAGS_DEFAULT; c <= FM_MSH_TAGS_PYLITH && !found; c++)
             if (val && !strcmp(val, fm_msh_tags_name((fm_msh_tags)c))) {
-                cli->msh_tags = (fm_msh_tags)c;
+                cli->o.msh_tags = (fm_msh_tags)c;
                 found = 1;
             }
         if (!found) {
@@ -172,11 +174,11 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     } else if (!strcmp(a, "--crs")) {
         if (!val)
             return fm_cli_missing(a);
-        cli->crs = val;
+        cli->o.crs = val;
     } else if (!strcmp(a, "--crs-out")) {
         if (!val || !val[0])
             return fm_cli_missing(a);
-        cli->crs_out = val;
+        cli->o.crs_out = val;
     } else if (!strcmp(a, "--jobs") || !strcmp(a, "-j")) {
         size_t n;
         if (fm_parse_size(a, val, &n))
@@ -186,7 +188,7 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
                     val);
             return -1;
         }
-        cli->jobs = (int)n;
+        cli->o.jobs = (int)n;
     } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
         cli->quiet = 1;
         cli->verbose = 0;
@@ -196,18 +198,18 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
         cli->quiet = 0;
         return 1;
     } else if (!strcmp(a, "--no-connect")) {
-        cli->connect = 0;
+        cli->o.connect = 0;
         return 1;
     } else if (!strcmp(a, "--no-report-html")) {
-        cli->html = 0;
+        cli->o.html = 0;
         return 1;
     } else if (!strcmp(a, "--cache")) {
         if (!val || !val[0])
             return fm_cli_missing(a);
-        cli->cache_dir = val;
-        cli->no_cache = 0;
+        cli->o.cache_dir = val;
+        cli->o.no_cache = 0;
     } else if (!strcmp(a, "--no-cache")) {
-        cli->no_cache = 1;
+        cli->o.no_cache = 1;
         return 1;
     } else if (!strcmp(a, "--elements")) {
         if (!val)
@@ -216,35 +218,35 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
             fprintf(stderr, "faultmesh: --elements takes tri or quad, not '%s'\n", val);
             return -1;
         }
-        cli->quads = !strcmp(val, "quad");
+        cli->o.quads = !strcmp(val, "quad");
     } else if (!strcmp(a, "--formats")) {
         if (!val)
             return fm_cli_missing(a);
-        if (formats_parse(val, &cli->formats))
+        if (formats_parse(val, &cli->o.formats))
             return -1;
     } else if (!strcmp(a, "--keep-crossings")) {
-        cli->carve = 0;
+        cli->o.carve = 0;
         return 1;
     } else if (!strcmp(a, "--max-triangles")) {
-        if (fm_parse_size(a, val, &cli->max_triangles))
+        if (fm_parse_size(a, val, &cli->o.max_triangles))
             return -1;
     } else if (!strcmp(a, "--join")) {
-        if (fm_parse_positive(a, val, &cli->join))
+        if (fm_parse_positive(a, val, &cli->o.join))
             return -1;
     } else if (!strcmp(a, "--keep-duplicate")) {
         if (!val) {
             return fm_cli_missing(a);
         } else if (!strcmp(val, "smaller")) {
-            cli->keep = FM_CONNECT_KEEP_SMALLER;
+            cli->o.keep = FM_CONNECT_KEEP_SMALLER;
         } else if (!strcmp(val, "larger")) {
-            cli->keep = FM_CONNECT_KEEP_LARGER;
+            cli->o.keep = FM_CONNECT_KEEP_LARGER;
         } else {
             fprintf(stderr, "faultmesh: --keep-duplicate takes smaller or larger, not '%s'\n",
                     val);
             return -1;
         }
     } else {
-        return fm_cli_repair_option(argc, argv, i, &cli->repair);
+        return fm_cli_repair_option(argc, argv, i, &cli->o.repair);
     }
     (*i)++;
     return 1;
@@ -253,14 +255,14 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
 /* Tandem reads MSH 2.2 only; -1 (after saying why) when asked for 4.1. */
 int settle_elements(remesh_cli *cli)
 {
-    const unsigned tri_only = FMT_STL | FMT_OBJ | FMT_EXO | FMT_TS | FMT_IGS;
-    if (!cli->quads)
+    const unsigned tri_only = FM_OUT_STL | FM_OUT_OBJ | FM_OUT_EXO | FM_OUT_TS | FM_OUT_IGS;
+    if (!cli->o.quads)
         return 0;
-    if (cli->formats == FMT_ALL) {
-        cli->formats &= ~tri_only;
+    if (cli->o.formats == FM_OUT_ALL) {
+        cli->o.formats &= ~tri_only;
         return 0;
     }
-    if (cli->formats & tri_only) {
+    if (cli->o.formats & tri_only) {
         fprintf(stderr, "faultmesh: --elements quad writes vtu, msh, rsqsim, eqsim, html and "
                         "names; stl, obj, exo, ts and igs hold triangles only\n");
         return -1;
@@ -270,48 +272,20 @@ int settle_elements(remesh_cli *cli)
 
 int settle_msh(remesh_cli *cli)
 {
-    if (cli->msh_tags != FM_MSH_TAGS_TANDEM)
+    if (cli->o.msh_tags != FM_MSH_TAGS_TANDEM)
         return 0;
-    if (cli->msh_version_given && cli->msh != FM_MSH_22) {
+    if (cli->msh_version_given && cli->o.msh != FM_MSH_22) {
         fprintf(stderr, "faultmesh: --msh-tags tandem needs MSH 2.2 (Tandem reads no other)\n");
         return -1;
     }
-    cli->msh = FM_MSH_22;
+    cli->o.msh = FM_MSH_22;
     return 0;
-}
-
-/* `--top extend D` grows tops over the fitted surface's extension, which
- * must reach that far up dip: D of depth is D / sin(dip) along a fault,
- * so the margin grows with D (the default 2 km is for closing gaps). */
-void extend_fit(remesh_cli *cli)
-{
-    if (cli->mesh.top == FM_TOP_EXTEND)
-        cli->model.fit.extend = fmax(cli->model.fit.extend, 1.5 * cli->mesh.top_extend + cli->mesh.size);
-    /* A gap of D to a fault met at an angle is longer than D over the
-     * ending fault's own surface (D / sin of the angle): twice D covers
-     * angles down to 30 degrees (the default 2 km is that for D = 1 km). */
-    if (cli->connect)
-        cli->model.fit.extend = fmax(cli->model.fit.extend, 2 * cli->join);
 }
 
 void cli_defaults(remesh_cli *cli)
 {
     memset(cli, 0, sizeof *cli);
-    fm_repair_options_default(&cli->repair);
-    fm_remesh_model_options_default(&cli->model);
-    fm_remesh_options_default(&cli->mesh);
-    cli->msh = FM_MSH_41;
-    cli->crs = NULL;
-    cli->crs_out = NULL;
-    cli->connect = 1;
-    cli->carve = 1;
-    cli->html = 1;
-    cli->formats = FMT_ALL;
-    cli->join = 1000;
-    cli->max_triangles = FM_DEFAULT_MAX_TRIANGLES;
-    cli->keep = FM_CONNECT_KEEP_SMALLER;
-    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    cli->jobs = ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;
+    fm_run_options_default(&cli->o);
 }
 
 /* Flags whose default is on: `key = false` in a settings file is their
@@ -391,7 +365,7 @@ int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninp
                 fprintf(stderr, "%s:%ld: formats needs at least one format\n", c->path, e->line);
                 return -1;
             }
-            cli->formats = all;
+            cli->o.formats = all;
             continue;
         } else if (e->type == CFG_ARRAY) {
             fprintf(stderr, "%s:%ld: %s takes one value, not a list\n", c->path, e->line, e->key);
@@ -422,6 +396,5 @@ int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninp
         }
     }
     cli->cfg = c;
-    cli->sim.cfg = c;
     return 0;
 }

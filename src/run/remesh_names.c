@@ -8,7 +8,7 @@
 
 #include "fm_atomic.h"
 #include "fm_names.h"
-#include "remesh_run.h"
+#include "run_internal.h"
 
 /* A CSV field: quoted when it holds a comma, a quote or a line break. */
 static void field(FILE *fp, const char *s)

@@ -1,25 +1,29 @@
-/* faultmesh CLI: the simulator side of remesh and demo: --slip,
- * --metadata, --eqsim-coords; per-element attributes (strike, dip, rake,
+/* faultmesh run: the simulator side of a run (the options --slip,
+ * --metadata, --eqsim-coords, --kinematics); per-element attributes (strike, dip, rake,
  * slip rate) for the VTU and report.json; the RSQSim and EQSim files. */
-#ifndef FM_CLI_SIM_ATTRS_H
-#define FM_CLI_SIM_ATTRS_H
+#ifndef FM_RUN_SIM_ATTRS_H
+#define FM_RUN_SIM_ATTRS_H
 
 #include <stddef.h>
 
 #include "fm_faultset_write.h"
+#include "fm_run.h"
 #include "fm_json.h"
 #include "fm_metadata.h"
 #include "fm_sections.h"
 #include "fm_sim_write.h"
 
-#define SIM_MAX_KINEMATICS 4
+#define SIM_MAX_KINEMATICS FM_RUN_MAX_KINEMATICS
+
+struct run_ctl;
 
 typedef struct sim_cli {
     const char *slip_path;     /* --slip */
     const char *metadata_path; /* --metadata; NULL: looked for beside the inputs */
     fm_eqsim_coords eqsim;     /* --eqsim-coords */
-    const struct config *cfg;  /* --config: its [[fault]] rake and slip_rate come first */
-    int quiet;                 /* --quiet: no warnings */
+    const fm_fault_rule *rules; /* per-fault settings: their rake and slip_rate come first */
+    size_t nrules;
+    struct run_ctl *ctl;       /* where messages go */
     const char *kin_paths[SIM_MAX_KINEMATICS]; /* --kinematics files (merged) */
     size_t nkin;
     double kin_distance;       /* --kinematics-distance, m (0: the default) */
@@ -32,34 +36,13 @@ typedef struct sim_cli {
     char *metadata_found; /* the metadata file used (malloc'ed), NULL if none */
 } sim_cli;
 
-#define SIM_CLI_HELP                                                                          \
-    "simulator files: DIR/mesh.rsqsim (RSQSim) and DIR/mesh.eqsim (EQSim geometry)\n"       \
-    "  --slip FILE           rake and slip rate per fault: CSV rows pattern,rake,slip_rate\n" \
-    "                        (fault name or shell glob, degrees Aki & Richards, mm/yr)\n"     \
-    "  --metadata FILE       CFM metadata CSV whose Slip Sense gives each fault's rake\n"     \
-    "                        (default: CFM5.3_Metadata.csv in the parent folder of an\n"      \
-    "                        input folder, if there is one)\n"                                \
-    "  --kinematics FILE     deformation model fault sections (GeoJSON, e.g. NSHM23's\n"     \
-    "                        NSHM23_FSD_v3.geojson and, again, its geologic deformation\n"   \
-    "                        model): each element's slip rate and rake from the nearest\n" \
-    "                        section (--slip and the settings file still override)\n"      \
-    "  --kinematics-distance M  farthest an element takes a section from (default 3000)\n"  \
-    "  --kinematics-fallback MM_YR  slip rate of an element without a section (default 0;\n"\
-    "                        its rake then from the slip sense)\n"                           \
-    "  --eqsim-coords spherical|utm\n"                                                        \
-    "                        EQSim geometry in WGS 84 lat/lon via PROJ (default) or in\n"     \
-    "                        the mesh's own metres (rectangular)\n"
-
-/* Consumes argv[*i] (and its value) if it is one of the options above:
- * 1 if consumed (with *i on the value), 0 if not one, -1 bad value. */
-int sim_cli_option(int argc, char **argv, int *i, sim_cli *sc);
-
 /* Reads --slip and the metadata (--metadata, or the first
  * CFM5.3_Metadata.csv in the parent folder of an input folder, or of a
  * file's folder) and, for spherical EQSim, checks that PROJ can convert
  * from crs (when given: else settle_crs checks the CRS the inputs name);
- * 0, or -1 after printing why. */
-int sim_cli_load(sim_cli *sc, const char *crs, char *const *paths, size_t npaths);
+ * FM_OK, or an error saying why. */
+fm_status sim_cli_load(sim_cli *sc, const char *crs, const char *const *paths, size_t npaths,
+                       fm_error *err);
 void sim_cli_free(sim_cli *sc);
 
 /* Everything the outputs need, for a fault set of nfaults faults. */
@@ -95,7 +78,7 @@ fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a
 
 /* sim_kinematics.c: each element's rake and rate from the sections
  * (under the --slip rules and the settings file, over the fallback); 0,
- * -1 when memory runs out, -2 after printing why it failed. */
+ * -1 when memory runs out, -2 after logging why it failed. */
 int sim_kinematics_apply(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a);
 void sim_kinematics_free(sim_attrs *a);
 /* Whether triangle t of fault f carries the default rake. */

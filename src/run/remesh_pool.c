@@ -10,7 +10,7 @@
 
 #include "fm_parallel.h"
 #include "fm_sort.h"
-#include "remesh_run.h"
+#include "run_internal.h"
 
 /* Rounds of meshing again at most (settle_curves). */
 #define SETTLE_ROUNDS 16
@@ -40,12 +40,15 @@ static void run_one(void *arg, size_t i)
     pool *p = arg;
     size_t at = p->order ? p->order[i] : i;
     file_job *job = &p->jobs[at];
+    /* cancelled: the files not begun are left (the run then ends) */
+    if (run_cancelled(p->cli->ctl))
+        return;
     if (p->phase == 0)
         fit_file(p->cli, job);
     else
         mesh_file(p->plan, p->flt, job, p->phase == 2);
     if (p->phase != 2 || marked(job))
-        progress_step(p->cli->prog, p->bytes ? p->bytes[at] : 1);
+        run_progress_step(p->cli->ctl, p->bytes ? p->bytes[at] : 1);
 }
 
 typedef struct job_key {
@@ -105,12 +108,12 @@ void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
     /* a third round meshes again the faults a dropped shared curve changed */
     static const char *stage[3] = {"read and fit", "mesh",
                                    "mesh again (faults whose shared curves were dropped)"};
-    progress_begin(cli->prog, stage[phase], count, "files", weight);
+    run_progress_begin(cli->ctl, stage[phase], count, "files", weight);
     pool p = {cli, plan, phase, flt, jobs, order, bytes};
     fm_parallel_for(n, cli->jobs, run_one, &p, NULL, NULL, 0, 0);
     free(order);
     free(bytes);
-    progress_end(cli->prog);
+    run_progress_end(cli->ctl);
 }
 
 /* A fault that failed in meshing or came out empty took none of the plan

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "remesh_cad.h"
+#include "run_internal.h"
 
 /* What the boundary edge from point i to point j runs along: 1 a shared
  * curve (both ends are shared nodes), 2 the sea-level line (both ends on
@@ -20,10 +21,10 @@ static int edge_kind(const fm_remesh_boundary *b, size_t i, size_t j, int cut, d
     return 0;
 }
 
-fm_status fm_cli_cad_faces(const fm_model *m, const fm_remesh_boundary *bounds,
+fm_status run_cad_faces(const fm_model *m, const fm_remesh_boundary *bounds,
                            const unsigned char *sheet_meshed, const char *name, int cut,
                            double level, fm_cad_face ***faces, size_t *nfaces, size_t *skipped,
-                           fm_error *err)
+                           run_ctl *ctl, fm_error *err)
 {
     *faces = NULL;
     *nfaces = 0;
@@ -39,8 +40,8 @@ fm_status fm_cli_cad_faces(const fm_model *m, const fm_remesh_boundary *bounds,
     for (size_t s = 0; s < fm_model_nsheets(m) && st == FM_OK; s++) {
         const fm_remesh_boundary *b = &bounds[s];
         if (b->nloops == 0 && sheet_meshed && sheet_meshed[s]) {
-            fprintf(stderr, "faultmesh: %s: sheet %zu left out of model.igs: its mesh's "
-                            "boundary could not be traced\n", name, s);
+            run_log(ctl, FM_LOG_WARN, "%s: sheet %zu left out of model.igs: its mesh's "
+                                      "boundary could not be traced", name, s);
             (*skipped)++;
         }
         size_t np = b->nloops ? b->start[b->nloops] : 0;
@@ -73,7 +74,7 @@ fm_status fm_cli_cad_faces(const fm_model *m, const fm_remesh_boundary *bounds,
                 n++;
             } else if (st != FM_ERR_NOMEM) {
                 /* the mesh stays; the face is left out, and said so */
-                fprintf(stderr, "faultmesh: %s: sheet %zu part %zu left out of model.igs: %s\n",
+                run_log(ctl, FM_LOG_WARN, "%s: sheet %zu part %zu left out of model.igs: %s",
                         name, s, b->part[l0], ferr.message);
                 (*skipped)++;
                 st = FM_OK;

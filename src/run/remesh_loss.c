@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "remesh_run.h"
+#include "run_internal.h"
 
 void measure_loss(const remesh_cli *cli, run_state *rs)
 {
@@ -28,7 +28,7 @@ void measure_loss(const remesh_cli *cli, run_state *rs)
         st = fm_check_loss(&in, &rs->loss, &err);
     }
     if (st != FM_OK)
-        fprintf(stderr, "faultmesh: the connect measures are left out: %s\n",
+        run_log(cli->ctl, FM_LOG_WARN, "the connect measures are left out: %s",
                 st == FM_ERR_NOMEM ? "out of memory" : err.message);
     free(size);
     free(join);

@@ -6,54 +6,12 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "cli.h"
-#include "config.h"
+#include "run_internal.h"
 #include "sim_attrs.h"
 #include "fm_tile.h"
 
 #define DEG2RAD (3.14159265358979323846 / 180.0)
 #define METADATA_FILE "CFM5.3_Metadata.csv"
-
-int sim_cli_option(int argc, char **argv, int *i, sim_cli *sc)
-{
-    const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
-    if (!strcmp(a, "--slip")) {
-        if (!val)
-            return fm_cli_missing(a);
-        sc->slip_path = val;
-    } else if (!strcmp(a, "--metadata")) {
-        if (!val)
-            return fm_cli_missing(a);
-        sc->metadata_path = val;
-    } else if (!strcmp(a, "--kinematics")) {
-        if (!val)
-            return fm_cli_missing(a);
-        if (sc->nkin == SIM_MAX_KINEMATICS) {
-            fprintf(stderr, "faultmesh: --kinematics at most %d times\n", SIM_MAX_KINEMATICS);
-            return -1;
-        }
-        sc->kin_paths[sc->nkin++] = val;
-    } else if (!strcmp(a, "--kinematics-distance")) {
-        if (fm_parse_positive(a, val, &sc->kin_distance))
-            return -1;
-    } else if (!strcmp(a, "--kinematics-fallback")) {
-        if (fm_parse_double(a, val, &sc->kin_fallback_rate))
-            return -1;
-    } else if (!strcmp(a, "--eqsim-coords")) {
-        if (val && !strcmp(val, "spherical")) {
-            sc->eqsim = FM_EQSIM_SPHERICAL;
-        } else if (val && (!strcmp(val, "utm") || !strcmp(val, "rectangular"))) {
-            sc->eqsim = FM_EQSIM_RECTANGULAR;
-        } else {
-            fprintf(stderr, "faultmesh: --eqsim-coords takes spherical or utm\n");
-            return -1;
-        }
-    } else {
-        return 0;
-    }
-    (*i)++;
-    return 1;
-}
 
 static int is_dir(const char *p)
 {
@@ -107,45 +65,39 @@ static char *metadata_beside(const char *input)
     return NULL;
 }
 
-int sim_cli_load(sim_cli *sc, const char *crs, char *const *paths, size_t npaths)
+fm_status sim_cli_load(sim_cli *sc, const char *crs, const char *const *paths, size_t npaths,
+                       fm_error *err)
 {
-    fm_error err;
-    fm_error_clear(&err);
-    if (sc->slip_path && fm_slip_table_read(sc->slip_path, &sc->slip, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", err.message);
-        return -1;
-    }
+    if (sc->slip_path && fm_slip_table_read(sc->slip_path, &sc->slip, err) != FM_OK)
+        return err->code;
     if (sc->metadata_path) {
         if (!(sc->metadata_found = strdup(sc->metadata_path)))
-            return -1;
+            return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     } else {
         for (size_t i = 0; i < npaths && !sc->metadata_found; i++)
             sc->metadata_found = metadata_beside(paths[i]);
     }
-    if (!sc->metadata_found && !sc->quiet)
-        fprintf(stderr, "faultmesh: no %s beside the inputs (in the parent folder of an input "
-                        "folder): rakes come from --slip or the settings file, else %g; give "
-                        "--metadata FILE\n",
+    if (!sc->metadata_found)
+        run_log(sc->ctl, FM_LOG_INFO,
+                "no %s beside the inputs (in the parent folder of an input folder): rakes come "
+                "from --slip or the settings file, else %g; give --metadata FILE",
                 METADATA_FILE, FM_SLIP_DEFAULT_RAKE);
-    if (sc->metadata_found && fm_metadata_read(sc->metadata_found, &sc->md, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", err.message);
-        return -1;
-    }
-    if (sc->nkin && fm_sections_read(sc->kin_paths, sc->nkin, &sc->sections, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: --kinematics: %s\n", err.message);
-        return -1;
-    }
-    if (sc->nkin && !fm_sections_count(sc->sections)) {
-        fprintf(stderr, "faultmesh: --kinematics: no complete fault section (trace, dip, rake, "
-                        "depths) in %s\n", sc->kin_paths[0]);
-        return -1;
-    }
+    if (sc->metadata_found && fm_metadata_read(sc->metadata_found, &sc->md, err) != FM_OK)
+        return err->code;
+    fm_error e;
+    fm_error_clear(&e);
+    if (sc->nkin && fm_sections_read(sc->kin_paths, sc->nkin, &sc->sections, &e) != FM_OK)
+        return fm_error_set(err, e.code, NULL, 0, "--kinematics: %s", e.message);
+    if (sc->nkin && !fm_sections_count(sc->sections))
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0,
+                            "--kinematics: no complete fault section (trace, dip, rake, depths) "
+                            "in %s",
+                            sc->kin_paths[0]);
     /* without --crs the CRS comes from the inputs, checked once read */
-    if (crs && sc->eqsim == FM_EQSIM_SPHERICAL && fm_eqsim_check_crs(crs, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: %s; give --crs, or --eqsim-coords utm\n", err.message);
-        return -1;
-    }
-    return 0;
+    if (crs && sc->eqsim == FM_EQSIM_SPHERICAL && fm_eqsim_check_crs(crs, &e) != FM_OK)
+        return fm_error_set(err, e.code, NULL, 0, "%s; give --crs, or --eqsim-coords utm",
+                            e.message);
+    return FM_OK;
 }
 
 void sim_cli_free(sim_cli *sc)
@@ -199,9 +151,9 @@ int sim_attrs_make(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a)
         return -1;
     }
     fm_slip_assign(fs->names, nf, sc->md, sc->slip, a->slip);
-    for (size_t f = 0; sc->cfg && f < nf; f++) {
+    for (size_t f = 0; sc->nrules && f < nf; f++) {
         fault_config fc;
-        config_fault_lookup(sc->cfg, fs->names[f], &fc);
+        fm_fault_settings_lookup(sc->rules, sc->nrules, fs->names[f], &fc);
         fm_slip_override(&a->slip[f], fc.has_rake ? &fc.rake : NULL,
                          fc.has_rate ? &fc.slip_rate_mm_yr : NULL, FM_SLIP_FROM_SETTINGS);
     }
@@ -261,7 +213,7 @@ int sim_attrs_make(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a)
 
 /* No silent placeholders: a simulator takes a rate of 0 for a locked
  * patch (RSQSim then makes no earthquakes on it) and a defaulted rake for
- * a real one, so the simulator files say on stderr how many elements carry
+ * a real one, so the simulator files say in the log how many elements carry
  * either, and why. */
 static void say_placeholders(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a)
 {
@@ -287,16 +239,16 @@ static void say_placeholders(const sim_cli *sc, const fm_faultset *fs, const sim
     }
     free(seen);
     if (zero_f)
-        fprintf(stderr,
-                "faultmesh: warning: mesh.rsqsim, mesh.eqsim: %zu of %zu elements (%zu of %zu "
+        run_log(sc->ctl, FM_LOG_INFO,
+                "warning: mesh.rsqsim, mesh.eqsim: %zu of %zu elements (%zu of %zu "
                 "faults) have slip rate 0: no --slip rule, settings value or --kinematics "
                 "section gives them one; a simulator takes them for locked patches "
-                "(report.json: attributes)\n",
+                "(report.json: attributes)",
                 zero_t, a->ntriangles, zero_f, fs->nfaults);
     if (rake_f)
-        fprintf(stderr,
-                "faultmesh: warning: mesh.rsqsim, mesh.eqsim: %zu elements (%zu faults) have "
-                "the default rake %g: %s\n",
+        run_log(sc->ctl, FM_LOG_INFO,
+                "warning: mesh.rsqsim, mesh.eqsim: %zu elements (%zu faults) have "
+                "the default rake %g: %s",
                 rake_t, rake_f, FM_SLIP_DEFAULT_RAKE,
                 !sc->metadata_found
                     ? "no CFM metadata CSV was found beside the inputs (give --metadata FILE, "
@@ -309,7 +261,7 @@ static void say_placeholders(const sim_cli *sc, const fm_faultset *fs, const sim
 fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
                     const char *dir, int rsqsim, int eqsim, fm_output_done done, void *ctx)
 {
-    if (!sc->quiet && a->kin) {
+    if (a->kin) {
         double A = 0, M = 0;
         size_t none = 0;
         for (size_t f = 0; f < a->nfaults; f++) {
@@ -317,12 +269,11 @@ fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a
             M += a->k_matched[f];
             none += a->k_matched[f] == 0;
         }
-        fprintf(stderr, "faultmesh: --kinematics: %.1f%% of the area took a section; %zu of %zu "
-                        "faults took none (report.json: simulator.kinematics)\n",
+        run_log(sc->ctl, FM_LOG_INFO, "--kinematics: %.1f%% of the area took a section; %zu of %zu "
+                                      "faults took none (report.json: simulator.kinematics)",
                 A > 0 ? 100 * M / A : 0, none, a->nfaults);
     }
-    if (!sc->quiet)
-        say_placeholders(sc, fs, a);
+    say_placeholders(sc, fs, a);
     size_t n = strlen(dir) + 32;
     char *path = malloc(n);
     fm_sim_slip slip = {a->rake_f, a->rate_f, a->rake_t, a->rate_t};

@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "fm_report.h"
-#include "remesh_run.h"
+#include "run_internal.h"
 
 static const char *base_name(const char *path)
 {
@@ -147,7 +147,7 @@ static fm_status add_facts(fm_report *rep, const remesh_cli *cli, const run_stat
     fm_status st = fact(rep, err, "faultmesh", "%s", FM_VERSION_STRING);
     if (st == FM_OK)
         st = fact(rep, err, "target edge length H", "%g m%s", cli->mesh.size,
-                  cli->cfg ? " (faults the settings file names may differ)" : "");
+                  cli->settings_path ? " (faults the settings file names may differ)" : "");
     if (st == FM_OK && cli->mesh.top == FM_TOP_EXTEND)
         st = fact(rep, err, "top", "%s (tops within %g m)", top, cli->mesh.top_extend);
     else if (st == FM_OK)

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "fm_kinematics.h"
+#include "run_internal.h"
 #include "sim_attrs.h"
 
 /* An element whose section rake differs from its fault's CFM slip sense
@@ -109,7 +110,7 @@ int sim_kinematics_apply(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a)
     if (sc->kin_distance > 0)
         o.max_distance = sc->kin_distance;
     if (fm_kinematics_assign(sc->sections, fs, a->strike, a->dip, &o, a->kin, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: --kinematics: %s\n", err.message);
+        run_log(sc->ctl, FM_LOG_ERROR, "--kinematics: %s", err.message);
         free(area);
         return -2;
     }

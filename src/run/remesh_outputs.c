@@ -1,12 +1,12 @@
 /* `faultmesh remesh`: every output file accounted for. Each file the run
  * was to write is noted as written or not (with the reason) in the order
- * written, so that stderr, report.json and the summary can say which are
+ * written, so that the log, report.json and the summary can say which are
  * missing, and which faults they leave incomplete. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "remesh_run.h"
+#include "run_internal.h"
 
 /* The name of path inside the output folder (the path itself if not). */
 static const char *in_dir(const output_log *log, const char *path)
@@ -21,7 +21,7 @@ void outputs_note(output_log *log, const char *path, size_t fault, output_kind k
                   const fm_error *err)
 {
     if (err) {
-        fprintf(stderr, "faultmesh: not written: %s\n", err->message);
+        run_log(log->ctl, FM_LOG_ERROR, "not written: %s", err->message);
         log->unwritten++;
     } else {
         log->written++;

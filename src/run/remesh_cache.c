@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "fm_model_cache.h"
-#include "remesh_run.h"
+#include "run_internal.h"
 
 static char *joined(const char *a, const char *b)
 {
@@ -24,8 +24,7 @@ static void note(remesh_cli *cli, const char *why)
     cli->cache_note = malloc(n);
     if (cli->cache_note)
         snprintf(cli->cache_note, n, "no fit cache, every fault is fitted: %s", why);
-    if (!cli->quiet)
-        fprintf(stderr, "faultmesh: note: %s\n", cli->cache_note ? cli->cache_note : why);
+    run_log(cli->ctl, FM_LOG_INFO, "note: %s", cli->cache_note ? cli->cache_note : why);
 }
 
 void settle_cache(remesh_cli *cli)

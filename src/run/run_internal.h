@@ -1,18 +1,19 @@
-/* faultmesh CLI, `remesh` and `demo`: what the files of the command share.
- * The run flows cmd_remesh.c (run) -> remesh_pool.c (fit and mesh on
+/* faultmesh run (fm_run.h): what the files of the run module share.
+ * The run flows run.c (fm_run_execute) -> remesh_pool.c (fit and mesh on
  * threads, remesh_fault.c per fault) -> remesh_set.c (merge, last guard,
- * write) -> remesh_report.c (report.json); remesh_options.c reads the
- * options. */
-#ifndef FM_REMESH_RUN_H
-#define FM_REMESH_RUN_H
+ * write) -> remesh_report.c (report.json); run_log.c carries messages and
+ * progress to the caller's callbacks. Included by the run's .c files
+ * only; never by a stage, never installed. */
+#ifndef FM_RUN_INTERNAL_H
+#define FM_RUN_INTERNAL_H
 
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
-#include "cli.h"
-#include "config.h"
-#include "progress.h"
+#include "fm_run.h"
 #include "fm_cad_write.h"
 #include "fm_carve.h"
 #include "fm_check.h"
@@ -25,20 +26,50 @@
 #include "fm_tsurf.h"
 #include "sim_attrs.h"
 
+/* The caller's callbacks (fm_run_set_log, fm_run_set_progress), called
+ * one at a time under lock, and the cancel flag (run_log.c). */
+typedef struct run_ctl {
+    fm_log_fn log;
+    void *log_user;
+    fm_log_level log_max;
+    fm_progress_fn progress;
+    void *progress_user;
+    atomic_int cancelled; /* fm_run_interrupt, or a callback said so */
+    pthread_mutex_t lock;
+} run_ctl;
+
+run_ctl *run_ctl_create(void);
+void run_ctl_destroy(run_ctl *c);
+/* A log record (printf format; NULL ctl: dropped). */
+void run_log(run_ctl *c, fm_log_level level, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/* Whether records of that level reach the caller. */
+int run_log_wants(const run_ctl *c, fm_log_level level);
+void run_progress_begin(run_ctl *c, const char *stage, size_t count, const char *unit,
+                    double weight);
+void run_progress_step(run_ctl *c, double weight);
+void run_progress_set(run_ctl *c, size_t done, size_t count, const char *unit);
+void run_progress_end(run_ctl *c);
+int run_cancelled(run_ctl *c);
+
+/* The settings of a run as its files read them: fm_run_options, and what
+ * the run settles from them. */
 typedef struct remesh_cli {
     const char *dir;
     fm_repair_options repair;
     fm_model_options model;
     fm_remesh_options mesh;
     fm_msh_version msh;
-    int msh_version_given;
     fm_msh_tags msh_tags;
     const char *crs; /* --crs, or NULL: from the inputs, else EPSG:26711 */
     const char *crs_out; /* --crs-out: the outputs' CRS; NULL: the input's */
-    int quiet;
-    int verbose;  /* a line per fault */
-    progress *prog; /* stderr; NULL: none */
-    const config *cfg; /* --config: per-fault settings; NULL: none */
+    run_ctl *ctl;      /* the caller's callbacks */
+    const fm_fault_rule *rules; /* per-fault settings */
+    size_t nrules;
+    const char *settings_path; /* where they come from; NULL: no settings file */
     int jobs;   /* threads */
     int connect;  /* join faults that meet (default 1) */
     double join;  /* D: join tolerance, m */
@@ -55,20 +86,15 @@ typedef struct remesh_cli {
     char *cache_note;      /* why there is none, when one was wanted; NULL: none */
 } remesh_cli;
 
-/* The outputs --formats chooses among, by name: vtu msh stl obj exo ts igs
- * rsqsim eqsim html names (names.csv). */
+/* The outputs (fm_run.h's FM_OUT_*). */
 enum {
-    FMT_VTU = 1 << 0, FMT_MSH = 1 << 1, FMT_STL = 1 << 2, FMT_OBJ = 1 << 3,
-    FMT_EXO = 1 << 4, FMT_TS = 1 << 5, FMT_IGS = 1 << 6, FMT_RSQSIM = 1 << 7,
-    FMT_EQSIM = 1 << 8, FMT_HTML = 1 << 9, FMT_NAMES = 1 << 10, FMT_ALL = (1 << 11) - 1
+    FMT_VTU = FM_OUT_VTU, FMT_MSH = FM_OUT_MSH, FMT_STL = FM_OUT_STL, FMT_OBJ = FM_OUT_OBJ,
+    FMT_EXO = FM_OUT_EXO, FMT_TS = FM_OUT_TS, FMT_IGS = FM_OUT_IGS, FMT_RSQSIM = FM_OUT_RSQSIM,
+    FMT_EQSIM = FM_OUT_EQSIM, FMT_HTML = FM_OUT_HTML, FMT_NAMES = FM_OUT_NAMES,
+    FMT_ALL = FM_OUT_ALL
 };
-/* The bits of a comma-separated list of names; -1 after naming a bad one. */
-int formats_parse(const char *list, unsigned *out);
 
-/* Triangles a run may be expected to make by default: what a 24 GB
- * machine holds through the whole pipeline (about 0.75 kB per triangle
- * measured on the whole CFM at 500 m), with room to spare. */
-#define FM_DEFAULT_MAX_TRIANGLES 20000000
+typedef fm_fault_settings fault_config;
 
 /* Messages fault_warnings gives at most. */
 #define FM_MAX_WARNINGS 4
@@ -134,6 +160,7 @@ typedef struct output_rec {
 /* Every output file of a run, written or not (remesh_outputs.c). */
 typedef struct output_log {
     const char *dir;
+    run_ctl *ctl; /* where "not written" is said */
     output_rec *rec;
     size_t n, cap;
     size_t written, unwritten;
@@ -141,6 +168,7 @@ typedef struct output_log {
 } output_log;
 
 typedef struct run_state {
+    run_ctl *ctl;       /* the caller's callbacks */
     fm_mesh *set;       /* all faults; tag = fault index */
     int32_t *sheet;     /* per triangle of set: the sheet of its fault it is on */
     char **names;
@@ -174,6 +202,7 @@ typedef struct run_state {
  * thread did what. */
 typedef struct file_job {
     const char *path;
+    run_ctl *ctl;       /* the caller's callbacks */
     fm_tsurf **objs;
     size_t nobj;
     size_t first;       /* plan fault index of object 0 */
@@ -185,22 +214,9 @@ typedef struct file_job {
     size_t n;
 } file_job;
 
-/* remesh_options.c */
-void remesh_usage(FILE *fp);
-/* Options shared by remesh and demo: 1 if argv[*i] was one (its value
- * consumed), -1 on error, 0 if not one of them. */
-int mesh_option(int argc, char **argv, int *i, remesh_cli *cli);
-int settle_msh(remesh_cli *cli);
-/* --elements quad: the formats that hold rectangles (default) or a usage
- * error for another one asked for; 0 or -1 after saying why. */
-int settle_elements(remesh_cli *cli);
+/* run.c: the fit's extension widened as --top extend and the join
+ * distance need. */
 void extend_fit(remesh_cli *cli);
-void cli_defaults(remesh_cli *cli);
-/* The settings file's top-level keys, applied as the options they name
- * (command-line options given after override them); its inputs, if it
- * lists any, in *inputs (free the array, not the strings). 0, or -1
- * after printing FILE:LINE: why. */
-int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninputs);
 
 /* Which plan curves, or pieces of them, a round of meshing takes
  * (settle_curves): none of curve c when excluded[c]; when clipped[c], only
@@ -214,7 +230,7 @@ typedef struct curve_filter {
 
 /* remesh_cache.c: the fit cache's folder, from --cache DIR, else
  * $XDG_CACHE_HOME/faultmesh, else $HOME/.cache/faultmesh; none with
- * --no-cache, or (cli->cache_note says why, on stderr too unless quiet)
+ * --no-cache, or (cli->cache_note says why, to the log as FM_LOG_INFO)
  * when it cannot be made: the run goes on without. */
 void settle_cache(remesh_cli *cli);
 void release_cache(remesh_cli *cli);
@@ -243,7 +259,7 @@ void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job 
                    size_t njobs);
 
 /* remesh_outputs.c: an output file written (err NULL) or not (said on
- * stderr); outputs_done is the same as an fm_output_done of the set's
+ * the log); outputs_done is the same as an fm_output_done of the set's
  * files (ctx: the log). */
 void outputs_note(output_log *log, const char *path, size_t fault, output_kind kind,
                   const fm_error *err);
@@ -295,7 +311,10 @@ typedef struct run_totals {
 } run_totals;
 void run_totals_of(const run_state *rs, run_totals *t);
 void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp);
-void print_fault(const fault_result *r, double H);
+/* The run's end: every fault's results freed (run.c). */
+void run_state_free(run_state *rs);
+/* The line (and warnings) of a fault, as -v shows it: FM_LOG_DETAIL. */
+void log_fault(run_ctl *ctl, const fault_result *r);
 fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_attrs *sa,
                        fm_error *err);
 /* What a user should look at before trusting meshed fault r: up to
@@ -320,5 +339,52 @@ void print_loss(const run_state *rs, FILE *fp);
 /* DIR/report.html: called while the originals are still there (before
  * the jobs are released). */
 fm_status write_report_html(const remesh_cli *cli, const run_state *rs, fm_error *err);
+
+/* Strings the setters copied (run_set.c), kept while the run or one of
+ * its results points into them. */
+typedef struct run_strings {
+    atomic_int refs;
+    char **v;
+    size_t n;
+} run_strings;
+run_strings *run_strings_ref(run_strings *s); /* NULL stays NULL */
+void run_strings_unref(run_strings *s);
+
+/* run_api.c, run_set.c: a run (fm_run.h) */
+struct fm_run {
+    fm_run_options opt;
+    run_ctl *ctl;
+    char **paths;         /* the input files (owned) */
+    size_t npaths, cap;
+    sim_cli sim;  /* the simulator data fm_run_prepare read */
+    int prepared;
+    run_strings *strings; /* what the setters copied; NULL: none */
+};
+/* Options changed: what fm_run_prepare read is read again. */
+void run_unprepare(fm_run *run);
+
+/* run_inputs.c: fm_run_list_inputs with the run's log. */
+long run_list_inputs(const char *const *args, size_t nargs, run_ctl *log, char ***out,
+                     fm_error *err);
+void run_list_free(char **list, long n);
+
+/* run.c, run_api.c: a run's result (fm_run.h) */
+struct fm_run_result {
+    run_strings *strings; /* the setters' strings its settings point into */
+    remesh_cli cli;       /* the run's settings; its sim data and cache are the result's */
+    run_state rs;
+    output_log outputs;
+    file_job *jobs;       /* until the outputs are written */
+    size_t njobs;
+    fm_connect_plan *plan;
+    run_ctl *ctl;         /* the callbacks, once the run is over */
+    double t4;            /* when the merge and check ended */
+    int written;
+};
+
+/* The run on files into res (cli set, the cache settled); on failure res
+ * is destroyed and the error said. */
+fm_status run_execute(fm_run_result *res, const char *const *files, size_t nfiles,
+                      fm_error *err);
 
 #endif

@@ -13,7 +13,7 @@
 #include "fm_reproject.h"
 #include "fm_sort.h"
 #include "fm_tsurf.h"
-#include "remesh_run.h"
+#include "run_internal.h"
 
 static fault_result *new_result(run_state *rs)
 {
@@ -83,7 +83,7 @@ void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
             r->error = strdup("out of memory");
         }
         rs->failed++;
-        fprintf(stderr, "faultmesh: %s: out of memory\n", job->path);
+        run_log(cli->ctl, FM_LOG_ERROR, "%s: out of memory", job->path);
         return;
     }
     for (size_t o = 0; o < job->n; o++) {
@@ -126,11 +126,11 @@ void merge_job(const remesh_cli *cli, file_job *job, run_state *rs)
         }
         free(job->ids ? job->ids[o] : NULL);
         if (!strcmp(r->status, "error")) {
-            fprintf(stderr, "faultmesh: %s\n", r->error ? r->error : "out of memory");
+            run_log(cli->ctl, FM_LOG_ERROR, "%s", r->error ? r->error : "out of memory");
             rs->failed++;
         }
-        if (cli->verbose)
-            print_fault(r, r->mesh.size);
+        if (run_log_wants(cli->ctl, FM_LOG_DETAIL))
+            log_fault(cli->ctl, r);
         fm_mesh_destroy(fault);
     }
     free(job->res);
@@ -177,12 +177,12 @@ static void measure_again(run_state *rs, int32_t tag)
     fm_closest_tree *tree = fm_closest_tree_create(rs->set_orig[tag], &err);
     if (!tree || fm_check_quality(rs->set, tag, r->mesh.size, &r->q) != FM_OK ||
         fm_check_fidelity(rs->set, tag, rs->set_orig[tag], tree, &r->fid) != FM_OK)
-        fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
+        run_log(rs->ctl, FM_LOG_ERROR, "%s: out of memory measuring it again", r->name);
     fm_closest_tree_destroy(tree);
     r->carved += before - r->q.triangles;
     r->carved_area += area - r->q.area;
     if (set_curve_pieces(rs, tag, r))
-        fprintf(stderr, "faultmesh: %s: out of memory measuring it again\n", r->name);
+        run_log(rs->ctl, FM_LOG_ERROR, "%s: out of memory measuring it again", r->name);
 }
 
 /* Every fault that gave way in cr measured again, once (unit: the fault
@@ -242,7 +242,7 @@ static void carve_sheets(run_state *rs, double H)
     for (size_t t = 0; t < nt; t++)
         tag[t] = fault[tag[t]];
     if (st != FM_OK) {
-        fprintf(stderr, "faultmesh: sheets of a fault that cross each other are left so: %s\n",
+        run_log(rs->ctl, FM_LOG_WARN, "sheets of a fault that cross each other are left so: %s",
                 err.message);
         free(first);
         free(fault);
@@ -265,7 +265,7 @@ void carve_set(const remesh_cli *cli, run_state *rs)
     for (size_t f = 0; f < rs->nfaults; f++)
         H = fmax(H, rs->res[rs->set_res[f]].mesh.size);
     if (fm_carve_crossings(rs->set, 2 * H, rs->sheet, &rs->carve, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: faults that cross each other are left so: %s\n",
+        run_log(cli->ctl, FM_LOG_WARN, "faults that cross each other are left so: %s",
                 err.message);
         return;
     }

@@ -1,5 +1,6 @@
-/* `faultmesh remesh`: what each fault and junction came to, on stdout
- * and in report.json. */
+/* A run: what each fault and junction came to, in the summary text
+ * (fm_run_result_summary; the CLI prints it on stdout), the per-fault log
+ * record and report.json. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,7 +9,7 @@
 #include "remesh_quads.h"
 #include "fm_atomic.h"
 #include "fm_json.h"
-#include "remesh_run.h"
+#include "run_internal.h"
 
 /* The name --top and the settings file give a top mode. */
 static const char *top_name(fm_top_mode t)
@@ -50,14 +51,14 @@ int fault_warnings(const fault_result *r, char w[FM_MAX_WARNINGS][160])
     return n;
 }
 
-void print_fault(const fault_result *r, double H)
+static void print_fault(FILE *out, const fault_result *r)
 {
     if (strcmp(r->status, "ok")) {
-        printf("%-64s %s%s%s\n", r->name ? r->name : r->file, r->status, r->error ? ": " : "",
+        fprintf(out, "%-64s %s%s%s\n", r->name ? r->name : r->file, r->status, r->error ? ": " : "",
                r->error ? r->error : "");
         return;
     }
-    printf("%-64s %7zu tri  min %5.1f deg  <30 %5.2f%%  edges in band %5.1f%%  node dist "
+    fprintf(out, "%-64s %7zu tri  min %5.1f deg  <30 %5.2f%%  edges in band %5.1f%%  node dist "
            "%5.1f/%6.1f m%s\n",
            r->name, r->q.triangles, r->q.angle_min,
            100.0 * (double)r->q.below_30 / (double)(r->q.triangles ? r->q.triangles : 1),
@@ -66,8 +67,22 @@ void print_fault(const fault_result *r, double H)
     char w[FM_MAX_WARNINGS][160];
     int nw = fault_warnings(r, w);
     for (int k = 0; k < nw; k++)
-        printf("    warning: %s\n", w[k]);
-    (void)H;
+        fprintf(out, "    warning: %s\n", w[k]);
+}
+
+void log_fault(run_ctl *ctl, const fault_result *r)
+{
+    char *text = NULL;
+    size_t n = 0;
+    FILE *out = open_memstream(&text, &n);
+    if (!out)
+        return;
+    print_fault(out, r);
+    fclose(out);
+    if (n && text[n - 1] == '\n')
+        text[n - 1] = 0;
+    run_log(ctl, FM_LOG_DETAIL, "%s", text);
+    free(text);
 }
 
 static void json_carve(fm_json *j, const run_state *rs)

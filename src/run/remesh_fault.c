@@ -13,7 +13,7 @@
 #include "fm_sort.h"
 #include "fm_tsurf.h"
 #include "remesh_cad.h"
-#include "remesh_run.h"
+#include "run_internal.h"
 
 static int push_curve(size_t **list, size_t *n, size_t curve)
 {
@@ -152,7 +152,7 @@ static double fitted_area(const fm_model *m, int cut, double level)
  * it by name. */
 static void fault_options(const remesh_cli *cli, fault_result *r)
 {
-    config_fault_lookup(cli->cfg, r->name, &r->fc);
+    fm_fault_settings_lookup(cli->rules, cli->nrules, r->name, &r->fc);
     r->mesh = cli->mesh;
     if (r->fc.has_size)
         r->mesh.size = r->fc.size;
@@ -338,7 +338,7 @@ static fm_remesh_sheet_curves *plan_curves(const fm_connect_plan *plan, size_t f
 static fm_status mesh_object(const char *path, const fm_mesh *orig,
                              const fm_model *model, const fm_connect_plan *plan,
                              const curve_filter *flt, size_t f, fault_result *r,
-                             fm_mesh **fault, int64_t **ids, fm_error *err)
+                             fm_mesh **fault, int64_t **ids, run_ctl *ctl, fm_error *err)
 {
     double t1 = fm_clock_seconds();
     fm_remesh_options mo = r->mesh;
@@ -365,9 +365,9 @@ static fm_status mesh_object(const char *path, const fm_mesh *orig,
             if (tag[t] >= 0 && (size_t)tag[t] < r->sheets)
                 meshed[tag[t]] = 1;
         size_t skipped = 0;
-        st = meshed ? fm_cli_cad_faces(model, bounds, meshed, r->name,
+        st = meshed ? run_cad_faces(model, bounds, meshed, r->name,
                                        r->mesh.top != FM_TOP_KEEP, r->mesh.sea_level, &r->cad,
-                                       &r->ncad, &skipped, err)
+                                       &r->ncad, &skipped, ctl, err)
                     : fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
         free(meshed);
     }
@@ -480,7 +480,10 @@ void fit_file(const remesh_cli *cli, file_job *job)
         fault_options(cli, r);
         if (r->fc.has_exclude && r->fc.exclude) {
             char msg[256];
-            snprintf(msg, sizeof msg, "excluded by %s:%ld", cli->cfg->path, r->fc.line);
+            if (cli->settings_path)
+                snprintf(msg, sizeof msg, "excluded by %s:%ld", cli->settings_path, r->fc.line);
+            else
+                snprintf(msg, sizeof msg, "excluded by the per-fault settings");
             r->status = "excluded";
             r->error = strdup(msg);
             continue;
@@ -559,7 +562,7 @@ void mesh_file(const fm_connect_plan *plan, const curve_filter *flt, file_job *j
         fm_mesh *fault = NULL;
         fm_error_clear(&err);
         fm_status st = mesh_object(job->path, fm_tsurf_mesh(job->objs[o]), model, plan,
-                                   flt, job->first + o, r, &fault, &job->ids[o], &err);
+                                   flt, job->first + o, r, &fault, &job->ids[o], job->ctl, &err);
         /* the time of every meshing counts */
         r->t_mesh += t_mesh;
         r->t_check += t_check;
@@ -606,6 +609,9 @@ void abandon_job(file_job *job)
         free(r->through_curves);
         free(r->used_curves);
         free(r->curve_pieces);
+        for (size_t k = 0; k < r->ncad; k++)
+            fm_cad_face_destroy(r->cad[k]);
+        free(r->cad);
         fm_mesh_destroy(job->mesh ? job->mesh[o] : NULL);
         free(job->ids ? job->ids[o] : NULL);
     }

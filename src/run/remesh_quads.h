@@ -1,6 +1,6 @@
-/* faultmesh CLI: --elements quad (remesh_quads.c). */
-#ifndef FM_CLI_REMESH_QUADS_H
-#define FM_CLI_REMESH_QUADS_H
+/* faultmesh run: --elements quad (remesh_quads.c). */
+#ifndef FM_RUN_REMESH_QUADS_H
+#define FM_RUN_REMESH_QUADS_H
 
 #include "fm_faultset_write.h"
 #include "fm_json.h"

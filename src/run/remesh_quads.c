@@ -8,7 +8,7 @@
 
 #include "fm_quad_write.h"
 #include "fm_tile.h"
-#include "remesh_run.h"
+#include "run_internal.h"
 #include "remesh_quads.h"
 #include "fm_vec3.h"
 
