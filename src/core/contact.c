@@ -54,8 +54,8 @@ static void flatten(const double *p, int d, double out[2])
     out[1] = p[(d + 2) % 3];
 }
 
-/* Closed 2D segments pq and rs have a common point. */
-static int segments_meet2(const double *p, const double *q, const double *r, const double *s)
+/* (fm_predicates.h) */
+int fm_segments_meet2d(const double *p, const double *q, const double *r, const double *s)
 {
     int a = fm_orient2d(p, q, r), b = fm_orient2d(p, q, s);
     int c = fm_orient2d(r, s, p), d = fm_orient2d(r, s, q);
@@ -94,7 +94,7 @@ static int segment_meets_triangle(const double *p, const double *q, const double
         if (inside2(p2, t2[0], t2[1], t2[2]) || inside2(q2, t2[0], t2[1], t2[2]))
             return 1;
         for (int k = 0; k < 3; k++)
-            if (segments_meet2(p2, q2, t2[k], t2[(k + 1) % 3]))
+            if (fm_segments_meet2d(p2, q2, t2[k], t2[(k + 1) % 3]))
                 return 1;
         return 0;
     }

@@ -32,6 +32,10 @@ int fm_orient3d(const double *a, const double *b, const double *c, const double 
  * counter-clockwise), -1 outside, 0 on it. */
 int fm_incircle(const double *a, const double *b, const double *c, const double *d);
 
+/* 1 if the closed 2D segments pq and rs have a common point (a crossing,
+ * an end on the other, a collinear overlap), else 0; exact (contact.c). */
+int fm_segments_meet2d(const double *p, const double *q, const double *r, const double *s);
+
 /* 1 if the 3D points a, b, c are exactly collinear (the triangle has zero
  * area), else 0. */
 int fm_collinear3d(const double *a, const double *b, const double *c);

@@ -159,21 +159,6 @@ static size_t curve_samples(const cad_curves *cv, size_t c, double *out)
     return w;
 }
 
-static int segments_cross(const double *a, const double *b, const double *c, const double *d)
-{
-    int o1 = fm_orient2d(a, b, c), o2 = fm_orient2d(a, b, d);
-    int o3 = fm_orient2d(c, d, a), o4 = fm_orient2d(c, d, b);
-    if (o1 * o2 > 0 || o3 * o4 > 0)
-        return 0;
-    if (o1 || o2 || o3 || o4)
-        return 1;
-    /* collinear: overlapping boxes */
-    for (int e = 0; e < 2; e++)
-        if (fmax(a[e], b[e]) < fmin(c[e], d[e]) || fmax(c[e], d[e]) < fmin(a[e], b[e]))
-            return 0;
-    return 1;
-}
-
 /* 1 when the sampled curves of the loops cross one another or
  * themselves anywhere but where consecutive pieces of a loop meet; -1
  * out of memory. Segments are swept in order of their smallest u. */
@@ -237,7 +222,7 @@ static int loops_cross(const cad_curves *cv)
             if (ni == j || nj == i || (x[2 * ni] == x[2 * j] && x[2 * ni + 1] == x[2 * j + 1]) ||
                 (x[2 * nj] == x[2 * i] && x[2 * nj + 1] == x[2 * i + 1]))
                 continue;
-            crossed = segments_cross(x + 2 * i, x + 2 * ni, x + 2 * j, x + 2 * nj);
+            crossed = fm_segments_meet2d(x + 2 * i, x + 2 * ni, x + 2 * j, x + 2 * nj);
         }
     }
 done:
