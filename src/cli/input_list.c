@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "fm_atomic.h"
 #include "fm_run.h"
 
 /* The run module lists them (fm_run_list_inputs); what it has to say is
@@ -31,20 +32,6 @@ long fm_input_list(char *const *args, size_t nargs, char ***out)
 void fm_input_list_free(char **list, long n)
 {
     fm_run_list_free(list, n);
-}
-
-static char *join(const char *dir, const char *name)
-{
-    size_t a = strlen(dir), b = strlen(name);
-    char *p = malloc(a + b + 2);
-    if (!p)
-        return NULL;
-    memcpy(p, dir, a);
-    size_t k = a;
-    if (a == 0 || dir[a - 1] != '/')
-        p[k++] = '/';
-    memcpy(p + k, name, b + 1);
-    return p;
 }
 
 /* The absolute, symbolic-link-free form of path, which need not exist
@@ -75,7 +62,7 @@ static char *resolve(const char *path)
     }
     char *out = NULL;
     if (parent && strcmp(tail, ".") && strcmp(tail, "..") && *tail) {
-        out = join(parent, tail);
+        out = fm_path_join(parent, tail);
     } else if (parent && (!strcmp(tail, ".") || !*tail)) {
         out = parent;
         parent = NULL;

@@ -272,6 +272,20 @@ void fm_atomic_abort(fm_atomic_file *f)
     free(f);
 }
 
+char *fm_path_join(const char *dir, const char *name)
+{
+    size_t a = strlen(dir), b = strlen(name);
+    char *p = malloc(a + b + 2);
+    if (!p)
+        return NULL;
+    memcpy(p, dir, a);
+    size_t k = a;
+    if (a == 0 || dir[a - 1] != '/')
+        p[k++] = '/';
+    memcpy(p + k, name, b + 1);
+    return p;
+}
+
 fm_status fm_mkdir_p(const char *path, fm_error *err)
 {
     size_t n = strlen(path);

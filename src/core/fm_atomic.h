@@ -63,6 +63,9 @@ void fm_atomic_remove_pending(void);
 /* Whether fm_atomic_remove_pending has run. */
 int fm_atomic_interrupted(void);
 
+/* dir "/" name, with no doubled '/' (malloc'ed; NULL when out of memory). */
+char *fm_path_join(const char *dir, const char *name);
+
 /* Creates directory path (and its parents) if missing. */
 fm_status fm_mkdir_p(const char *path, fm_error *err);
 

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "fm_atomic.h"
 #include "run_internal.h"
 
 typedef struct {
@@ -43,20 +44,6 @@ static int has_ts_suffix(const char *name)
 {
     size_t n = strlen(name);
     return n > 3 && (!strcmp(name + n - 3, ".ts") || !strcmp(name + n - 3, ".TS"));
-}
-
-static char *join(const char *dir, const char *name)
-{
-    size_t a = strlen(dir), b = strlen(name);
-    char *p = malloc(a + b + 2);
-    if (!p)
-        return NULL;
-    memcpy(p, dir, a);
-    size_t k = a;
-    if (a == 0 || dir[a - 1] != '/')
-        p[k++] = '/';
-    memcpy(p + k, name, b + 1);
-    return p;
 }
 
 /* Folders read so far, by device and inode: a symbolic link back up the
@@ -113,7 +100,7 @@ static int walk(const char *dir, strvec *out, seen_dirs *seen, run_ctl *log, fm_
     if (names.n > 1) /* qsort is not to be given the NULL of an empty folder */
         qsort(names.v, (size_t)names.n, sizeof *names.v, cmp_str);
     for (long i = 0; i < names.n && rc == 0; i++) {
-        char *path = join(dir, names.v[i]);
+        char *path = fm_path_join(dir, names.v[i]);
         struct stat sb;
         if (!path) {
             rc = -1;
