@@ -351,10 +351,11 @@ def main():
         cids = np.concatenate([fbc[t] for t in tags])
         E = f["boundary"]
         nodes = np.unique(E.ravel())
-        d, near_i = tree.query(X[nodes])
         # the curves of the 8 nearest samples: the nearest sample can lie
         # on another face's curve where two sheets' faces meet
-        near8 = tree.query(X[nodes], k=min(8, tree.n))[1].reshape(len(nodes), -1)
+        d8, near8 = tree.query(X[nodes], k=min(8, tree.n))
+        d8, near8 = d8.reshape(len(nodes), -1), near8.reshape(len(nodes), -1)
+        d = d8[:, 0]
         d = np.array([min([dd] + [on_curve(X[v], c) for c in set(cids[i8])])
                       for v, dd, i8 in zip(nodes, d, near8)])
         level = X[nodes, 2] == 0
