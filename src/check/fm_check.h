@@ -84,7 +84,14 @@ fm_status fm_check_fidelity(const fm_mesh *m, int32_t tag, const fm_mesh *orig,
  * - Interior moved: the largest distance from an output node to the
  *   original, over the nodes whose closest point on the original lies
  *   farther than FM_LOSS_TOUCH from the original's outline; and how many
- *   such nodes are farther than FM_FIDELITY_TOL.
+ *   such nodes are farther than FM_FIDELITY_TOL. A fault of several
+ *   sheets is measured sheet by sheet: a sheet's original is the share of
+ *   the original whose triangles (by their centroids) lie nearest that
+ *   sheet's output, and its outline includes the seams with the other
+ *   shares; a node on several sheets counts only over the inside of each.
+ *   A gap closed over one strand's extension beside another strand is
+ *   then measured from the outline it extends, not from the other
+ *   strand's inside.
  * - Islands: edge-connected pieces of a fault's output, each sheet on its
  *   own, beyond one per sheet, or beyond the pieces of its original below
  *   zcut when more (vertices within FM_LOSS_TOUCH welded; a piece counts

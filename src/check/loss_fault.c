@@ -250,38 +250,159 @@ static int cmp_i32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* A sheet's share of the original (part: its triangles), the outline of
+ * that share and a tree of it. */
+typedef struct sheet_part {
+    fm_mesh *m;
+    fm_closest_tree *tree;
+    uint64_t *E;
+    size_t ne;
+} sheet_part;
+
+static void part_free(sheet_part *p)
+{
+    fm_closest_tree_destroy(p->tree);
+    fm_mesh_destroy(p->m);
+    free(p->E);
+}
+
+/* The original's triangles part[0 .. n-1] as a mesh of their own (all of
+ * o's vertices, so that seams between parts are outline edges of each). */
+static fm_status part_build(const fm_mesh *o, const int32_t *part, size_t n, sheet_part *p)
+{
+    memset(p, 0, sizeof *p);
+    const double *X = fm_mesh_vertices(o);
+    const int32_t *T = fm_mesh_triangles(o);
+    size_t nv = fm_mesh_nvertices(o);
+    p->m = fm_mesh_create();
+    int ok = p->m && fm_mesh_reserve(p->m, nv, n) == FM_OK;
+    for (size_t v = 0; ok && v < nv; v++)
+        ok = fm_mesh_add_vertex(p->m, X[3 * v], X[3 * v + 1], X[3 * v + 2]) >= 0;
+    for (size_t i = 0; ok && i < n; i++)
+        ok = fm_mesh_add_triangle(p->m, T[3 * part[i]], T[3 * part[i] + 1], T[3 * part[i] + 2],
+                                  0) >= 0;
+    if (ok)
+        p->tree = fm_closest_tree_create_quick(p->m, NULL);
+    if (!ok || !p->tree || ck_outline_edges(p->m, &p->E, &p->ne) != FM_OK) {
+        part_free(p);
+        return FM_ERR_NOMEM;
+    }
+    return FM_OK;
+}
+
 /* The output's nodes over the original's inside (sub: the fault's own
- * mesh, its nodes in the set's order). */
-static fm_status moved(const ck_set *s, int32_t f, const fm_mesh *sub, fm_loss_fault *m)
+ * mesh, its nodes in the set's order, own its tree, sheet[i] the sheet of
+ * its triangle i). A fault of several sheets is measured sheet by sheet
+ * against the share of its original nearest that sheet's output: a gap a
+ * sheet closes over its own extension may pass beside another strand of
+ * the fault, whose inside is then the nearest original point, though no
+ * node of any inside moved (the design note's I2: fill nodes are measured
+ * from the outline they extend). A node on several sheets counts only
+ * when it is over the inside of each. */
+static fm_status moved(const ck_set *s, int32_t f, const fm_mesh *sub,
+                       const fm_closest_tree *own, const int32_t *sheet, fm_loss_fault *m)
 {
     const fm_mesh *o = s->in->orig[f];
     const double *X = fm_mesh_vertices(sub);
-    uint64_t *E = NULL;
-    size_t ne = 0;
-    fm_closest_tree *tree = fm_closest_tree_create_quick(o, NULL);
-    if (!tree || ck_outline_edges(o, &E, &ne) != FM_OK) {
-        fm_closest_tree_destroy(tree);
-        return FM_ERR_NOMEM;
-    }
-    for (size_t v = 0; v < fm_mesh_nvertices(sub); v++) {
-        const double *p = X + 3 * v;
+    const int32_t *ST = fm_mesh_triangles(sub);
+    size_t nv = fm_mesh_nvertices(sub), nt = fm_mesh_ntriangles(sub);
+    size_t no = fm_mesh_ntriangles(o);
+    int32_t nsh = 0;
+    for (size_t i = 0; i < nt; i++)
+        nsh = sheet[i] + 1 > nsh ? sheet[i] + 1 : nsh;
+    /* per original triangle: the sheet of the output nearest its centroid
+     * (one sheet: all of it); then the triangles grouped by sheet */
+    int32_t *osh = malloc((no + 1) * sizeof *osh);
+    int32_t *order = malloc((no + 1) * sizeof *order);
+    size_t *first = calloc((size_t)nsh + 2, sizeof *first);
+    double *best = malloc((nv + 1) * sizeof *best);
+    unsigned char *out = calloc(nv + 1, 1);
+    int32_t *stamp = malloc((nv + 1) * sizeof *stamp);
+    fm_status st = osh && order && first && best && out && stamp ? FM_OK : FM_ERR_NOMEM;
+    const double *OX = fm_mesh_vertices(o);
+    const int32_t *OT = fm_mesh_triangles(o);
+    for (size_t t = 0; st == FM_OK && t < no; t++) {
+        osh[t] = 0;
+        if (nsh < 2)
+            continue;
+        double c[3];
+        for (int k = 0; k < 3; k++)
+            c[k] = (OX[3 * OT[3 * t] + k] + OX[3 * OT[3 * t + 1] + k] + OX[3 * OT[3 * t + 2] + k]) / 3;
         fm_closest_hit hit;
-        if (!fm_closest_query(tree, p, INFINITY, &hit))
+        if (fm_closest_query(own, c, INFINITY, &hit))
+            osh[t] = sheet[hit.triangle];
+    }
+    if (st == FM_OK) {
+        for (size_t t = 0; t < no; t++)
+            first[osh[t] + 1]++;
+        for (int32_t k = 0; k < nsh; k++)
+            first[k + 1] += first[k];
+        size_t *at = calloc((size_t)nsh + 1, sizeof *at);
+        if (!at)
+            st = FM_ERR_NOMEM;
+        for (size_t t = 0; at && t < no; t++)
+            order[first[osh[t]] + at[osh[t]]++] = (int32_t)t;
+        free(at);
+    }
+    for (size_t v = 0; st == FM_OK && v < nv; v++) {
+        best[v] = INFINITY;
+        stamp[v] = -1;
+    }
+    for (int32_t k = 0; st == FM_OK && k < nsh; k++) {
+        sheet_part p;
+        /* a sheet nearest to none of the original: the whole of it */
+        size_t n = first[k + 1] - first[k];
+        int32_t *all = NULL;
+        if (!n) {
+            all = malloc((no + 1) * sizeof *all);
+            for (size_t t = 0; all && t < no; t++)
+                all[t] = (int32_t)t;
+        }
+        if (!n && !all) {
+            st = FM_ERR_NOMEM;
+            break;
+        }
+        st = part_build(o, n ? order + first[k] : all, n ? n : no, &p);
+        free(all);
+        for (size_t i = 0; st == FM_OK && i < nt; i++) {
+            if (sheet[i] != k)
+                continue;
+            for (int c = 0; c < 3; c++) {
+                int32_t v = ST[3 * i + c];
+                if (stamp[v] == k)
+                    continue;
+                stamp[v] = k;
+                fm_closest_hit hit;
+                if (out[v] || !fm_closest_query(p.tree, X + 3 * v, INFINITY, &hit))
+                    continue;
+                /* within a metre, or over an outline it may extend */
+                if (hit.dist <= FM_LOSS_TOUCH ||
+                    ck_outline_distance(p.m, p.E, p.ne, hit.foot) <= FM_LOSS_TOUCH)
+                    out[v] = 1;
+                else
+                    best[v] = fmin(best[v], hit.dist);
+            }
+        }
+        if (st == FM_OK)
+            part_free(&p);
+    }
+    for (size_t v = 0; st == FM_OK && v < nv; v++) {
+        if (out[v] || !(best[v] < INFINITY))
             continue;
-        if (hit.dist <= fmax(m->moved_max, FM_LOSS_TOUCH) && hit.dist <= FM_FIDELITY_TOL)
-            continue;
-        if (ck_outline_distance(o, E, ne, hit.foot) <= FM_LOSS_TOUCH)
-            continue;
-        if (hit.dist > FM_FIDELITY_TOL)
+        if (best[v] > FM_FIDELITY_TOL)
             m->moved_over++;
-        if (hit.dist > m->moved_max) {
-            m->moved_max = hit.dist;
-            memcpy(m->moved_at, p, sizeof m->moved_at);
+        if (best[v] > m->moved_max) {
+            m->moved_max = best[v];
+            memcpy(m->moved_at, X + 3 * v, sizeof m->moved_at);
         }
     }
-    free(E);
-    fm_closest_tree_destroy(tree);
-    return FM_OK;
+    free(osh);
+    free(order);
+    free(first);
+    free(best);
+    free(out);
+    free(stamp);
+    return st;
 }
 
 /* Fault f's triangles as a mesh of their own: a tree of it costs the
@@ -334,12 +455,16 @@ void ck_measure_fault(const ck_set *s, size_t fi, ck_fault_out *o)
     if (o->st == FM_OK && s->in->orig && s->in->orig[f]) {
         fm_mesh *sub = fault_mesh(s, f);
         fm_closest_tree *own = sub ? fm_closest_tree_create_quick(sub, NULL) : NULL;
-        if (!own)
+        int32_t *sheet = malloc((n + 1) * sizeof *sheet);
+        for (size_t i = 0; sheet && i < n; i++)
+            sheet[i] = s->in->sheet ? s->in->sheet[s->tri[s->tri_first[f] + i]] : 0;
+        if (!own || !sheet)
             o->st = FM_ERR_NOMEM;
         else {
             missing(s, f, own, &q, &o->m);
-            o->st = q.nomem ? FM_ERR_NOMEM : n ? moved(s, f, sub, &o->m) : FM_OK;
+            o->st = q.nomem ? FM_ERR_NOMEM : n ? moved(s, f, sub, own, sheet, &o->m) : FM_OK;
         }
+        free(sheet);
         fm_closest_tree_destroy(own);
         fm_mesh_destroy(sub);
     }

@@ -2,6 +2,7 @@
  * known: an outline left 100 m from a neighbour, a strip of a fault cut
  * away, an interior node pulled aside, a piece cut off. */
 #include <math.h>
+#include <stdlib.h>
 
 #include "fm_check.h"
 #include "fm_test.h"
@@ -193,6 +194,53 @@ static void test_moved(void)
     teardown(&fx);
 }
 
+/* Two strands of one fault side by side 400 m apart (a stepover): the
+ * plane y = 0 for x in [0, 5 km] and y = 400 m for x in [4, 10 km]. The
+ * first is meshed on over its own extension to x = 7 km, beside the
+ * second's inside: no inside moved, since the fill is measured from the
+ * outline it extends (on the whole original its nearest point is the
+ * other strand's inside, 400 m away). A node of the second strand's
+ * inside pulled 300 m aside still counts. */
+static void test_moved_strands(void)
+{
+    fm_mesh *orig = fm_mesh_create(), *set = fm_mesh_create();
+    double oa[3] = {0, 0, -5000}, ob[3] = {4000, 400, -5000};
+    grid(orig, oa, X, Z, 5, 5, 0, keep_all);
+    grid(orig, ob, X, Z, 6, 5, 0, keep_all);
+    grid(set, oa, X, Z, 7, 5, 0, keep_all);
+    size_t first_b = fm_mesh_nvertices(set), na = fm_mesh_ntriangles(set);
+    grid(set, ob, X, Z, 6, 5, 0, keep_all);
+    size_t nt = fm_mesh_ntriangles(set);
+    int32_t *sheet = malloc(nt * sizeof *sheet);
+    for (size_t t = 0; t < nt; t++)
+        sheet[t] = t >= na;
+    double size[1] = {1000}, join[1] = {1000}, zcut[1] = {0};
+    const fm_mesh *o1[1] = {orig};
+    fm_loss_input in = {set, sheet, 1, o1, size, join, zcut, 1};
+    fm_loss *l = NULL;
+    fm_error err;
+    CHECK_EQ(fm_check_loss(&in, &l, &err), FM_OK);
+    CHECK_NEAR(fm_loss_fault_at(l, 0)->moved_max, 0, 1e-6);
+    CHECK_EQ(fm_loss_fault_at(l, 0)->moved_over, 0);
+    fm_loss_destroy(l);
+    /* the second strand's node (7 km, 400 m, -3 km) pulled to y = 700 m */
+    fm_mesh_vertices_mut(set)[3 * (first_b + 2 * 7 + 3) + 1] = 700;
+    CHECK_EQ(fm_check_loss(&in, &l, &err), FM_OK);
+    CHECK_NEAR(fm_loss_fault_at(l, 0)->moved_max, 300, 1e-6);
+    CHECK_EQ(fm_loss_fault_at(l, 0)->moved_over, 1);
+    CHECK_NEAR(fm_loss_fault_at(l, 0)->moved_at[0], 7000, 1e-9);
+    fm_loss_destroy(l);
+    /* without the sheets, the whole original: the fill counts (400 m) */
+    fm_mesh_vertices_mut(set)[3 * (first_b + 2 * 7 + 3) + 1] = 400;
+    in.sheet = NULL;
+    CHECK_EQ(fm_check_loss(&in, &l, &err), FM_OK);
+    CHECK_NEAR(fm_loss_fault_at(l, 0)->moved_max, 400, 1e-6);
+    fm_loss_destroy(l);
+    free(sheet);
+    fm_mesh_destroy(set);
+    fm_mesh_destroy(orig);
+}
+
 /* The same answers on any number of threads. */
 static void test_threads(void)
 {
@@ -225,4 +273,4 @@ static void test_bad_tag(void)
 }
 
 FM_TEST_MAIN(FM_CASE(test_gap), FM_CASE(test_missing), FM_CASE(test_missing_near_other),
-             FM_CASE(test_moved), FM_CASE(test_threads), FM_CASE(test_bad_tag))
+             FM_CASE(test_moved), FM_CASE(test_moved_strands), FM_CASE(test_threads), FM_CASE(test_bad_tag))
