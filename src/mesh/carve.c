@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "carve_pieces.h"
 #include "fm_carve.h"
 #include "fm_predicates.h"
 #include "fm_sort.h"
@@ -275,6 +276,8 @@ static size_t still_there(const unsigned char *gone, const int32_t *t, size_t n)
  * Neither is emptied: when the one chosen would lose its last triangles
  * the other gives way, and when both would, the pair is kept (at sizes
  * near a fault's own extent, a fault of one triangle meets another's).
+ * Nor, by the area rule, is one cut in two when the other need not be:
+ * the piece cut off would be an island of a few triangles.
  * left: triangles per fault not (yet) gone. -1 when out of memory. */
 static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *gone,
                   size_t *left, fm_carve_result *r)
@@ -282,12 +285,14 @@ static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *g
     size_t nf;
     double *total = fault_areas(m, &nf);
     unsigned char *junction = n ? on_junction(m) : calloc(1, 1);
+    cv_pieces *pieces = n ? cv_pieces_create(m) : NULL;
     int32_t *ta = malloc((n + 1) * sizeof *ta), *tb = malloc((n + 1) * sizeof *tb);
     size_t npairs = 0;
     for (size_t i = 0; i < n; i++)
         npairs += !i || c[i].fa != c[i - 1].fa || c[i].fb != c[i - 1].fb;
     r->pairs = calloc(npairs + 1, sizeof *r->pairs);
-    if (!total || !junction || !ta || !tb || !r->pairs) {
+    if (!total || !junction || !ta || !tb || !r->pairs || (n && !pieces)) {
+        cv_pieces_destroy(pieces);
         free(total);
         free(junction);
         free(ta);
@@ -310,6 +315,17 @@ static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *g
         p->yielded = ja != jb ? ja : lost_b * total[c[s].fa] <= lost_a * total[c[s].fb];
         int empties[2] = {still_there(gone, ta, na) >= left[c[s].fa],
                           still_there(gone, tb, nb) >= left[c[s].fb]};
+        if (ja == jb && !empties[0] && !empties[1]) {
+            int y = p->yielded;
+            const int32_t *ly = y ? tb : ta, *lo = y ? ta : tb;
+            size_t ny = y ? nb : na, no = y ? na : nb;
+            int32_t fy = p->fault[y], fo = p->fault[!y];
+            size_t y0 = cv_pieces_count(pieces, fy, gone, NULL, 0);
+            size_t o0 = cv_pieces_count(pieces, fo, gone, NULL, 0);
+            if (cv_pieces_count(pieces, fy, gone, ly, ny) > y0 &&
+                cv_pieces_count(pieces, fo, gone, lo, no) <= o0)
+                p->yielded = !y;
+        }
         if (empties[p->yielded])
             p->yielded = !p->yielded;
         if (empties[p->yielded]) {
@@ -325,6 +341,7 @@ static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *g
                 left[p->fault[p->yielded]]--;
             }
     }
+    cv_pieces_destroy(pieces);
     free(total);
     free(junction);
     free(ta);

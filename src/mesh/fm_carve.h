@@ -13,7 +13,9 @@
  * one whose triangles there hold no piece of a curve it shares with some
  * fault, when only one is so (a junction is not undone to clear another);
  * else the one that loses the smaller share of its area (on a tie, the
- * later fault), which spares a small fault touching a large one. No
+ * later fault), which spares a small fault touching a large one, unless
+ * that would cut it in two (more edge-connected pieces) and the other
+ * would stay whole: a piece cut off is an island. No
  * fault is emptied: when the one chosen would lose its last triangles the
  * other gives way, and when both would (at sizes near the faults' own
  * extents) the two are left as they are (kept). Removing triangles never

@@ -163,6 +163,32 @@ static void test_carve_crossing(void)
     fm_mesh_destroy(m);
 }
 
+/* A long strip and a small fault through its middle, across its whole
+ * width: by the share of area the strip would give way, but that cuts it
+ * in two; the small one gives way instead, which leaves it whole. */
+static void test_carve_no_island(void)
+{
+    fm_mesh *m = fm_mesh_create();
+    grid(m, (double[]){0, 0, -1}, (double[]){1, 0, 0}, (double[]){0, 0, 0.025}, 40, 0);
+    grid(m, (double[]){10.5, -0.5, -2}, (double[]){0, 0.5, 0}, (double[]){0, 0, 0.5}, 6, 1);
+    CHECK(contacts(m) > 0);
+    fm_carve_result *r = NULL;
+    fm_error err;
+    fm_error_clear(&err);
+    CHECK_EQ(fm_carve_crossings(m, 0, NULL, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_npairs(r), 1);
+    const fm_carve_pair *p = fm_carve_pair_at(r, 0);
+    CHECK(p && p->yielded == 1 && !p->kept);
+    CHECK_EQ(contacts(m), 0);
+    /* the strip keeps every triangle */
+    size_t strip = 0;
+    for (size_t t = 0; t < fm_mesh_ntriangles(m); t++)
+        strip += fm_mesh_tags(m)[t] == 0;
+    CHECK_EQ(strip, 2 * 40 * 40);
+    fm_carve_result_destroy(r);
+    fm_mesh_destroy(m);
+}
+
 static void test_carve_conforming(void)
 {
     /* two faults sharing the nodes of their common edge: nothing to remove */
@@ -246,4 +272,4 @@ static void test_carve_never_empties(void)
 
 FM_TEST_MAIN(FM_CASE(test_contact_cases), FM_CASE(test_contact_shared),
              FM_CASE(test_contact_invariance), FM_CASE(test_carve_crossing),
-             FM_CASE(test_carve_conforming), FM_CASE(test_carve_never_empties))
+             FM_CASE(test_carve_no_island), FM_CASE(test_carve_conforming), FM_CASE(test_carve_never_empties))
