@@ -52,6 +52,14 @@ void cn_sheets_free(cn_sheet *s, size_t n);
 fm_status cn_find_pairs(const cn_sheet *sh, size_t ns, const fm_connect_options *opt,
                         fm_connect_pairs **out, fm_error *err);
 void cn_pairs_set_time_sample(fm_connect_pairs *p, double seconds);
+/* Pairs made of pair[0 .. n-1] (copied; sorted as found); NULL when out of
+ * memory. */
+fm_connect_pairs *cn_pairs_copy(const fm_connect_pair *pair, size_t n);
+
+/* What kept neighbours hold (neighbours.c). */
+void cn_neighbours_view(const fm_connect_neighbours *nb, const fm_connect_pair **pair,
+                        size_t *npairs, const fm_connect_duplicate **dup, size_t *ndup);
+size_t cn_neighbours_nfaults(const fm_connect_neighbours *nb);
 
 /* fm_connect_intersect on sheets built at the reach of opt (INFINITY when
  * opt->clip_to_reach is 0); opt not NULL, checked. */

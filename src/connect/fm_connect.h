@@ -69,6 +69,7 @@
 
 #include "fm_core.h"
 #include "fm_model.h"
+#include "fm_model_cache.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -310,6 +311,10 @@ typedef struct fm_connect_plan_options {
     const double *fault_size;
     const unsigned char *fault_cut;
     const unsigned char *fault_joins;
+    /* The pairs and near-duplicates found before for the same models and
+     * options (fm_connect_neighbours_get, under fm_connect_neighbours_key
+     * of them); NULL (default): found now. Borrowed for the call. */
+    const struct fm_connect_neighbours *neighbours;
 } fm_connect_plan_options;
 
 void fm_connect_plan_options_default(fm_connect_plan_options *opt);
@@ -382,6 +387,44 @@ size_t fm_connect_plan_sheet(const fm_connect_plan *p, size_t fault, size_t shee
 int fm_connect_plan_dropped(const fm_connect_plan *p, size_t fault,
                             const fm_connect_duplicate **dup);
 const fm_connect_plan_stats *fm_connect_plan_get_stats(const fm_connect_plan *p);
+/* The sheet pairs and near-duplicates the plan was made from (found, or
+ * given in its options), for fm_connect_neighbours_put. */
+const fm_connect_pairs *fm_connect_plan_pairs(const fm_connect_plan *p);
+const fm_connect_duplicate *fm_connect_plan_duplicates(const fm_connect_plan *p, size_t *n);
+
+/* ---- Neighbours kept between runs ----
+ *
+ * Of a plan's work, finding the sheet pairs within D and the
+ * near-duplicates is half and does not depend on the mesh size: a run at
+ * another size, or again, may take them from a cache folder (the fit
+ * cache's, fm_model_cache.h) instead. They are kept under a key, the
+ * SHA-256 of
+ *  - the file format and the code that finds them (a digest of the
+ *    sources of core, repair, fit and connect and the compiler and flags,
+ *    made by the build; and fm_model_code_id()),
+ *  - the fit-cache key of every fault's model, in order (all zero bytes
+ *    for a fault with none), which stands for the model bit for bit,
+ *  - D and the near-duplicate rule (tolerance, min_share, keep).
+ * So a key never names stale neighbours. Files are written whole or not
+ * at all, and carry a checksum: a damaged, truncated or foreign file is
+ * rejected (found again, and stored anew). Layout:
+ * DIR/connect/XX/KEY.fmn, XX the first two hexadecimal digits. */
+#define FM_CONNECT_KEY_BYTES 32
+typedef struct fm_connect_neighbours fm_connect_neighbours;
+
+void fm_connect_neighbours_key(const unsigned char (*model_keys)[FM_MODEL_KEY_BYTES], size_t n,
+                               const fm_connect_plan_options *opt,
+                               unsigned char key[FM_CONNECT_KEY_BYTES]);
+/* FM_OK and *out the neighbours stored under key for nfaults faults, or
+ * FM_OK and *out NULL when there are none; an error (err set, *out NULL)
+ * when a file is there but rejected or unreadable. */
+fm_status fm_connect_neighbours_get(const char *dir, const unsigned char key[FM_CONNECT_KEY_BYTES],
+                                    size_t nfaults, fm_connect_neighbours **out, fm_error *err);
+/* Stores the pairs and near-duplicates of a plan of nfaults faults. */
+fm_status fm_connect_neighbours_put(const char *dir, const unsigned char key[FM_CONNECT_KEY_BYTES],
+                                    size_t nfaults, const fm_connect_pairs *pairs,
+                                    const fm_connect_duplicate *dup, size_t ndup, fm_error *err);
+void fm_connect_neighbours_destroy(fm_connect_neighbours *nb);
 
 #ifdef __cplusplus
 }

@@ -40,6 +40,21 @@ const fm_connect_pair *fm_connect_pairs_get(const fm_connect_pairs *p, size_t i)
     return p && i < p->n ? p->pair + i : NULL;
 }
 
+fm_connect_pairs *cn_pairs_copy(const fm_connect_pair *pair, size_t n)
+{
+    fm_connect_pairs *p = calloc(1, sizeof *p);
+    if (p)
+        p->pair = malloc((n + 1) * sizeof *p->pair);
+    if (!p || !p->pair) {
+        fm_connect_pairs_destroy(p);
+        return NULL;
+    }
+    if (n)
+        memcpy(p->pair, pair, n * sizeof *pair);
+    p->n = p->cap = n;
+    return p;
+}
+
 const fm_connect_pairs_stats *fm_connect_pairs_get_stats(const fm_connect_pairs *p)
 {
     return &p->stats;

@@ -53,6 +53,7 @@ struct fm_connect_plan {
     unsigned char *dropped;
     fm_connect_duplicate *dup;
     size_t ndup;
+    fm_connect_pairs *pairs;   /* what it was made from, to be kept (neighbours.c) */
     fm_connect_plan_stats stats;
 };
 
@@ -68,6 +69,7 @@ void fm_connect_plan_destroy(fm_connect_plan *p)
         }
     }
     free(p->curve);
+    fm_connect_pairs_destroy(p->pairs);
     free(p->junction);
     free(p->nodes);
     free(p->sheet_base);
@@ -367,6 +369,37 @@ static fm_status assemble(fm_connect_plan *p, const fm_model *const *models, siz
     return FM_OK;
 }
 
+/* The pairs and near-duplicates kept from an earlier run (o.neighbours):
+ * copied, after checking that they name faults and sheets of these models
+ * (their key says so; a caller's mistake is an error, not a crash). */
+static fm_status kept_neighbours(const fm_connect_neighbours *nb, const fm_model *const *models,
+                                 size_t n, fm_connect_pairs **pairs, fm_connect_plan *p,
+                                 fm_error *err)
+{
+    const fm_connect_pair *pv;
+    const fm_connect_duplicate *dv;
+    size_t np, nd;
+    cn_neighbours_view(nb, &pv, &np, &dv, &nd);
+    int ok = cn_neighbours_nfaults(nb) == n;
+    for (size_t k = 0; ok && k < np; k++)
+        ok = models[pv[k].fault_a] && models[pv[k].fault_b] &&
+             pv[k].sheet_a < fm_model_nsheets(models[pv[k].fault_a]) &&
+             pv[k].sheet_b < fm_model_nsheets(models[pv[k].fault_b]);
+    for (size_t k = 0; ok && k < nd; k++)
+        ok = dv[k].dropped < n && dv[k].kept < n;
+    if (!ok)
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0,
+                            "connect: the neighbours given are of other faults");
+    *pairs = cn_pairs_copy(pv, np);
+    p->dup = malloc((nd + 1) * sizeof *p->dup);
+    if (!*pairs || !p->dup)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    if (nd)
+        memcpy(p->dup, dv, nd * sizeof *dv);
+    p->ndup = nd;
+    return FM_OK;
+}
+
 fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
                                 const fm_connect_plan_options *opt, fm_connect_plan **out,
                                 fm_error *err)
@@ -409,7 +442,9 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
     fm_connect_pairs *pairs = NULL;
     fm_status st = cn_sheets_build(models, n, co.reach, o.nthreads, &sh, &ns, err);
     double ts = fm_clock_seconds();
-    if (st == FM_OK && (st = cn_find_pairs(sh, ns, &co, &pairs, err)) == FM_OK) {
+    if (st == FM_OK && o.neighbours)
+        st = kept_neighbours(o.neighbours, models, n, &pairs, p, err);
+    else if (st == FM_OK && (st = cn_find_pairs(sh, ns, &co, &pairs, err)) == FM_OK) {
         cn_pairs_set_time_sample(pairs, ts - t0);
         st = fm_connect_find_duplicates(models, n, pairs, &o.duplicates, &p->dup, &p->ndup, err);
     }
@@ -516,7 +551,7 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
     free(w.res);
     free(w.st);
     free(w.err);
-    fm_connect_pairs_destroy(pairs);
+    p->pairs = pairs;
     if (st != FM_OK) {
         fm_connect_plan_destroy(p);
         return st;
@@ -530,4 +565,12 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
     p->stats.time_total = fm_clock_seconds() - t0;
     *out = p;
     return FM_OK;
+}
+
+const fm_connect_pairs *fm_connect_plan_pairs(const fm_connect_plan *p) { return p->pairs; }
+
+const fm_connect_duplicate *fm_connect_plan_duplicates(const fm_connect_plan *p, size_t *n)
+{
+    *n = p->ndup;
+    return p->dup;
 }

@@ -106,6 +106,10 @@ void cache_json(fm_json *j, const remesh_cli *cli, const run_state *rs)
     fm_json_kv_int(j, "misses", (int64_t)c.misses);
     fm_json_kv_int(j, "rejected", (int64_t)c.rejected);
     fm_json_kv_int(j, "not_stored", (int64_t)c.unstored);
+    /* the junction plan's pairs and near-duplicates (fm_connect.h) */
+    static const char *const nb[] = {"not looked up", "read", "found and stored",
+                                     "found again over a rejected file", "found, not stored"};
+    fm_json_kv_string(j, "connect_neighbours", nb[rs->neighbours]);
     fm_json_end_object(j);
 }
 
@@ -120,5 +124,7 @@ void cache_print(const remesh_cli *cli, const run_state *rs, FILE *fp)
         fprintf(fp, "; %zu damaged files fitted again", c.rejected);
     if (c.unstored)
         fprintf(fp, "; %zu models could not be stored", c.unstored);
+    if (rs->neighbours == NEIGHBOURS_HIT)
+        fprintf(fp, "; junction neighbours read");
     fputc('\n', fp);
 }

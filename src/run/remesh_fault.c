@@ -184,6 +184,8 @@ static fm_status fit_object(const remesh_cli *cli, const char *path, const fm_me
     unsigned char key[FM_MODEL_KEY_BYTES];
     if (cli->cache) {
         fm_model_key(orig, &cli->repair, &mopt, key);
+        memcpy(r->model_key, key, sizeof key);
+        r->has_key = 1;
         fm_error cerr;
         r->cache_rejected = fm_model_cache_get(cli->cache, key, model, &cerr) != FM_OK;
         r->fit_cache = *model ? FIT_CACHE_HIT : FIT_CACHE_MISS;

@@ -62,6 +62,35 @@ static int per_fault_make(per_fault *pf, fault_result *const *res, size_t n,
     return 0;
 }
 
+/* The plan's pairs and near-duplicates as an earlier run on the same
+ * models and options kept them in the fit cache's folder (*kept; NULL
+ * when none): only when every fault's model has its fit-cache key, which
+ * stands for the model bit for bit. Returns whether they were looked up
+ * (key made), so that, when not found, the plan's are stored under it. */
+static int kept_neighbours(const remesh_cli *cli, fault_result *const *res, size_t n,
+                           const fm_connect_plan_options *po,
+                           unsigned char key[FM_CONNECT_KEY_BYTES],
+                           fm_connect_neighbours **kept, run_state *rs)
+{
+    *kept = NULL;
+    if (!cli->cache || !n)
+        return 0;
+    for (size_t f = 0; f < n; f++)
+        if (!res[f]->has_key)
+            return 0;
+    unsigned char(*keys)[FM_MODEL_KEY_BYTES] = malloc(n * sizeof *keys);
+    if (!keys)
+        return 0;
+    for (size_t f = 0; f < n; f++)
+        memcpy(keys[f], res[f]->model_key, FM_MODEL_KEY_BYTES);
+    fm_connect_neighbours_key((const unsigned char(*)[FM_MODEL_KEY_BYTES])keys, n, po, key);
+    free(keys);
+    fm_error cerr;
+    int rejected = fm_connect_neighbours_get(cli->cache, key, n, kept, &cerr) != FM_OK;
+    rs->neighbours = *kept ? NEIGHBOURS_HIT : rejected ? NEIGHBOURS_REJECTED : NEIGHBOURS_MISS;
+    return 1;
+}
+
 /* The junction plan over every fitted fault (objects in input order);
  * faults it gives up as near-duplicates are marked "dropped". NULL when
  * there is nothing to join or the plan failed (reported; the faults are
@@ -108,7 +137,20 @@ static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t 
     fm_connect_plan *plan = NULL;
     fm_error err;
     fm_error_clear(&err);
+    unsigned char nkey[FM_CONNECT_KEY_BYTES];
+    fm_connect_neighbours *kept = NULL;
+    int keyed = kept_neighbours(cli, res, n, &po, nkey, &kept, rs);
+    po.neighbours = kept;
     fm_status st = fm_connect_plan_build(models, n, &po, &plan, &err);
+    fm_connect_neighbours_destroy(kept);
+    if (st == FM_OK && keyed && !kept) {
+        size_t nd;
+        const fm_connect_duplicate *d = fm_connect_plan_duplicates(plan, &nd);
+        fm_error cerr;
+        if (fm_connect_neighbours_put(cli->cache, nkey, n, fm_connect_plan_pairs(plan), d, nd,
+                                      &cerr) != FM_OK)
+            rs->neighbours = NEIGHBOURS_UNSTORED;
+    }
     per_fault_free(&pf);
     free(models);
     if (st != FM_OK) {

@@ -99,6 +99,18 @@ typedef fm_fault_settings fault_config;
 /* Messages fault_warnings gives at most. */
 #define FM_MAX_WARNINGS 4
 
+/* The junction plan's pairs and near-duplicates and the cache
+ * (fm_connect_neighbours_get): not looked up (no cache, or a fault without
+ * a key), read, found and stored, found again over a rejected file, or
+ * found but not stored. */
+typedef enum neighbours_use {
+    NEIGHBOURS_NONE = 0,
+    NEIGHBOURS_HIT,
+    NEIGHBOURS_MISS,
+    NEIGHBOURS_REJECTED,
+    NEIGHBOURS_UNSTORED
+} neighbours_use;
+
 /* A fault's model and the fit cache (remesh_cache.c). */
 typedef enum fit_cache_use {
     FIT_CACHE_NONE = 0, /* not looked up: no cache, or not fitted */
@@ -142,6 +154,8 @@ typedef struct fault_result {
     fm_cad_face **cad;          /* its faces in model.igs */
     size_t ncad;
     fit_cache_use fit_cache;    /* whether its model came from the fit cache */
+    int has_key;                /* model_key is its model's fit-cache key */
+    unsigned char model_key[FM_MODEL_KEY_BYTES];
     int cache_rejected;         /* a file was there under its key but was rejected */
     int cache_unstored;         /* its model could not be stored */
 } fault_result;
@@ -195,6 +209,7 @@ typedef struct run_state {
     size_t ncad;
     fm_loss *loss;          /* the connect measures of the final set; NULL if not taken */
     output_log *outputs;    /* what was written; filled while writing */
+    neighbours_use neighbours; /* the plan's pairs and near-duplicates and the cache */
 } run_state;
 
 /* One input file's faults, fitted and then meshed by workers; merged

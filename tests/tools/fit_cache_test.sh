@@ -72,6 +72,36 @@ expect_rc 0 "demo --size 2000, cached" "$exe" demo --quiet --cache "$c" --size 2
 [ "$(cache_of "$tmp/size2")" = "$nfaults 0 0 True" ] && ok || bad "--size 2000: $(cache_of "$tmp/size2")"
 diff -r -x report.json "$tmp/ref2" "$tmp/size2" >/dev/null && ok || bad "--size 2000: outputs differ"
 
+# 3b. The junction plan's neighbours (sheet pairs, near-duplicates) are
+#     kept beside the models: found and stored once, read by every later
+#     run on the same models and join distance, at any size; another join
+#     distance finds them again; a damaged file is rejected and found
+#     again, with the same outputs.
+nb_of() { json "$1/report.json" "r['fit_cache']['connect_neighbours']"; }
+[ "$(nb_of "$tmp/cold")" = "found and stored" ] && ok || bad "cold neighbours: $(nb_of "$tmp/cold")"
+for d in warm size2; do
+    [ "$(nb_of "$tmp/$d")" = read ] && ok || bad "$d neighbours: $(nb_of "$tmp/$d")"
+done
+[ "$(nb_of "$tmp/ref")" = "not looked up" ] && ok || bad "--no-cache neighbours: $(nb_of "$tmp/ref")"
+expect_rc 0 "demo --join 800, no cache" "$exe" demo --quiet --no-cache --join 800 -o "$tmp/refj"
+expect_rc 0 "demo --join 800" "$exe" demo --quiet --cache "$c" --join 800 -o "$tmp/join"
+[ "$(nb_of "$tmp/join")" = "found and stored" ] && ok || bad "--join 800 neighbours: $(nb_of "$tmp/join")"
+diff -r -x report.json "$tmp/refj" "$tmp/join" >/dev/null && ok || bad "--join 800: outputs differ"
+nbf=($(find "$c/connect" -name '*.fmn' | sort))
+[ "${#nbf[@]}" = 2 ] && ok || bad "${#nbf[@]} neighbours files, not 2"
+for f in "${nbf[@]}"; do
+    python3 -c "
+import sys; p = sys.argv[1]; b = bytearray(open(p, 'rb').read()); b[len(b) // 2] ^= 0x10
+open(p, 'wb').write(b)" "$f"
+done
+expect_rc 0 "demo with damaged neighbours" "$exe" demo --quiet --cache "$c" -o "$tmp/nbdamaged"
+[ "$(nb_of "$tmp/nbdamaged")" = "found again over a rejected file" ] && ok ||
+    bad "damaged neighbours: $(nb_of "$tmp/nbdamaged")"
+same_outputs "damaged neighbours" "$tmp/nbdamaged"
+expect_rc 0 "demo after damaged neighbours" "$exe" demo --quiet --cache "$c" -o "$tmp/nbmended"
+[ "$(nb_of "$tmp/nbmended")" = read ] && ok || bad "mended neighbours: $(nb_of "$tmp/nbmended")"
+same_outputs "mended neighbours" "$tmp/nbmended"
+
 # 4. An option that reaches the fit (the surface must reach 3 km above
 #    the top) is another model: all misses, then all hits.
 expect_rc 0 "demo --top extend 3000" "$exe" demo --quiet --cache "$c" --top extend 3000 -o "$tmp/ext"
