@@ -591,18 +591,25 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
                                    .done = outputs_done,
                                    .done_ctx = rs->outputs};
         fm_status cst = FM_OK, sst = FM_OK, nst = FM_OK;
+        /* model.igs and the simulator files beside the others (remesh_side.c) */
+        side_write igs = {.kind = SIDE_IGES, .path = path + 5 * n, .cad = rs->cad,
+                          .ncad = rs->ncad, .crs = fs.crs, .rp = rp};
+        side_write sim = {.kind = SIDE_SIM, .sc = &cli->sim, .fs = &fs, .sa = sa,
+                          .dir = cli->dir, .rsqsim = (fm & FMT_RSQSIM) != 0,
+                          .eqsim = (fm & FMT_EQSIM) != 0};
+        int want_sim = !cli->quads && (fm & (FMT_RSQSIM | FMT_EQSIM));
+        if (fm & FMT_IGS)
+            side_start(&igs);
+        if (want_sim)
+            side_start(&sim);
         if (cli->quads)
             sst = write_quads(cli, &fs, sa, rs->outputs, &err);
         else if (fm & (FMT_ALL & ~(FMT_IGS | FMT_RSQSIM | FMT_EQSIM | FMT_HTML | FMT_NAMES)))
             st = fm_faultset_write_all(&fs, &out, cli->jobs, &err);
-        if (fm & FMT_IGS) {
-            const char *igs = path + 5 * n;
-            cst = fm_cad_write_iges_reprojected(igs, rs->cad, rs->ncad, fs.crs, rp, &err);
-            outputs_note(rs->outputs, igs, SIZE_MAX, OUTPUT_SET, cst == FM_OK ? NULL : &err);
-        }
-        if (!cli->quads && (fm & (FMT_RSQSIM | FMT_EQSIM)))
-            sst = sim_write(&cli->sim, &fs, sa, cli->dir, (fm & FMT_RSQSIM) != 0,
-                            (fm & FMT_EQSIM) != 0, outputs_done, rs->outputs);
+        if (fm & FMT_IGS)
+            cst = side_join(&igs, rs->outputs);
+        if (want_sim)
+            sst = side_join(&sim, rs->outputs);
         if (fm & FMT_NAMES) {
             char *names = path; /* the first path's room, free again */
             snprintf(names, n, "%s/names.csv", cli->dir);

@@ -22,6 +22,7 @@
 #include "fm_json.h"
 #include "fm_model.h"
 #include "fm_remesh.h"
+#include "fm_reproject.h"
 #include "fm_sort.h"
 #include "fm_tsurf.h"
 #include "sim_attrs.h"
@@ -308,6 +309,43 @@ int compact_set(run_state *rs);
  * else *which is SIZE_MAX). */
 fm_junction_type junction_outcome(const run_state *rs, const fm_connect_junction *jn,
                                   const char **why, size_t *which);
+/* remesh_side.c: model.igs (SIDE_IGES: path, cad, ncad, crs, rp) or the
+ * simulator files (SIDE_SIM: sc, fs, sa, dir, rsqsim, eqsim) written on a
+ * thread of their own between side_start and side_join, which notes in
+ * log what became of each file and returns the first error. */
+typedef enum side_kind { SIDE_IGES, SIDE_SIM } side_kind;
+
+typedef struct side_done {
+    char *path;
+    size_t fault;
+    int failed;
+    fm_error err;
+} side_done;
+
+typedef struct side_write {
+    side_kind kind;
+    const char *path;
+    const fm_cad_face *const *cad;
+    size_t ncad;
+    const char *crs;
+    fm_reproject *rp;
+    const sim_cli *sc;
+    const fm_faultset *fs;
+    const sim_attrs *sa;
+    const char *dir;
+    int rsqsim, eqsim;
+    /* the outcome */
+    fm_status st;
+    fm_error err;
+    side_done done[2];
+    size_t ndone;
+    pthread_t thread;
+    int threaded;
+} side_write;
+
+void side_start(side_write *w);
+fm_status side_join(side_write *w, output_log *log);
+
 /* The fault set in every format (remesh_set.c): every file tried even
  * when another failed, each noted in rs->outputs; the first failure's
  * status, FM_OK when all were written. */
