@@ -421,6 +421,8 @@ static int self_crossing(const pl_curve *c)
         const double *uv = c->uv[s];
         for (size_t i = 0; i + 1 < c->n; i++)
             for (size_t k = i + 2; k + 1 < c->n; k++) {
+                if (c->loop && i == 0 && k + 2 == c->n)
+                    continue; /* a loop's last segment ends where its first begins */
                 const double *a = uv + 2 * i, *b = a + 2, *p = uv + 2 * k, *q = p + 2;
                 int o1 = fm_orient2d(a, b, p), o2 = fm_orient2d(a, b, q);
                 int o3 = fm_orient2d(p, q, a), o4 = fm_orient2d(p, q, b);
@@ -485,8 +487,18 @@ static int decide_curve(decider *d, const fm_connect_curves *cs, size_t ci, size
     const fm_connect_curve_info *in = fm_connect_curve_get_info(cs, ci);
     fm_connect_junction j;
     junction_init(&j, fa, sa, fb, sb, in);
-    if (in->closed) {
-        j.reason = "closed intersection curve";
+    /* A closed curve is a loop both meshes hold when it lies inside both
+     * sheets, all of it (each keeps what lies either side of it). One a
+     * sheet ends at, or that leaves a sheet, would split into arcs whose
+     * ends meet again, which no rule here decides. */
+    int loop = in->closed && in->side[0].role == FM_CONNECT_THROUGH &&
+               in->side[1].role == FM_CONNECT_THROUGH;
+    if (in->closed && !loop) {
+        /* opened where it lies farthest from the outline of the sheet
+         * that ends at it and decided as an open curve, such loops made
+         * 44 more triangles under 20 degrees over the whole CFM at 1 km and
+         * 14 more for the last guard, for 15 km of gaps closed */
+        j.reason = "closed intersection curve that a sheet ends at";
         return result_push(out, &j, NULL);
     }
     if (fa == fb && in->mean_angle < GRAZE_SAME_FAULT) {
@@ -501,15 +513,20 @@ static int decide_curve(decider *d, const fm_connect_curves *cs, size_t ci, size
         d->sd[s] = fm_connect_curve_outline_distance(cs, ci, s);
         d->flap[s] = fm_connect_curve_flap(cs, ci, s);
         d->inside[s] = fm_connect_curve_inside(cs, ci, s);
+    }
+    int end[2] = {in->side[0].role != FM_CONNECT_THROUGH, in->side[1].role != FM_CONNECT_THROUGH};
+    for (int s = 0; s < 2; s++) {
         d->foot[s] = malloc(3 * d->n * sizeof(double) + 1);
-        if (!d->foot[s])
+        if (!d->foot[s]) {
+            free(d->foot[0]);
+            d->foot[0] = NULL;
             return -1;
+        }
         for (size_t i = 0; i < d->n; i++) {
             double fuv[2];
             pl_outline_foot(d->ol[s], d->p + 3 * i, d->foot[s] + 3 * i, fuv);
         }
     }
-    int end[2] = {in->side[0].role != FM_CONNECT_THROUGH, in->side[1].role != FM_CONNECT_THROUGH};
     double *iv[2] = {malloc(2 * (d->n + 1) * sizeof(double)),
                      malloc(2 * (d->n + 1) * sizeof(double))};
     size_t niv[2] = {0, 0};
@@ -552,6 +569,12 @@ static int decide_curve(decider *d, const fm_connect_curves *cs, size_t ci, size
         pieces[0] = best[0];
         pieces[1] = best[1];
     }
+    if (loop && !(npieces == 1 && pieces[0] <= 1e-9 && pieces[1] >= (double)(d->n - 1) - 1e-9)) {
+        j.reason = "closed intersection curve that leaves a sheet";
+        rc = result_push(out, &j, NULL);
+        free(pieces);
+        goto done;
+    }
     if (npieces == 0) {
         j.reason = niv[0] && niv[1] ? "the sheets use different parts of the curve"
                                     : "no part of the curve lies where its sheets end or cross";
@@ -569,6 +592,18 @@ static int decide_curve(decider *d, const fm_connect_curves *cs, size_t ci, size
             run_free(&r);
             rc = -1;
             break;
+        }
+        size_t whole = r.n;
+        if (loop) {
+            /* back to its first point: the run is the whole loop */
+            double x0[4];
+            raw_x(d, 0, x0);
+            if (run_push(&r, x0, d->p)) {
+                run_free(&r);
+                rc = -1;
+                break;
+            }
+            whole = r.n;
         }
         if (d->o->cut) {
             if (clip_level(d, &r, d->o->sea_level, &below, &nb)) {
@@ -594,6 +629,14 @@ static int decide_curve(decider *d, const fm_connect_curves *cs, size_t ci, size
             if (rc == 0 && L >= 0.5 * H) {
                 pl_curve c;
                 memset(&c, 0, sizeof c);
+                /* a loop the sea level leaves whole, at least three sizes
+                 * round (a triangle of nodes) */
+                c.loop = loop && nb == 1 && below[q].n == whole && L >= 2.5 * H;
+                if (loop && !c.loop) {
+                    why = "closed intersection curve shorter than three sizes or cut by sea level";
+                    run_free(&below[q]);
+                    continue;
+                }
                 if (resample(d, &below[q], H, &c)) {
                     pl_curve_free(&c);
                     rc = -1;

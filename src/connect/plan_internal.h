@@ -39,6 +39,8 @@ typedef struct pl_curve {
     int end[2], keep_left[2];
     unsigned char off[2]; /* 1: not given to that side's sheet (a curve only the
                              other sheet ends at, short of this one: plan_clear.c) */
+    int loop;             /* a closed curve: node n-1 is node 0 again (both get one
+                             key, so one plan node: plan_triple.c) */
 } pl_curve;
 
 void pl_curve_free(pl_curve *c);

@@ -393,6 +393,15 @@ int pl_triple_junctions(fm_connect_junction *J, pl_curve *C, size_t nj,
 {
     *made = 0;
     keyset ks = {0};
+    /* a loop's two ends are one point */
+    for (size_t x = 0; x < nj; x++) {
+        if (!C[x].n || !C[x].loop)
+            continue;
+        int64_t key = key_new(&ks);
+        if (key < 0 || ensure_keys(&C[x]))
+            goto nomem;
+        C[x].key[0] = C[x].key[C[x].n - 1] = key;
+    }
     for (size_t x = 0; x < nj; x++) {
         if (!C[x].n)
             continue;

@@ -306,6 +306,14 @@ if(FM_SYSTEM_PYTHON)
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/connect_demo ${FM_SYSTEM_PYTHON})
   set_tests_properties(connect_demo PROPERTIES TIMEOUT 600)
 endif()
+# connect_loop: a dome through a flat meet on a closed curve, joined whole
+# (issue 17): shared as a closed chain, nothing crossing, nothing lost.
+if(FM_SYSTEM_PYTHON)
+  add_test(NAME connect_loop
+    COMMAND bash ${FM_TOOLS}/connect_loop_check.sh $<TARGET_FILE:faultmesh_cli> $<TARGET_FILE:check_connect>
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/connect_loop ${FM_SYSTEM_PYTHON})
+  set_tests_properties(connect_loop PROPERTIES TIMEOUT 600)
+endif()
 # connect_cfm_puente_hills: the Puente Hills thrust system of the CFM,
 # connected at 1 km, passes check_connect --criteria (skipped without the CFM).
 add_test(NAME cfm_connect_puente_hills

@@ -532,6 +532,67 @@ out:
         fm_model_destroy(models[k]);
 }
 
+/* A height field over x - X0, y - Y0 in [-half, half]: the dome z = top -
+ * r^2 / (2 R) (R > 0) or the plane z = top (R = 0). */
+static fm_mesh *height_field(double half, double top, double R, double h)
+{
+    fm_mesh *m = fm_mesh_create();
+    int n = (int)ceil(2 * half / h);
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            double x = -half + 2 * half * i / n, y = -half + 2 * half * j / n;
+            fm_mesh_add_vertex(m, X0 + x, Y0 + y, R > 0 ? top - (x * x + y * y) / (2 * R) : top);
+        }
+    grid_triangles(m, 0, n, n);
+    return m;
+}
+
+/* A dome through a flat: their intersection is a closed curve (a circle of
+ * radius sqrt(2 R 1000) = 4.5 km, 24 degrees) inside both. It is one
+ * crossing junction whose curve ends where it began: its first and last
+ * nodes are one plan node, on both sheets. */
+static void test_closed_loop(void)
+{
+    fm_mesh *meshes[2] = {height_field(10000, -5000, 10000, 500),
+                          height_field(10000, -6000, 0, 500)};
+    fm_model *models[2];
+    for (int k = 0; k < 2; k++) {
+        models[k] = fit_mesh(k ? "flat" : "dome", meshes[k]);
+        fm_mesh_destroy(meshes[k]);
+        CHECK(models[k] != NULL);
+    }
+    if (!models[0] || !models[1])
+        goto out;
+    fm_connect_plan_options po;
+    fm_connect_plan_options_default(&po);
+    fm_connect_plan *plan = NULL;
+    fm_error err;
+    CHECK(fm_connect_plan_build((const fm_model *const *)models, 2, &po, &plan, &err) == FM_OK);
+    if (!plan)
+        goto out;
+    CHECK_EQ(fm_connect_plan_njunctions(plan), 1);
+    const fm_connect_junction *j = fm_connect_plan_junction(plan, 0);
+    CHECK(j && j->type == FM_JUNCTION_CROSSING && j->curve >= 0);
+    if (j)
+        printf("loop: %s, %.0f m%s%s\n", fm_junction_type_name(j->type), j->length,
+               j->reason ? ": " : "", j->reason ? j->reason : "");
+    CHECK(j && fabs(j->length - 2 * FM_PI * sqrt(2 * 10000.0 * 1000)) < 300);
+    for (size_t f = 0; f < 2; f++) {
+        const fm_connect_shared *sh = NULL;
+        CHECK_EQ(fm_connect_plan_sheet(plan, f, 0, &sh), 1);
+        CHECK(sh && sh->n >= 25 && sh->end == 0);
+        CHECK(sh && sh->node[0] == sh->node[sh->n - 1]);
+        /* no other node twice */
+        for (size_t a = 0; sh && a + 1 < sh->n; a++)
+            for (size_t b = a + 1; b + 1 < sh->n; b++)
+                CHECK(sh->node[a] != sh->node[b]);
+    }
+    fm_connect_plan_destroy(plan);
+out:
+    for (int k = 0; k < 2; k++)
+        fm_model_destroy(models[k]);
+}
+
 /* The vertical plane x = X0 + off, y - Y0 in [t0, t1], z in [zbot, 0]. */
 static fm_mesh *plane_x(double off, double t0, double t1, double zbot, double h)
 {
@@ -974,6 +1035,7 @@ int main(void)
         FM_CASE(test_cut_short),
         FM_CASE(test_stop_short),
         FM_CASE(test_beyond_end),
+        FM_CASE(test_closed_loop),
         FM_CASE(test_duplicates), FM_CASE(test_duplicate_patch),
         FM_CASE(test_threads),
         FM_CASE(test_cfm_santa_monica),
