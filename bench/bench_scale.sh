@@ -3,7 +3,11 @@
 # run it (`faultmesh remesh`, connected, top cut, every output written), cold,
 # at each size given (default 2000 1000 500 250 m):
 #
-#   bench/bench_scale.sh [-j N] [-b BUILD_DIR] [-r REPEAT] [H ...]
+#   bench/bench_scale.sh [-j N] [-b BUILD_DIR] [-r REPEAT] [-w] [H ...]
+#
+# -w: warm instead, as a user re-running at another size: a fresh cache is
+# filled by one run at 3000 m (not timed), and every size is then run with
+# it (fits and the junction plan's neighbours read, not made).
 #
 # Prints the machine, then per size: wall and CPU time and peak RSS (GNU
 # time), triangles, and the stage times from report.json (fit, connect, mesh,
@@ -21,11 +25,13 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 build="$here/build"
 jobs=""
 repeat=1
+warm=""
 while [ $# -gt 0 ]; do
     case "$1" in
     -j) jobs="-j $2"; shift 2 ;;
     -b) build="$2"; shift 2 ;;
     -r) repeat="$2"; shift 2 ;;
+    -w) warm=1; shift ;;
     *) break ;;
     esac
 done
@@ -46,10 +52,16 @@ if "$exe" remesh --help 2>&1 | grep -q -e '--no-cache'; then
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT INT TERM
+if [ -n "$warm" ]; then
+    cold="--cache $tmp/cache"
+    "$exe" remesh --quiet $jobs --top cut $cold --size 3000 -o "$tmp/fill" "$data" >/dev/null ||
+        { echo "bench_scale: filling the cache failed" >&2; exit 1; }
+    rm -rf "$tmp/fill"
+fi
 model=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
 echo "machine: $(nproc) cores, $model, $(uname -m), load $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "run: $exe remesh --quiet ${jobs:+$jobs }--top cut${cold:+ $cold} --size H" \
-    "(cache flag: ${cold:-none offered}), best of $repeat"
+    "(cache: ${warm:+warm, filled at 3000 m, }${cold:-none offered}), best of $repeat"
 : >"$tmp/rows"
 for H in "$@"; do
     : >"$tmp/runs"
