@@ -15,7 +15,7 @@
 
 #include <stddef.h>
 
-#include "fm_run.h"
+#include "fm_run_options.h"
 
 typedef enum { CFG_STRING, CFG_NUMBER, CFG_BOOL, CFG_ARRAY } cfg_type;
 

@@ -8,7 +8,7 @@
 #include <stdio.h>
 
 #include "config.h"
-#include "fm_run.h"
+#include "fm_run_options.h"
 
 typedef struct remesh_cli {
     const char *dir;      /* -o DIR */

@@ -291,6 +291,53 @@ const fm_mesh *fm_run_result_mesh(const fm_run_result *res)
     return res ? res->rs.set : NULL;
 }
 
+size_t fm_run_result_nvertices(const fm_run_result *res)
+{
+    return res && res->rs.set ? fm_mesh_nvertices(res->rs.set) : 0;
+}
+
+size_t fm_run_result_ntriangles(const fm_run_result *res)
+{
+    return res && res->rs.set ? fm_mesh_ntriangles(res->rs.set) : 0;
+}
+
+fm_status fm_run_result_copy_mesh(const fm_run_result *res, double *xyz, int32_t *tri,
+                                  int32_t *fault, fm_error *err)
+{
+    if (!res)
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "no result");
+    const fm_mesh *m = res->rs.set;
+    if (!m)
+        return FM_OK; /* no fault was meshed: nothing to copy */
+    size_t nv = fm_mesh_nvertices(m), nt = fm_mesh_ntriangles(m);
+    if (xyz && nv)
+        memcpy(xyz, fm_mesh_vertices(m), 3 * nv * sizeof *xyz);
+    if (tri && nt)
+        memcpy(tri, fm_mesh_triangles(m), 3 * nt * sizeof *tri);
+    /* the set's tags count the faults written; callers count the result's
+     * faults (fm_run_result_fault_name), which also holds those that
+     * failed or were dropped */
+    const int32_t *tag = fm_mesh_tags(m);
+    for (size_t t = 0; fault && t < nt; t++)
+        fault[t] = (int32_t)res->rs.set_res[tag[t]];
+    return FM_OK;
+}
+
+void fm_free(void *p)
+{
+    free(p);
+}
+
+int fm_version_number(void)
+{
+    return FM_VERSION_NUMBER;
+}
+
+const char *fm_version_string(void)
+{
+    return FM_VERSION_STRING;
+}
+
 size_t fm_run_result_unwritten(const fm_run_result *res)
 {
     return res ? res->outputs.unwritten : 0;

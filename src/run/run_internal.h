@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "fm_run.h"
+#include "fm_run_options.h"
 #include "fm_cad_write.h"
 #include "fm_carve.h"
 #include "fm_check.h"

@@ -8,7 +8,7 @@
 #include <sys/stat.h>
 
 #include "fm_atomic.h"
-#include "fm_run.h"
+#include "fm_run_options.h"
 #include "fm_synth.h"
 #include "fm_test.h"
 
