@@ -380,6 +380,7 @@ struct fm_run_result {
     run_ctl *ctl;         /* the callbacks, once the run is over */
     double t4;            /* when the merge and check ended */
     int written;
+    char *dir;            /* where fm_run_result_write wrote (a copy) */
 };
 
 /* The run on files into res (cli set, the cache settled); on failure res
