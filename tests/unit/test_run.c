@@ -139,6 +139,31 @@ static void test_whole_run(void)
     CHECK(fm_run_result_fault_status(res, nfiles, NULL) == NULL);
     const fm_mesh *m = fm_run_result_mesh(res);
     CHECK(m && fm_mesh_ntriangles(m) > 1000);
+    /* the installed API's copy of it: the same arrays, and per triangle
+     * the fault as the result counts them (the set's tag counts only the
+     * faults written) */
+    size_t nv = fm_run_result_nvertices(res), nt = fm_run_result_ntriangles(res);
+    CHECK(m && nv == fm_mesh_nvertices(m) && nt == fm_mesh_ntriangles(m));
+    double *xyz = malloc(3 * nv * sizeof *xyz);
+    int32_t *tri = malloc(3 * nt * sizeof *tri), *fault = malloc(nt * sizeof *fault);
+    CHECK(xyz && tri && fault);
+    if (m && xyz && tri && fault) {
+        CHECK_EQ(fm_run_result_copy_mesh(res, xyz, tri, fault, &err), FM_OK);
+        CHECK(!memcmp(xyz, fm_mesh_vertices(m), 3 * nv * sizeof *xyz));
+        CHECK(!memcmp(tri, fm_mesh_triangles(m), 3 * nt * sizeof *tri));
+        size_t bad = 0;
+        for (size_t t = 0; t < nt; t++) {
+            const char *st = fault[t] >= 0 ? fm_run_result_fault_status(res, (size_t)fault[t], NULL)
+                                           : NULL;
+            bad += !st || strcmp(st, "ok") != 0;
+        }
+        CHECK_EQ(bad, 0);
+        CHECK_EQ(fm_run_result_copy_mesh(res, NULL, NULL, NULL, &err), FM_OK);
+    }
+    free(xyz);
+    free(tri);
+    free(fault);
+    CHECK_EQ(fm_run_result_copy_mesh(NULL, NULL, NULL, NULL, &err), FM_ERR_INVALID);
     /* a record per fault (DETAIL), and every stage ended */
     CHECK_EQ(s.records[FM_LOG_DETAIL], nfiles);
     CHECK(s.begins >= 4);
