@@ -121,3 +121,28 @@ if(TARGET faultmesh_shared)
   install(FILES ${fm_py_files} ${PROJECT_BINARY_DIR}/python/faultmesh/_config.py
     DESTINATION ${FM_INSTALL_PYTHONDIR}/faultmesh)
 endif()
+
+# API documentation from the installed headers (Debian's doxygen), with
+# docs/library.md as its main page: `cmake --build build --target doc`
+# writes build/docs/api/html. Left out when doxygen is absent.
+find_package(Doxygen QUIET)
+if(DOXYGEN_FOUND)
+  set(DOXYGEN_PROJECT_NAME faultmesh)
+  set(DOXYGEN_PROJECT_NUMBER ${PROJECT_VERSION})
+  set(DOXYGEN_PROJECT_BRIEF "Remeshing of geological fault surfaces: the installed C API")
+  set(DOXYGEN_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/docs/api)
+  set(DOXYGEN_USE_MDFILE_AS_MAINPAGE ${PROJECT_SOURCE_DIR}/docs/library.md)
+  set(DOXYGEN_OPTIMIZE_OUTPUT_FOR_C YES)
+  set(DOXYGEN_EXTRACT_ALL YES)
+  set(DOXYGEN_GENERATE_LATEX NO)
+  set(DOXYGEN_FULL_PATH_NAMES NO)
+  set(DOXYGEN_WARN_AS_ERROR NO)
+  set(DOXYGEN_QUIET YES)
+  # FM_API is an attribute, not part of a declaration's type
+  set(DOXYGEN_MACRO_EXPANSION YES)
+  set(DOXYGEN_EXPAND_ONLY_PREDEF YES)
+  set(DOXYGEN_PREDEFINED "FM_API=")
+  doxygen_add_docs(doc ${FM_PUBLIC_HEADERS} ${PROJECT_SOURCE_DIR}/docs/library.md
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+    COMMENT "API documentation (build/docs/api/html)")
+endif()

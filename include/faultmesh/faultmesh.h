@@ -1,11 +1,14 @@
-/* faultmesh: the installed API, one include.
+/** @file
+ * faultmesh: the installed API, one include.
  *
+ * @code
  *   #include <faultmesh/faultmesh.h>
+ * @endcode
  *
- * fm_status.h   status codes and fm_error
- * fm_version.h  the version of the headers and of the library
- * fm_run.h      a whole remesh run: options, inputs, callbacks, the
- *               result (per-fault status, the meshes) and its outputs
+ * - fm_status.h: status codes and fm_error
+ * - fm_version.h: the version of the headers and of the library
+ * - fm_run.h: a whole remesh run: options, inputs, callbacks, the result
+ *   (per-fault status, the meshes) and its outputs
  *
  * Link with -lfaultmesh (pkg-config faultmesh) or the CMake target
  * faultmesh::faultmesh (find_package(faultmesh)). docs/library.md is the

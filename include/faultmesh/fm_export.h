@@ -1,4 +1,5 @@
-/* faultmesh: FM_API marks the functions of the installed API.
+/** @file
+ * faultmesh: FM_API marks the functions of the installed API.
  *
  * The library is built with hidden visibility (-fvisibility=hidden), so a
  * function is in libfaultmesh.so's dynamic symbol table only when its
