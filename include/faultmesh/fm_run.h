@@ -189,6 +189,17 @@ FM_API fm_status fm_run_option_bounds(fm_run_option opt, double *lo, double *hi)
  * as one that cannot be parsed. */
 FM_API fm_status fm_run_add_path(fm_run *run, const char *path, fm_error *err);
 
+/** An input in memory (copied, as MMG's bulk setters copy): one fault
+ * named name, xyz 3 * nv doubles (x east, y north, z up, m), tri 3 * nt
+ * vertex indices from 0. It goes through the run as a TSurf file of that
+ * name would, in the order of the inputs; report.json gives the name as
+ * its file, and no CRS (FM_OPT_CRS, else the inputs', else EPSG:26711).
+ * FM_ERR_INVALID (and why) without a name, with fewer than 3 vertices or
+ * no triangle, a coordinate not finite, an index out of range or a
+ * triangle using a vertex twice. */
+FM_API fm_status fm_run_add_mesh(fm_run *run, const char *name, const double *xyz, size_t nv,
+                                 const int32_t *tri, size_t nt, fm_error *err);
+
 /** Reads what the simulator attributes need (the slip table, the CFM
  * metadata named or found beside one of near, the kinematics sections)
  * and checks the EQSim CRS. fm_run_execute does it (with the input files

@@ -209,8 +209,29 @@ def _set_option(L, run, key, value, err):
     _check(st, err)
 
 
+def _add_input(L, run, item, err):
+    """A path, or an in-memory fault: (name, points, triangles), or an
+    object with name, points and triangles (a Fault of a result)."""
+    if isinstance(item, (str, os.PathLike)):
+        _check(L.fm_run_add_path(run, os.fsencode(item), err), err)
+        return
+    if isinstance(item, tuple) and len(item) == 3:
+        name, points, triangles = item
+    else:
+        name, points, triangles = item.name, item.points, item.triangles
+    # contiguous copies of the library's types: it copies them in turn
+    pts = np.ascontiguousarray(points, dtype=np.float64)
+    tri = np.ascontiguousarray(triangles, dtype=np.int32)
+    if pts.ndim != 2 or pts.shape[1] != 3 or tri.ndim != 2 or tri.shape[1] != 3:
+        raise ValueError("%s: points must be (n, 3), triangles (m, 3)" % name)
+    _check(L.fm_run_add_mesh(run, str(name).encode(), pts.ctypes.data_as(_lib.c_double_p),
+                             len(pts), tri.ctypes.data_as(_lib.c_int32_p), len(tri), err), err)
+
+
 def remesh(paths, size=1000, out=None, log=None, progress=None, **options):
-    """Remeshes the TSurf files (or folders of them) in paths at size (m).
+    """Remeshes the faults in paths at size (m): TSurf files, folders of
+    them, or faults in memory as (name, points, triangles) with points
+    (n, 3) x east, y north, z up in m and triangles (m, 3) indices from 0.
 
     options: the keywords of OPTIONS (connect, join_distance, top, threads,
     cache, crs, formats, ...), as `faultmesh remesh` takes them. out: a
@@ -222,7 +243,8 @@ def remesh(paths, size=1000, out=None, log=None, progress=None, **options):
     FaultmeshError when the run cannot go on; a fault that fails is in the
     result (status "error", why)."""
     L = _lib_handle()
-    if isinstance(paths, (str, os.PathLike)):
+    if isinstance(paths, (str, os.PathLike)) or (isinstance(paths, tuple) and len(paths) == 3
+                                                   and isinstance(paths[0], str)):
         paths = [paths]
     err = _lib.Error()
     run = L.fm_run_create(None)
@@ -270,7 +292,7 @@ def remesh(paths, size=1000, out=None, log=None, progress=None, **options):
         for key, value in options.items():
             _set_option(L, run, key, value, err)
         for p in paths:
-            _check(L.fm_run_add_path(run, os.fsencode(p), err), err)
+            _add_input(L, run, p, err)
         status = [None]
 
         def execute():

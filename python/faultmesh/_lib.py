@@ -67,6 +67,7 @@ PROTOTYPES = {
     "fm_run_set_string": (_status, [_p, ctypes.c_int, _str, _err]),
     "fm_run_option_bounds": (_status, [ctypes.c_int, c_double_p, c_double_p]),
     "fm_run_add_path": (_status, [_p, _str, _err]),
+    "fm_run_add_mesh": (_status, [_p, _str, c_double_p, _size, c_int32_p, _size, _err]),
     "fm_run_prepare": (_status, [_p, ctypes.POINTER(_str), _size, _err]),
     "fm_run_execute": (_status, [_p, ctypes.POINTER(_p), _err]),
     "fm_run_result_destroy": (None, [_p]),

@@ -263,8 +263,8 @@ static fm_status cancelled(fm_run_result *res, fm_error *err)
     return give_up(res, FM_ERR_CANCELLED);
 }
 
-fm_status run_execute(fm_run_result *res, const char *const *files, size_t nfiles,
-                      fm_error *err)
+fm_status run_execute(fm_run_result *res, const char *const *files,
+                      const fm_mesh *const *meshes, size_t nfiles, fm_error *err)
 {
     const remesh_cli *cli = &res->cli;
     run_state *rs = &res->rs;
@@ -281,6 +281,7 @@ fm_status run_execute(fm_run_result *res, const char *const *files, size_t nfile
     }
     for (size_t i = 0; i < nfiles; i++) {
         jobs[i].path = files[i];
+        jobs[i].given = meshes[i];
         jobs[i].ctl = cli->ctl;
     }
     double t0 = fm_clock_seconds();

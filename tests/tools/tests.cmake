@@ -371,9 +371,11 @@ endif()
 # `cmake --install` into a temporary prefix, then the C example built
 # against it by pkg-config (shared and static) and find_package (shared and
 # static), and the Python example run on the installed package, each
-# checked against the shared nodes report.json gives (synthetic faults,
-# and two CFM faults when ../shared/cfm is there). Not in a sanitizer
-# build: its library needs the sanitizer runtime in every consumer.
+# checked against the shared nodes of `faultmesh remesh`'s mesh.obj
+# (synthetic faults, and two CFM faults when ../shared/cfm is there);
+# python_package: the package's calls on the build tree's library. Not in
+# a sanitizer build: its library needs the sanitizer runtime in every
+# consumer (and in python3).
 if(TARGET faultmesh_shared)
   add_test(NAME library_symbols
     COMMAND bash ${FM_TOOLS}/symbols_test.sh $<TARGET_FILE:faultmesh_shared> ${PROJECT_SOURCE_DIR}
@@ -386,5 +388,8 @@ if(TARGET faultmesh_shared AND TARGET faultmesh_static AND FM_SYSTEM_PYTHON AND 
   add_test(NAME install_python
     COMMAND bash ${FM_TOOLS}/install_test.sh python ${PROJECT_BINARY_DIR} ${PROJECT_SOURCE_DIR}
             ${FM_SYSTEM_PYTHON} ${FM_CFM_DIR} ${CMAKE_CURRENT_BINARY_DIR}/tmp/install_python)
-  set_tests_properties(install_c install_python PROPERTIES TIMEOUT 900)
+  add_test(NAME python_package
+    COMMAND ${FM_SYSTEM_PYTHON} ${FM_TOOLS}/python_package_test.py $<TARGET_FILE:faultmesh_cli>
+            $<TARGET_FILE:faultmesh_shared> ${CMAKE_CURRENT_BINARY_DIR}/tmp/python_package)
+  set_tests_properties(install_c install_python python_package PROPERTIES TIMEOUT 900)
 endif()
