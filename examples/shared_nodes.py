@@ -25,6 +25,12 @@ DEFAULT = [CFM + "OCBA-CBFZ-NCBF-Coronado_Bank_fault_north-CFM5_500m.ts",
            CFM + "OCBA-CBFZ-WEST-Coronado_Bank_west_splay-CFM5_500m.ts"]
 
 
+def say(level, message):
+    """The run's warnings and errors, as the command line shows them."""
+    if level <= faultmesh.LOG_WARN:
+        print("faultmesh: " + message, file=sys.stderr)
+
+
 def main(argv):
     size = 1000.0
     if len(argv) >= 2 and argv[0] == "--size":
@@ -35,9 +41,7 @@ def main(argv):
         return 2
     paths = argv or DEFAULT
     try:
-        res = faultmesh.remesh(paths, size=size,
-                               log=lambda level, msg: level <= faultmesh.LOG_WARN
-                               and print("faultmesh: " + msg, file=sys.stderr))
+        res = faultmesh.remesh(paths, size=size, log=say)
     except faultmesh.FaultmeshError as e:
         print("faultmesh: %s" % e, file=sys.stderr)
         return 1
