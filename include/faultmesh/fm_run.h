@@ -230,10 +230,10 @@ FM_API const char *fm_run_result_fault_status(const fm_run_result *res, size_t i
  * node, used by the triangles of each (the shared nodes). Sizes, then a
  * copy into arrays the caller allocates (as MMG's bulk getters do):
  * xyz 3 * nvertices doubles (x east, y north, z up, m, in the run's
- * CRS), tri 3 * ntriangles vertex indices from 0 (counter-clockwise seen
- * from the fault's front), fault ntriangles indices of the fault (as
- * fm_run_result_fault_name counts them) each triangle belongs to. Any of
- * the three may be NULL. FM_ERR_INVALID without a result. */
+ * CRS), tri 3 * ntriangles vertex indices from 0 (the triangles of the
+ * written mesh files, in their order), fault ntriangles indices of the
+ * fault (as fm_run_result_fault_name counts them) each triangle belongs
+ * to. Any of the three may be NULL. FM_ERR_INVALID without a result. */
 FM_API size_t fm_run_result_nvertices(const fm_run_result *res);
 FM_API size_t fm_run_result_ntriangles(const fm_run_result *res);
 FM_API fm_status fm_run_result_copy_mesh(const fm_run_result *res, double *xyz, int32_t *tri,

@@ -393,3 +393,12 @@ if(TARGET faultmesh_shared AND TARGET faultmesh_static AND FM_SYSTEM_PYTHON AND 
             $<TARGET_FILE:faultmesh_shared> ${CMAKE_CURRENT_BINARY_DIR}/tmp/python_package)
   set_tests_properties(install_c install_python python_package PROPERTIES TIMEOUT 900)
 endif()
+
+if(DOXYGEN_FOUND)
+  # api_docs: the documentation builds without a warning (a parameter or link that
+  # no longer matches its header): the doc target's settings, warnings
+  # made errors, into a folder of the test's own
+  add_test(NAME api_docs
+    COMMAND sh -c "{ cat '${PROJECT_BINARY_DIR}/Doxyfile.doc'; echo 'WARN_AS_ERROR = YES'; echo 'OUTPUT_DIRECTORY = ${PROJECT_BINARY_DIR}/tests/tmp/api_docs'; } | '${DOXYGEN_EXECUTABLE}' -"
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+endif()
