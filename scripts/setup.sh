@@ -21,6 +21,9 @@ packages=(
                              # the -dev packages, which --no-install-recommends skips)
   python3-scipy              # k-d trees of the CAD model check (check_cad.py); without it
                              # cad_demo and cfm_cad_500m_1000 skip
+  python3-numpy              # the Python package's arrays (python/faultmesh; install_python)
+  doxygen                    # the API documentation (cmake --build build --target doc);
+                             # without it the target is left out
 )
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi

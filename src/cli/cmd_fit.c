@@ -42,65 +42,22 @@ typedef struct {
     fm_model_options model;
 } fit_cli;
 
-/* Fault-level figures: sheets weighted by their point counts. */
-typedef struct {
-    double to_rms, to_max, from_rms, from_max, outline_max;
-} fault_figures;
-
-static fault_figures combine(const fm_model *m)
-{
-    fault_figures f = {0};
-    double n1 = 0, s1 = 0, n2 = 0, s2 = 0;
-    for (size_t i = 0; i < fm_model_nsheets(m); i++) {
-        const fm_sheet_report *r = fm_model_report(m, i);
-        n1 += (double)r->vertices;
-        s1 += (double)r->vertices * r->to_surface_rms * r->to_surface_rms;
-        n2 += (double)r->samples;
-        s2 += (double)r->samples * r->from_trimmed_rms * r->from_trimmed_rms;
-        f.to_max = fmax(f.to_max, r->to_surface_max);
-        f.from_max = fmax(f.from_max, r->from_trimmed_max);
-        f.outline_max = fmax(f.outline_max, r->outline_max);
-    }
-    f.to_rms = n1 > 0 ? sqrt(s1 / n1) : 0;
-    f.from_rms = n2 > 0 ? sqrt(s2 / n2) : 0;
-    return f;
-}
-
-static const char *const fit_ext[3] = {"model.json", "igs", "vtu"};
-
-/* The three files of a fitted fault, each tried whatever became of the
- * others; each one not written said on stderr and flagged in *missing
- * (bit k: fit_ext[k]). The first failure's status and error. */
+/* The three files of a fitted fault (fm_model_write_files), each one not
+ * written said on stderr. */
 static fm_status write_outputs(const fit_cli *cli, const char *base, const char *name,
                                const fm_model *m, unsigned *missing, fm_error *err)
 {
-    *missing = 0;
-    size_t n = strlen(cli->dir) + strlen(base) + 32;
-    char *path = malloc(n);
-    if (!path) {
-        *missing = 7;
-        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
-    }
-    fm_status first = FM_OK;
-    for (int k = 0; k < 3; k++) {
-        snprintf(path, n, "%s/%s.%s", cli->dir, base, fit_ext[k]);
-        fm_error e;
-        fm_error_clear(&e);
-        fm_status st = k == 0   ? fm_model_write_json(path, name, m, &e)
-                       : k == 1 ? fm_model_write_iges(path, name, m, &e)
-                                : fm_model_write_vtu(path, name, m, &e);
-        if (st == FM_OK)
-            continue;
-        *missing |= 1u << k;
-        fprintf(stderr, "faultmesh: not written: %s\n", e.message);
-        if (first == FM_OK) {
-            first = st;
-            if (err)
-                *err = e;
+    fm_error errs[FM_MODEL_NFILES];
+    fm_status st = fm_model_write_files(cli->dir, base, name, m, missing, errs);
+    int first = 1;
+    for (int k = 0; k < FM_MODEL_NFILES; k++)
+        if (*missing & (1u << k)) {
+            fprintf(stderr, "faultmesh: not written: %s\n", errs[k].message);
+            if (first && err)
+                *err = errs[k];
+            first = 0;
         }
-    }
-    free(path);
-    return first;
+    return st;
 }
 
 /* Fits one file; appends its faults to the report. Returns the number of
@@ -160,16 +117,17 @@ static int fit_file(const fit_cli *cli, fm_namer *nm, const char *path, fm_json 
             if (missing) {
                 fm_json_key(j, "outputs_missing");
                 fm_json_begin_array(j);
-                for (int k = 0; k < 3; k++)
+                for (int k = 0; k < FM_MODEL_NFILES; k++)
                     if (missing & (1u << k)) {
                         char f[FM_STEM_MAX + 16];
-                        snprintf(f, sizeof f, "%s.%s", base, fit_ext[k]);
+                        snprintf(f, sizeof f, "%s.%s", base, fm_model_file_ext[k]);
                         fm_json_string(j, f);
                     }
                 fm_json_end_array(j);
             }
         } else {
-            fault_figures f = combine(model);
+            fm_fault_figures f;
+            fm_model_fault_figures(model, &f);
             double worst = fmax(f.to_rms, f.from_rms);
             double *grown = realloc(*rms, (*nrms + 1) * sizeof **rms);
             if (grown) {

@@ -172,7 +172,7 @@ static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **c
 /* --config FILE, wherever it stands on the command line, is read first:
  * the options given beside it override it. 0 (*cfg NULL when there is
  * none), or -1 after saying why. */
-static int load_config(int argc, char **argv, remesh_cli *cli, config **cfg,
+static int load_config(int argc, char **argv, remesh_cli *cli, fm_settings **cfg,
                        const char ***inputs, size_t *ninputs)
 {
     *cfg = NULL;
@@ -185,7 +185,13 @@ static int load_config(int argc, char **argv, remesh_cli *cli, config **cfg,
             fprintf(stderr, "faultmesh: --config takes one settings file\n");
             return -1;
         }
-        if (!(*cfg = config_read(argv[i + 1])) || remesh_config(cli, *cfg, inputs, ninputs))
+        fm_error err;
+        if (!(*cfg = fm_settings_read(argv[i + 1], &err))) {
+            /* what is wrong in the file reads FILE:LINE: why, as a compiler says it */
+            fprintf(stderr, "%s%s\n", err.line > 0 ? "" : "faultmesh: ", err.message);
+            return -1;
+        }
+        if (remesh_config(cli, *cfg, inputs, ninputs))
             return -1;
         i++;
     }
@@ -196,17 +202,17 @@ int fm_cmd_remesh(int argc, char **argv)
 {
     remesh_cli cli;
     cli_defaults(&cli);
-    config *cfg = NULL;
+    fm_settings *cfg = NULL;
     const char **cinputs = NULL;
     size_t ncinputs = 0;
     if (load_config(argc, argv, &cli, &cfg, &cinputs, &ncinputs)) {
         free(cinputs);
-        config_free(cfg);
+        fm_settings_free(cfg);
         return FM_EXIT_USAGE;
     }
     int rc = remesh_main(&cli, argc, argv, cinputs, ncinputs);
     free(cinputs);
-    config_free(cfg);
+    fm_settings_free(cfg);
     return rc;
 }
 
@@ -292,7 +298,7 @@ int fm_cmd_demo(int argc, char **argv)
     /* No real CRS to convert from: EQSim in the mesh's metres unless
      * --crs and --eqsim-coords spherical say otherwise. */
     cli.o.eqsim = FM_EQSIM_RECTANGULAR;
-    config *cfg = NULL;
+    fm_settings *cfg = NULL;
     const char **cinputs = NULL;
     size_t ncinputs = 0;
     int rc = FM_EXIT_USAGE;
@@ -303,6 +309,6 @@ int fm_cmd_demo(int argc, char **argv)
             rc = demo_main(&cli, argc, argv);
     }
     free(cinputs);
-    config_free(cfg);
+    fm_settings_free(cfg);
     return rc;
 }

@@ -9,7 +9,7 @@
 
 #include "cli.h"
 #include "fm_atomic.h"
-#include "fm_run.h"
+#include "fm_run_options.h"
 
 /* The run module lists them (fm_run_list_inputs); what it has to say is
  * said here as the command has always said it. */

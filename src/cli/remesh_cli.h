@@ -7,8 +7,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "config.h"
-#include "fm_run.h"
+#include "fm_run_options.h"
+#include "fm_settings.h"
 
 typedef struct remesh_cli {
     const char *dir;      /* -o DIR */
@@ -16,7 +16,7 @@ typedef struct remesh_cli {
     int msh_version_given;
     int quiet;
     int verbose;          /* a line per fault */
-    const config *cfg;    /* --config; NULL: none */
+    const fm_settings *cfg;    /* --config; NULL: none */
     fm_fault_rule *rules; /* its [[fault]] sections as the run takes them */
 } remesh_cli;
 
@@ -36,7 +36,7 @@ void cli_defaults(remesh_cli *cli);
  * (command-line options given after override them); its inputs, if it
  * lists any, in *inputs (free the array, not the strings). 0, or -1
  * after printing FILE:LINE: why. */
-int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninputs);
+int remesh_config(remesh_cli *cli, fm_settings *c, const char ***inputs, size_t *ninputs);
 
 /* sim_options.c: --slip, --metadata, --kinematics*, --eqsim-coords: 1 if
  * argv[*i] was one (with *i on its value), 0 if not, -1 bad value. */

@@ -307,17 +307,17 @@ static int path_key(const char *key)
            !strcmp(key, "cache");
 }
 
-int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninputs)
+int remesh_config(remesh_cli *cli, fm_settings *c, const char ***inputs, size_t *ninputs)
 {
     *inputs = NULL;
     *ninputs = 0;
-    const cfg_section *s = &c->top;
-    const cfg_entry *extend = NULL;
+    const fm_settings_section *s = &c->top;
+    const fm_settings_entry *extend = NULL;
     for (size_t i = 0; i < s->n; i++)
         if (!strcmp(s->e[i].key, "top_extend"))
             extend = &s->e[i];
     for (size_t i = 0; i < s->n; i++) {
-        const cfg_entry *e = &s->e[i];
+        const fm_settings_entry *e = &s->e[i];
         char opt[96];
         const char *argv[4] = {opt, NULL, NULL, NULL};
         int argc = 1;
@@ -326,7 +326,7 @@ int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninp
             if (*q == '_')
                 *q = '-';
         if (!strcmp(e->key, "inputs") || !strcmp(e->key, "input")) {
-            size_t n = e->type == CFG_ARRAY ? e->nitems : e->type == CFG_STRING ? 1 : 0;
+            size_t n = e->type == FM_SETTINGS_ARRAY ? e->nitems : e->type == FM_SETTINGS_STRING ? 1 : 0;
             const char **g = n ? realloc(*inputs, (*ninputs + n) * sizeof *g) : NULL;
             if (!g) {
                 fprintf(stderr, "%s:%ld: %s takes a path or a list of paths\n", c->path, e->line,
@@ -335,13 +335,13 @@ int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninp
             }
             *inputs = g;
             for (size_t k = 0; k < n; k++)
-                if (!(g[(*ninputs)++] = config_path(c, e->type == CFG_ARRAY ? e->items[k] : e->text)))
+                if (!(g[(*ninputs)++] = fm_settings_path(c, e->type == FM_SETTINGS_ARRAY ? e->items[k] : e->text)))
                     return -1;
             continue;
         }
         if (!strcmp(e->key, "top_extend")) {
             continue; /* with top = "extend" */
-        } else if (e->type == CFG_BOOL) {
+        } else if (e->type == FM_SETTINGS_BOOL) {
             int on = e->text[0] == 't';
             if (is_on_by_default(e->key) && !on) {
                 snprintf(opt, sizeof opt, "--no-%s", e->key);
@@ -351,7 +351,7 @@ int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninp
             }
             else if (is_on_by_default(e->key) || !on)
                 continue; /* the default */
-        } else if (e->type == CFG_ARRAY && !strcmp(e->key, "formats")) {
+        } else if (e->type == FM_SETTINGS_ARRAY && !strcmp(e->key, "formats")) {
             unsigned all = 0;
             for (size_t k = 0; k < e->nitems; k++) {
                 unsigned f;
@@ -367,15 +367,15 @@ int remesh_config(remesh_cli *cli, config *c, const char ***inputs, size_t *ninp
             }
             cli->o.formats = all;
             continue;
-        } else if (e->type == CFG_ARRAY) {
+        } else if (e->type == FM_SETTINGS_ARRAY) {
             fprintf(stderr, "%s:%ld: %s takes one value, not a list\n", c->path, e->line, e->key);
             return -1;
         } else {
-            argv[argc++] = path_key(e->key) ? config_path(c, e->text) : e->text;
+            argv[argc++] = path_key(e->key) ? fm_settings_path(c, e->text) : e->text;
             if (!argv[1])
                 return -1;
             if (!strcmp(e->key, "top") && !strcmp(e->text, "extend")) {
-                if (!extend || extend->type != CFG_NUMBER) {
+                if (!extend || extend->type != FM_SETTINGS_NUMBER) {
                     fprintf(stderr, "%s:%ld: top = \"extend\" needs top_extend = D (metres)\n",
                             c->path, e->line);
                     return -1;

@@ -10,22 +10,13 @@ int settings_rules(remesh_cli *cli)
     cli->rules = NULL;
     if (!cli->cfg)
         return 0;
-    const config *c = cli->cfg;
-    cli->o.settings_path = c->path;
-    if (!c->nfault)
-        return 0;
-    cli->rules = calloc(c->nfault, sizeof *cli->rules);
+    cli->o.settings_path = cli->cfg->path;
+    size_t n;
+    cli->rules = fm_settings_rules(cli->cfg, &n);
     if (!cli->rules)
-        return -1;
-    for (size_t i = 0; i < c->nfault; i++) {
-        const cfg_section *s = &c->fault[i];
-        cli->rules[i].match = s->match;
-        cli->rules[i].nmatch = s->nmatch;
-        cli->rules[i].set = s->set;
-        cli->rules[i].set.line = s->line;
-    }
+        return n ? -1 : 0;
     cli->o.fault_rules = cli->rules;
-    cli->o.nfault_rules = c->nfault;
+    cli->o.nfault_rules = n;
     return 0;
 }
 

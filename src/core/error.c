@@ -14,6 +14,7 @@ const char *fm_status_string(fm_status s)
     case FM_ERR_INVALID: return "invalid argument";
     case FM_ERR_TOPOLOGY: return "topology error";
     case FM_ERR_NUMERIC: return "numerical error";
+    case FM_ERR_CANCELLED: return "cancelled";
     }
     return "unknown error";
 }

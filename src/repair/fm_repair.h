@@ -48,6 +48,7 @@
 #include <stdint.h>
 
 #include "fm_core.h"
+#include "fm_json.h"
 #include "fm_mesh.h"
 
 #ifdef __cplusplus
@@ -131,6 +132,25 @@ int fm_surface_junction_closed(const fm_surface *s, size_t j);
 const int32_t *fm_surface_junction_vertex_origin(const fm_surface *s, size_t j,
                                                  size_t *npoints);
 const int32_t *fm_surface_junction_sheets(const fm_surface *s, size_t j, size_t *nsheets);
+
+/* What a surface is (describe.c), as `faultmesh info` says it. */
+/* Every sheet side by side in one mesh (tag: the sheet); NULL: memory. */
+fm_mesh *fm_surface_concat(const fm_surface *s);
+/* Input vertices the sheets use (ninput: the input's vertices): a vertex
+ * on a junction or a pinch is one vertex of the object although several
+ * sheets carry a copy. 0 when memory runs out. */
+size_t fm_surface_distinct_vertices(const fm_surface *s, size_t ninput);
+/* Boundary loops of a sheet that are not its outer one. */
+size_t fm_surface_sheet_nholes(const fm_surface *s, size_t sheet);
+/* Length of junction j (m; a closed one round). */
+double fm_surface_junction_length(const fm_surface *s, size_t j);
+/* The figures of fm_mesh_compute_stats as keys of the open JSON object. */
+void fm_mesh_stats_json(fm_json *j, const fm_mesh_stats *st);
+/* The object of `faultmesh info --json` (a stable interface: keys only
+ * ever added): name, nparts and raw (as read) from the file, s repaired
+ * from raw, all the figures of fm_surface_concat(s). */
+void fm_surface_json(fm_json *j, const char *name, size_t nparts, const fm_mesh *raw,
+                     const fm_surface *s, const fm_mesh_stats *all);
 
 #ifdef __cplusplus
 }

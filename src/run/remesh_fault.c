@@ -435,12 +435,48 @@ static fm_status mesh_object(const char *path, const fm_mesh *orig,
     return st;
 }
 
+fm_status tsurf_of_mesh(const char *name, const fm_mesh *m, fm_tsurf **out, fm_error *err)
+{
+    *out = NULL;
+    fm_tsurf *ts = fm_tsurf_create(name); /* its header names it */
+    fm_status st = ts ? FM_OK : FM_ERR_NOMEM;
+    if (st == FM_OK && fm_tsurf_add_part(ts) < 0)
+        st = FM_ERR_NOMEM;
+    if (st == FM_OK)
+        st = fm_mesh_append(fm_tsurf_mesh_mut(ts), m, 0);
+    if (st != FM_OK) {
+        fm_tsurf_destroy(ts);
+        return fm_error_set(err, st, name, 0, "out of memory");
+    }
+    *out = ts;
+    return FM_OK;
+}
+
+/* The input's objects: the file's, or the in-memory mesh's one. */
+static fm_status read_input(const file_job *job, fm_tsurf ***objs, size_t *nobj, fm_error *err)
+{
+    if (!job->given)
+        return fm_tsurf_read_file(job->path, objs, nobj, err);
+    *objs = calloc(1, sizeof **objs);
+    *nobj = 0;
+    if (!*objs)
+        return fm_error_set(err, FM_ERR_NOMEM, job->path, 0, "out of memory");
+    fm_status st = tsurf_of_mesh(job->path, job->given, &(*objs)[0], err);
+    if (st != FM_OK) {
+        free(*objs);
+        *objs = NULL;
+        return st;
+    }
+    *nobj = 1;
+    return FM_OK;
+}
+
 void fit_file(const remesh_cli *cli, file_job *job)
 {
     fm_error err;
     fm_error_clear(&err);
     const char *path = job->path;
-    if (fm_tsurf_read_file(path, &job->objs, &job->nobj, &err) != FM_OK) {
+    if (read_input(job, &job->objs, &job->nobj, &err) != FM_OK) {
         job->res = calloc(1, sizeof *job->res);
         job->mesh = calloc(1, sizeof *job->mesh);
         job->objs = NULL;

@@ -79,7 +79,12 @@ static size_t *schedule(const file_job *jobs, size_t n, double *bytes)
     }
     for (size_t i = 0; i < n; i++) {
         struct stat sb;
-        key[i].bytes = stat(jobs[i].path, &sb) == 0 ? (long long)sb.st_size : 0;
+        /* an in-memory input weighs what its TSurf file would (about 40
+         * bytes a triangle: a TRGL line, half a VRTX line) */
+        if (jobs[i].given)
+            key[i].bytes = 40 * (long long)fm_mesh_ntriangles(jobs[i].given);
+        else
+            key[i].bytes = stat(jobs[i].path, &sb) == 0 ? (long long)sb.st_size : 0;
         key[i].index = i;
         if (bytes)
             bytes[i] = (double)key[i].bytes;

@@ -305,8 +305,8 @@ static fm_status cancelled(fm_run_result *res, fm_error *err)
     return give_up(res, FM_ERR_CANCELLED);
 }
 
-fm_status run_execute(fm_run_result *res, const char *const *files, size_t nfiles,
-                      fm_error *err)
+fm_status run_execute(fm_run_result *res, const char *const *files,
+                      const fm_mesh *const *meshes, size_t nfiles, fm_error *err)
 {
     const remesh_cli *cli = &res->cli;
     run_state *rs = &res->rs;
@@ -323,6 +323,7 @@ fm_status run_execute(fm_run_result *res, const char *const *files, size_t nfile
     }
     for (size_t i = 0; i < nfiles; i++) {
         jobs[i].path = files[i];
+        jobs[i].given = meshes[i];
         jobs[i].ctl = cli->ctl;
     }
     double t0 = fm_clock_seconds();
@@ -383,12 +384,17 @@ fm_status fm_run_result_write(fm_run_result *res, const char *dir, unsigned form
                             !res || !dir || res->written
                                 ? "a run's outputs are written once, into a folder"
                                 : "outputs asked for that the run's options did not include");
+    /* the summary names the folder after the call: a copy, since a
+     * caller's string (a binding's temporary) need not live that long */
+    res->dir = strdup(dir);
+    if (!res->dir)
+        return fm_error_set(err, FM_ERR_NOMEM, dir, 0, "out of memory");
     res->written = 1;
     remesh_cli *cli = &res->cli;
     run_state *rs = &res->rs;
-    cli->dir = dir;
+    cli->dir = res->dir;
     cli->formats = formats;
-    res->outputs.dir = dir;
+    res->outputs.dir = res->dir;
     output_log *outputs = &res->outputs;
     /* report.html is an output, timed with the writes. It needs the
      * originals, which go with the jobs; with threads to spare it is drawn
@@ -499,5 +505,6 @@ void fm_run_result_destroy(fm_run_result *res)
     sim_cli_free(&res->cli.sim);
     run_ctl_destroy(res->ctl);
     run_strings_unref(res->strings);
+    free(res->dir);
     free(res);
 }

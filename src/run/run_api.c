@@ -1,6 +1,7 @@
 /* fm_run.h: the options and their defaults, the run handle, and what a
  * result says of each fault. */
 #include <fnmatch.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -80,9 +81,12 @@ void fm_run_destroy(fm_run *run)
         return;
     run_strings_unref(run->strings);
     sim_cli_free(&run->sim);
-    for (size_t i = 0; i < run->npaths; i++)
+    for (size_t i = 0; i < run->npaths; i++) {
         free(run->paths[i]);
+        fm_mesh_destroy(run->meshes[i]);
+    }
     free(run->paths);
+    free(run->meshes);
     run_ctl_destroy(run->ctl);
     free(run);
 }
@@ -106,21 +110,71 @@ void fm_run_interrupt(fm_run *run)
         atomic_store(&run->ctl->cancelled, 1);
 }
 
-/* One file more (a copy of path). */
-static fm_status add_file(fm_run *run, const char *path, fm_error *err)
+/* One input more: a file (a copy of path), or an in-memory mesh named
+ * path (mesh, which the run then owns; destroyed on failure). */
+static fm_status add_input(fm_run *run, const char *path, fm_mesh *mesh, fm_error *err)
 {
     if (run->npaths == run->cap) {
         size_t cap = run->cap ? 2 * run->cap : 16;
         char **p = realloc(run->paths, cap * sizeof *p);
-        if (!p)
+        if (p)
+            run->paths = p;
+        fm_mesh **m = p ? realloc(run->meshes, cap * sizeof *m) : NULL;
+        if (!m) {
+            fm_mesh_destroy(mesh);
             return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
-        run->paths = p;
+        }
+        run->meshes = m;
         run->cap = cap;
     }
-    if (!(run->paths[run->npaths] = strdup(path)))
+    if (!(run->paths[run->npaths] = strdup(path))) {
+        fm_mesh_destroy(mesh);
         return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    }
+    run->meshes[run->npaths] = mesh;
     run->npaths++;
     return FM_OK;
+}
+
+static fm_status add_file(fm_run *run, const char *path, fm_error *err)
+{
+    return add_input(run, path, NULL, err);
+}
+
+fm_status fm_run_add_mesh(fm_run *run, const char *name, const double *xyz, size_t nv,
+                          const int32_t *tri, size_t nt, fm_error *err)
+{
+    if (!run || !name || !name[0])
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "an in-memory input needs a name");
+    if (!xyz || !tri || nv < 3 || nt < 1 || nv > INT32_MAX || nt > INT32_MAX)
+        return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                            "an in-memory input needs 3 or more vertices and a triangle");
+    /* checked here, where the caller can be told, rather than failing the
+     * fault later with a message about a file that does not exist */
+    for (size_t i = 0; i < 3 * nv; i++)
+        if (!isfinite(xyz[i]))
+            return fm_error_set(err, FM_ERR_INVALID, name, 0, "vertex %zu is not finite", i / 3);
+    for (size_t t = 0; t < nt; t++) {
+        const int32_t *v = tri + 3 * t;
+        for (int k = 0; k < 3; k++)
+            if (v[k] < 0 || (size_t)v[k] >= nv)
+                return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                                    "triangle %zu: vertex %ld out of range (%zu vertices)", t,
+                                    (long)v[k], nv);
+        if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
+            return fm_error_set(err, FM_ERR_INVALID, name, 0,
+                                "triangle %zu: a vertex twice", t);
+    }
+    fm_mesh *m = fm_mesh_create();
+    if (!m || fm_mesh_reserve(m, nv, nt) != FM_OK) {
+        fm_mesh_destroy(m);
+        return fm_error_set(err, FM_ERR_NOMEM, name, 0, "out of memory");
+    }
+    for (size_t i = 0; i < nv; i++)
+        fm_mesh_add_vertex(m, xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    for (size_t t = 0; t < nt; t++)
+        fm_mesh_add_triangle(m, tri[3 * t], tri[3 * t + 1], tri[3 * t + 2], 0);
+    return add_input(run, name, m, err);
 }
 
 fm_status fm_run_add_path(fm_run *run, const char *path, fm_error *err)
@@ -220,7 +274,17 @@ fm_status fm_run_execute(fm_run *run, fm_run_result **out, fm_error *err)
     if (!run)
         return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "no run");
     if (!run->prepared) {
-        fm_status st = fm_run_prepare(run, (const char *const *)run->paths, run->npaths, err);
+        /* the simulator data are looked for beside the files only: an
+         * in-memory input's name is no place */
+        const char **near = malloc((run->npaths ? run->npaths : 1) * sizeof *near);
+        if (!near)
+            return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+        size_t nnear = 0;
+        for (size_t i = 0; i < run->npaths; i++)
+            if (!run->meshes[i])
+                near[nnear++] = run->paths[i];
+        fm_status st = fm_run_prepare(run, near, nnear, err);
+        free(near);
         if (st != FM_OK)
             return st;
     }
@@ -246,7 +310,8 @@ fm_status fm_run_execute(fm_run *run, fm_run_result **out, fm_error *err)
     run->prepared = 0;
     extend_fit(&res->cli);
     settle_cache(&res->cli);
-    fm_status st = run_execute(res, (const char *const *)run->paths, run->npaths, err);
+    fm_status st = run_execute(res, (const char *const *)run->paths,
+                               (const fm_mesh *const *)run->meshes, run->npaths, err);
     /* a cancel ends this execution only */
     atomic_store(&run->ctl->cancelled, 0);
     if (st != FM_OK)
@@ -289,6 +354,53 @@ const char *fm_run_result_fault_status(const fm_run_result *res, size_t i, const
 const fm_mesh *fm_run_result_mesh(const fm_run_result *res)
 {
     return res ? res->rs.set : NULL;
+}
+
+size_t fm_run_result_nvertices(const fm_run_result *res)
+{
+    return res && res->rs.set ? fm_mesh_nvertices(res->rs.set) : 0;
+}
+
+size_t fm_run_result_ntriangles(const fm_run_result *res)
+{
+    return res && res->rs.set ? fm_mesh_ntriangles(res->rs.set) : 0;
+}
+
+fm_status fm_run_result_copy_mesh(const fm_run_result *res, double *xyz, int32_t *tri,
+                                  int32_t *fault, fm_error *err)
+{
+    if (!res)
+        return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "no result");
+    const fm_mesh *m = res->rs.set;
+    if (!m)
+        return FM_OK; /* no fault was meshed: nothing to copy */
+    size_t nv = fm_mesh_nvertices(m), nt = fm_mesh_ntriangles(m);
+    if (xyz && nv)
+        memcpy(xyz, fm_mesh_vertices(m), 3 * nv * sizeof *xyz);
+    if (tri && nt)
+        memcpy(tri, fm_mesh_triangles(m), 3 * nt * sizeof *tri);
+    /* the set's tags count the faults written; callers count the result's
+     * faults (fm_run_result_fault_name), which also holds those that
+     * failed or were dropped */
+    const int32_t *tag = fm_mesh_tags(m);
+    for (size_t t = 0; fault && t < nt; t++)
+        fault[t] = (int32_t)res->rs.set_res[tag[t]];
+    return FM_OK;
+}
+
+void fm_free(void *p)
+{
+    free(p);
+}
+
+int fm_version_number(void)
+{
+    return FM_VERSION_NUMBER;
+}
+
+const char *fm_version_string(void)
+{
+    return FM_VERSION_STRING;
 }
 
 size_t fm_run_result_unwritten(const fm_run_result *res)

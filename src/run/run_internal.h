@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "fm_run.h"
+#include "fm_run_options.h"
 #include "fm_cad_write.h"
 #include "fm_carve.h"
 #include "fm_check.h"
@@ -217,7 +217,8 @@ typedef struct run_state {
  * into the run in file order, so the output does not depend on which
  * thread did what. */
 typedef struct file_job {
-    const char *path;
+    const char *path;   /* the file, or the name of an in-memory input */
+    const fm_mesh *given; /* an in-memory input (fm_run_add_mesh, the run's), NULL: read path */
     run_ctl *ctl;       /* the caller's callbacks */
     fm_tsurf **objs;
     size_t nobj;
@@ -407,7 +408,8 @@ void run_strings_unref(run_strings *s);
 struct fm_run {
     fm_run_options opt;
     run_ctl *ctl;
-    char **paths;         /* the input files (owned) */
+    char **paths;         /* the input files, or in-memory inputs' names (owned) */
+    fm_mesh **meshes;     /* per input: its mesh when in memory, else NULL (owned) */
     size_t npaths, cap;
     sim_cli sim;  /* the simulator data fm_run_prepare read */
     int prepared;
@@ -433,11 +435,15 @@ struct fm_run_result {
     run_ctl *ctl;         /* the callbacks, once the run is over */
     double t4;            /* when the merge and check ended */
     int written;
+    char *dir;            /* where fm_run_result_write wrote (a copy) */
 };
 
 /* The run on files into res (cli set, the cache settled); on failure res
  * is destroyed and the error said. */
-fm_status run_execute(fm_run_result *res, const char *const *files, size_t nfiles,
-                      fm_error *err);
+fm_status run_execute(fm_run_result *res, const char *const *files,
+                      const fm_mesh *const *meshes, size_t nfiles, fm_error *err);
+/* remesh_fault.c: an in-memory input as the TSurf object a file would
+ * give (name in its header, one part). */
+fm_status tsurf_of_mesh(const char *name, const fm_mesh *m, fm_tsurf **out, fm_error *err);
 
 #endif

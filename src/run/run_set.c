@@ -7,6 +7,25 @@
 
 #include "run_internal.h"
 
+/* fm_run.h names the stages' values for the installed API, whose programs
+ * do not see the stage headers. */
+#define SAME(a, b) ((int)(a) == (int)(b))
+_Static_assert(SAME(FM_RUN_TOP_CUT, FM_TOP_CUT) && SAME(FM_RUN_TOP_KEEP, FM_TOP_KEEP) &&
+                   SAME(FM_RUN_TOP_EXTEND, FM_TOP_EXTEND), "fm_run.h: FM_RUN_TOP_*");
+_Static_assert(SAME(FM_RUN_KEEP_SMALLER, FM_CONNECT_KEEP_SMALLER) &&
+                   SAME(FM_RUN_KEEP_LARGER, FM_CONNECT_KEEP_LARGER), "fm_run.h: FM_RUN_KEEP_*");
+_Static_assert(SAME(FM_RUN_MSH_41, FM_MSH_41) && SAME(FM_RUN_MSH_22, FM_MSH_22),
+               "fm_run.h: FM_RUN_MSH_*");
+_Static_assert(SAME(FM_RUN_MSH_TAGS_DEFAULT, FM_MSH_TAGS_DEFAULT) &&
+                   SAME(FM_RUN_MSH_TAGS_TANDEM, FM_MSH_TAGS_TANDEM) &&
+                   SAME(FM_RUN_MSH_TAGS_SEISSOL, FM_MSH_TAGS_SEISSOL) &&
+                   SAME(FM_RUN_MSH_TAGS_PYLITH, FM_MSH_TAGS_PYLITH),
+               "fm_run.h: FM_RUN_MSH_TAGS_*");
+_Static_assert(SAME(FM_RUN_EQSIM_SPHERICAL, FM_EQSIM_SPHERICAL) &&
+                   SAME(FM_RUN_EQSIM_RECTANGULAR, FM_EQSIM_RECTANGULAR),
+               "fm_run.h: FM_RUN_EQSIM_*");
+#undef SAME
+
 run_strings *run_strings_ref(run_strings *s)
 {
     if (s)

@@ -7,7 +7,7 @@
 #include <stddef.h>
 
 #include "fm_faultset_write.h"
-#include "fm_run.h"
+#include "fm_run_options.h"
 #include "fm_json.h"
 #include "fm_metadata.h"
 #include "fm_sections.h"

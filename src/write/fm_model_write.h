@@ -32,6 +32,24 @@ fm_status fm_model_write_vtu(const char *path, const char *name, const fm_model 
  * includes them (with_time). */
 void fm_model_write_sheet_report(fm_json *j, const fm_model *m, size_t i, int with_time);
 
+/* The files of a fitted fault (model_files.c): DIR/BASE.EXT for each
+ * fm_model_file_ext, each tried whatever became of the others; bit k of
+ * *missing and errs[k] for each one not written. FM_OK, or the first
+ * failure's status. */
+#define FM_MODEL_NFILES 3
+extern const char *const fm_model_file_ext[FM_MODEL_NFILES]; /* model.json, igs, vtu */
+fm_status fm_model_write_files(const char *dir, const char *base, const char *name,
+                               const fm_model *m, unsigned *missing,
+                               fm_error errs[FM_MODEL_NFILES]);
+
+/* A fault's figures over its sheets, each sheet weighted by its point
+ * counts: RMS and largest distance, original vertices to the surface and
+ * trimmed surface to the original, and the largest outline deviation (m). */
+typedef struct fm_fault_figures {
+    double to_rms, to_max, from_rms, from_max, outline_max;
+} fm_fault_figures;
+void fm_model_fault_figures(const fm_model *m, fm_fault_figures *f);
+
 #ifdef __cplusplus
 }
 #endif

@@ -3,14 +3,16 @@
  * thread and on two, per-fault rules, the log and progress callbacks, and
  * cancelling from the progress callback. */
 #include <dirent.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
 #include "fm_atomic.h"
-#include "fm_run.h"
+#include "fm_run_options.h"
 #include "fm_synth.h"
 #include "fm_test.h"
+#include "fm_tsurf.h"
 
 #define MAX_FILES 32
 
@@ -139,6 +141,31 @@ static void test_whole_run(void)
     CHECK(fm_run_result_fault_status(res, nfiles, NULL) == NULL);
     const fm_mesh *m = fm_run_result_mesh(res);
     CHECK(m && fm_mesh_ntriangles(m) > 1000);
+    /* the installed API's copy of it: the same arrays, and per triangle
+     * the fault as the result counts them (the set's tag counts only the
+     * faults written) */
+    size_t nv = fm_run_result_nvertices(res), nt = fm_run_result_ntriangles(res);
+    CHECK(m && nv == fm_mesh_nvertices(m) && nt == fm_mesh_ntriangles(m));
+    double *xyz = malloc(3 * nv * sizeof *xyz);
+    int32_t *tri = malloc(3 * nt * sizeof *tri), *fault = malloc(nt * sizeof *fault);
+    CHECK(xyz && tri && fault);
+    if (m && xyz && tri && fault) {
+        CHECK_EQ(fm_run_result_copy_mesh(res, xyz, tri, fault, &err), FM_OK);
+        CHECK(!memcmp(xyz, fm_mesh_vertices(m), 3 * nv * sizeof *xyz));
+        CHECK(!memcmp(tri, fm_mesh_triangles(m), 3 * nt * sizeof *tri));
+        size_t bad = 0;
+        for (size_t t = 0; t < nt; t++) {
+            const char *st = fault[t] >= 0 ? fm_run_result_fault_status(res, (size_t)fault[t], NULL)
+                                           : NULL;
+            bad += !st || strcmp(st, "ok") != 0;
+        }
+        CHECK_EQ(bad, 0);
+        CHECK_EQ(fm_run_result_copy_mesh(res, NULL, NULL, NULL, &err), FM_OK);
+    }
+    free(xyz);
+    free(tri);
+    free(fault);
+    CHECK_EQ(fm_run_result_copy_mesh(NULL, NULL, NULL, NULL, &err), FM_ERR_INVALID);
     /* a record per fault (DETAIL), and every stage ended */
     CHECK_EQ(s.records[FM_LOG_DETAIL], nfiles);
     CHECK(s.begins >= 4);
@@ -196,6 +223,77 @@ static void test_whole_run(void)
     fm_run_result_destroy(res);
     fm_run_result_destroy(NULL);
     fm_run_destroy(NULL);
+}
+
+/* In-memory inputs (fm_run_add_mesh) go through the run as their files
+ * do: the same meshes, bit for bit, and the same fault names. */
+static void test_mesh_inputs(void)
+{
+    if (inputs())
+        return;
+    fm_error err;
+    fm_error_clear(&err);
+    fm_run_options o;
+    options(&o, 2);
+    seen s = {0}, sm = {0};
+    fm_run *by_path = make_run(&o, &s);
+    fm_run *by_mesh = fm_run_create(&o);
+    CHECK(by_mesh != NULL);
+    if (!by_mesh) {
+        fm_run_destroy(by_path);
+        return;
+    }
+    fm_run_set_log(by_mesh, FM_LOG_DETAIL, on_log, &sm);
+    for (size_t i = 0; i < nfiles; i++) {
+        fm_tsurf **objs = NULL;
+        size_t nobj = 0;
+        CHECK_EQ(fm_tsurf_read_file(files[i], &objs, &nobj, &err), FM_OK);
+        for (size_t k = 0; k < nobj; k++) {
+            const fm_mesh *m = fm_tsurf_mesh(objs[k]);
+            CHECK_EQ(fm_run_add_mesh(by_mesh, fm_tsurf_name(objs[k]), fm_mesh_vertices(m),
+                                     fm_mesh_nvertices(m), fm_mesh_triangles(m),
+                                     fm_mesh_ntriangles(m), &err),
+                     FM_OK);
+        }
+        fm_tsurf_free_all(objs, nobj);
+    }
+    /* refused with a reason: the caller hears of it now */
+    double xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    int32_t tri[3] = {0, 1, 2}, bad_tri[3] = {0, 1, 3}, twice[3] = {0, 1, 1};
+    CHECK_EQ(fm_run_add_mesh(by_mesh, "x", xyz, 3, bad_tri, 1, &err), FM_ERR_INVALID);
+    CHECK(strstr(err.message, "out of range") != NULL);
+    CHECK_EQ(fm_run_add_mesh(by_mesh, "x", xyz, 3, twice, 1, &err), FM_ERR_INVALID);
+    CHECK_EQ(fm_run_add_mesh(by_mesh, "", xyz, 3, tri, 1, &err), FM_ERR_INVALID);
+    CHECK_EQ(fm_run_add_mesh(by_mesh, "x", xyz, 2, tri, 1, &err), FM_ERR_INVALID);
+    xyz[4] = nan("");
+    CHECK_EQ(fm_run_add_mesh(by_mesh, "x", xyz, 3, tri, 1, &err), FM_ERR_INVALID);
+
+    fm_run_result *rp = NULL, *rm = NULL;
+    CHECK_EQ(fm_run_execute(by_path, &rp, &err), FM_OK);
+    CHECK_EQ(fm_run_execute(by_mesh, &rm, &err), FM_OK);
+    if (rp && rm) {
+        CHECK_EQ(fm_run_result_nfaults(rm), fm_run_result_nfaults(rp));
+        for (size_t i = 0; i < fm_run_result_nfaults(rp) && i < fm_run_result_nfaults(rm); i++) {
+            CHECK(!strcmp(fm_run_result_fault_name(rm, i), fm_run_result_fault_name(rp, i)));
+            CHECK(!strcmp(fm_run_result_fault_status(rm, i, NULL),
+                          fm_run_result_fault_status(rp, i, NULL)));
+        }
+        const fm_mesh *a = fm_run_result_mesh(rp), *b = fm_run_result_mesh(rm);
+        int same = a && b && fm_mesh_nvertices(a) == fm_mesh_nvertices(b) &&
+                   fm_mesh_ntriangles(a) == fm_mesh_ntriangles(b);
+        CHECK(same);
+        if (same) {
+            CHECK(!memcmp(fm_mesh_vertices(a), fm_mesh_vertices(b),
+                          3 * fm_mesh_nvertices(a) * sizeof(double)));
+            CHECK(!memcmp(fm_mesh_triangles(a), fm_mesh_triangles(b),
+                          3 * fm_mesh_ntriangles(a) * sizeof(int32_t)));
+        }
+        CHECK_EQ(sm.records[FM_LOG_DETAIL], nfiles);
+    }
+    fm_run_result_destroy(rp);
+    fm_run_result_destroy(rm);
+    fm_run_destroy(by_path);
+    fm_run_destroy(by_mesh);
 }
 
 static void test_rules(void)
@@ -417,5 +515,6 @@ static void test_folder(void)
     fm_run_destroy(run);
 }
 
-FM_TEST_MAIN(FM_CASE(test_whole_run), FM_CASE(test_folder), FM_CASE(test_rules), FM_CASE(test_cancel),
-             FM_CASE(test_bad_options), FM_CASE(test_setters))
+FM_TEST_MAIN(FM_CASE(test_whole_run), FM_CASE(test_mesh_inputs), FM_CASE(test_folder),
+             FM_CASE(test_rules), FM_CASE(test_cancel), FM_CASE(test_bad_options),
+             FM_CASE(test_setters))

@@ -1,7 +1,7 @@
-/* faultmesh CLI: the settings file (config.h). A line-oriented reader of
- * the TOML subset a settings file needs; anything else is refused with its
- * line, so that a typo never passes silently. */
-#include "config.h"
+/* faultmesh run: the settings file (fm_settings.h). A line-oriented
+ * reader of the TOML subset a settings file needs; anything else is
+ * refused with its line, so that a typo never passes silently. */
+#include "fm_settings.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -11,7 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static void entry_free(cfg_entry *e)
+static void entry_free(fm_settings_entry *e)
 {
     free(e->key);
     free(e->text);
@@ -20,7 +20,7 @@ static void entry_free(cfg_entry *e)
     free(e->items);
 }
 
-static void section_free(cfg_section *s)
+static void section_free(fm_settings_section *s)
 {
     for (size_t i = 0; i < s->n; i++)
         entry_free(&s->e[i]);
@@ -28,7 +28,7 @@ static void section_free(cfg_section *s)
     free((void *)s->match);
 }
 
-void config_free(config *c)
+void fm_settings_free(fm_settings *c)
 {
     if (!c)
         return;
@@ -48,11 +48,15 @@ typedef struct reader {
     const char *path;
     long line;
     const char *p; /* in the current line */
+    fm_error *err;
 } reader;
 
+/* The first failure is the one said: later ones are its consequences. */
 static int fail(const reader *r, const char *what)
 {
-    fprintf(stderr, "%s:%ld: %s\n", r->path, r->line, what);
+    if (!r->err || r->err->code == FM_OK)
+        fm_error_set(r->err, strcmp(what, "out of memory") ? FM_ERR_PARSE : FM_ERR_NOMEM, r->path,
+                     r->line, "%s", what);
     return -1;
 }
 
@@ -116,16 +120,16 @@ static int line_end(reader *r)
     return 0;
 }
 
-static int read_value(reader *r, cfg_entry *e)
+static int read_value(reader *r, fm_settings_entry *e)
 {
     skip_space(r);
     const char *p = r->p;
     if (*p == '"' || *p == '\'') {
-        e->type = CFG_STRING;
+        e->type = FM_SETTINGS_STRING;
         return (e->text = read_string(r)) ? 0 : -1;
     }
     if (*p == '[') {
-        e->type = CFG_ARRAY;
+        e->type = FM_SETTINGS_ARRAY;
         r->p++;
         for (;;) {
             skip_space(r);
@@ -153,7 +157,7 @@ static int read_value(reader *r, cfg_entry *e)
         }
     }
     if (!strncmp(p, "true", 4) || !strncmp(p, "false", 5)) {
-        e->type = CFG_BOOL;
+        e->type = FM_SETTINGS_BOOL;
         int t = p[0] == 't';
         r->p += t ? 4 : 5;
         return (e->text = strdup(t ? "true" : "false")) ? 0 : fail(r, "out of memory");
@@ -171,13 +175,13 @@ static int read_value(reader *r, cfg_entry *e)
     double v = n ? strtod(buf, &end) : NAN;
     if (!n || *end || !isfinite(v))
         return fail(r, "expected a value: \"string\", number, true, false or [\"list\"]");
-    e->type = CFG_NUMBER;
+    e->type = FM_SETTINGS_NUMBER;
     return (e->text = strdup(buf)) ? 0 : fail(r, "out of memory");
 }
 
-static int push_entry(cfg_section *s, cfg_entry *e)
+static int push_entry(fm_settings_section *s, fm_settings_entry *e)
 {
-    cfg_entry *g = realloc(s->e, (s->n + 1) * sizeof *g);
+    fm_settings_entry *g = realloc(s->e, (s->n + 1) * sizeof *g);
     if (!g)
         return -1;
     s->e = g;
@@ -185,10 +189,10 @@ static int push_entry(cfg_section *s, cfg_entry *e)
     return 0;
 }
 
-static int number_of(const reader *r, const cfg_entry *e, double lo, double *out)
+static int number_of(const reader *r, const fm_settings_entry *e, double lo, double *out)
 {
     char msg[160];
-    if (e->type != CFG_NUMBER || !(strtod(e->text, NULL) >= lo)) {
+    if (e->type != FM_SETTINGS_NUMBER || !(strtod(e->text, NULL) >= lo)) {
         snprintf(msg, sizeof msg, "%s takes a number%s", e->key,
                  lo > -INFINITY ? (lo > 0 ? " above 0" : " of 0 or more") : "");
         return fail(r, msg);
@@ -197,10 +201,10 @@ static int number_of(const reader *r, const cfg_entry *e, double lo, double *out
     return 0;
 }
 
-static int bool_of(const reader *r, const cfg_entry *e, int *out)
+static int bool_of(const reader *r, const fm_settings_entry *e, int *out)
 {
     char msg[160];
-    if (e->type != CFG_BOOL) {
+    if (e->type != FM_SETTINGS_BOOL) {
         snprintf(msg, sizeof msg, "%s takes true or false", e->key);
         return fail(r, msg);
     }
@@ -209,19 +213,19 @@ static int bool_of(const reader *r, const cfg_entry *e, int *out)
 }
 
 /* A [[fault]] entry into the section's overrides. */
-static int fault_key(reader *r, cfg_section *s, const cfg_entry *e)
+static int fault_key(reader *r, fm_settings_section *s, const fm_settings_entry *e)
 {
-    fault_config *f = &s->set;
+    fm_fault_settings *f = &s->set;
     const char *k = e->key;
     if (!strcmp(k, "match")) {
-        size_t n = e->type == CFG_ARRAY ? e->nitems : e->type == CFG_STRING ? 1 : 0;
+        size_t n = e->type == FM_SETTINGS_ARRAY ? e->nitems : e->type == FM_SETTINGS_STRING ? 1 : 0;
         if (!n)
             return fail(r, "match takes a fault name pattern or a list of them");
         const char **m = realloc((void *)s->match, (s->nmatch + n) * sizeof *m);
         if (!m)
             return fail(r, "out of memory");
         for (size_t i = 0; i < n; i++)
-            m[s->nmatch + i] = e->type == CFG_ARRAY ? e->items[i] : e->text;
+            m[s->nmatch + i] = e->type == FM_SETTINGS_ARRAY ? e->items[i] : e->text;
         s->match = m;
         s->nmatch += n;
         return 0;
@@ -242,11 +246,11 @@ static int fault_key(reader *r, cfg_section *s, const cfg_entry *e)
         return number_of(r, e, 0, &f->top_extend);
     if (!strcmp(k, "top")) {
         f->has_top = 1;
-        if (e->type == CFG_STRING && !strcmp(e->text, "cut"))
+        if (e->type == FM_SETTINGS_STRING && !strcmp(e->text, "cut"))
             f->top = FM_TOP_CUT;
-        else if (e->type == CFG_STRING && !strcmp(e->text, "keep"))
+        else if (e->type == FM_SETTINGS_STRING && !strcmp(e->text, "keep"))
             f->top = FM_TOP_KEEP;
-        else if (e->type == CFG_STRING && !strcmp(e->text, "extend"))
+        else if (e->type == FM_SETTINGS_STRING && !strcmp(e->text, "extend"))
             f->top = FM_TOP_EXTEND;
         else
             return fail(r, "top takes \"cut\", \"keep\" or \"extend\"");
@@ -262,7 +266,7 @@ static int fault_key(reader *r, cfg_section *s, const cfg_entry *e)
 
 /* A section is checked when it ends: it must say which faults it is for,
  * and top = "extend" needs how far. */
-static int fault_done(reader *r, cfg_section *s)
+static int fault_done(reader *r, fm_settings_section *s)
 {
     long line = r->line;
     r->line = s->line;
@@ -275,11 +279,11 @@ static int fault_done(reader *r, cfg_section *s)
     return rc;
 }
 
-static int parse(reader *r, FILE *fp, config *c)
+static int parse(reader *r, FILE *fp, fm_settings *c)
 {
     char *buf = NULL;
     size_t cap = 0;
-    cfg_section *cur = &c->top;
+    fm_settings_section *cur = &c->top;
     int rc = 0;
     while (rc == 0 && getline(&buf, &cap, fp) != -1) {
         r->line++;
@@ -297,7 +301,7 @@ static int parse(reader *r, FILE *fp, config *c)
                 break;
             if (cur != &c->top && (rc = fault_done(r, cur)) != 0)
                 break;
-            cfg_section *g = realloc(c->fault, (c->nfault + 1) * sizeof *g);
+            fm_settings_section *g = realloc(c->fault, (c->nfault + 1) * sizeof *g);
             if (!g) {
                 rc = fail(r, "out of memory");
                 break;
@@ -318,7 +322,7 @@ static int parse(reader *r, FILE *fp, config *c)
             break;
         }
         r->p++;
-        cfg_entry e;
+        fm_settings_entry e;
         memset(&e, 0, sizeof e);
         e.line = r->line;
         e.key = strndup(k, klen);
@@ -349,21 +353,22 @@ static int parse(reader *r, FILE *fp, config *c)
     return rc;
 }
 
-config *config_read(const char *path)
+fm_settings *fm_settings_read(const char *path, fm_error *err)
 {
+    fm_error_clear(err);
     struct stat sb;
     if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
-        fprintf(stderr, "faultmesh: %s: a folder, not a settings file\n", path);
+        fm_error_set(err, FM_ERR_INVALID, path, 0, "a folder, not a settings file");
         return NULL;
     }
     FILE *fp = fopen(path, "r");
     if (!fp) {
-        fprintf(stderr, "faultmesh: %s: cannot read the settings file: %s\n", path,
-                strerror(errno));
+        fm_error_set(err, FM_ERR_IO, path, 0, "cannot read the settings file: %s",
+                     strerror(errno));
         return NULL;
     }
-    config *c = calloc(1, sizeof *c);
-    reader r = {path, 0, NULL};
+    fm_settings *c = calloc(1, sizeof *c);
+    reader r = {path, 0, NULL, err};
     if (c) {
         c->path = strdup(path);
         const char *slash = strrchr(path, '/');
@@ -372,13 +377,13 @@ config *config_read(const char *path)
     int rc = (!c || !c->path || !c->dir) ? fail(&r, "out of memory") : parse(&r, fp, c);
     fclose(fp);
     if (rc) {
-        config_free(c);
+        fm_settings_free(c);
         return NULL;
     }
     return c;
 }
 
-const char *config_path(config *c, const char *p)
+const char *fm_settings_path(fm_settings *c, const char *p)
 {
     size_t n = strlen(c->dir) + strlen(p) + 1;
     char *s = malloc(n);
@@ -392,4 +397,25 @@ const char *config_path(config *c, const char *p)
     snprintf(s, n, "%s%s", p[0] == '/' ? "" : c->dir, p);
     c->kept[c->nkept++] = s;
     return s;
+}
+
+fm_fault_rule *fm_settings_rules(const fm_settings *s, size_t *n)
+{
+    *n = 0;
+    if (!s || !s->nfault)
+        return NULL;
+    fm_fault_rule *rules = calloc(s->nfault, sizeof *rules);
+    if (!rules) {
+        *n = 1;
+        return NULL;
+    }
+    for (size_t i = 0; i < s->nfault; i++) {
+        const fm_settings_section *f = &s->fault[i];
+        rules[i].match = f->match;
+        rules[i].nmatch = f->nmatch;
+        rules[i].set = f->set;
+        rules[i].set.line = f->line;
+    }
+    *n = s->nfault;
+    return rules;
 }
