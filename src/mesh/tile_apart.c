@@ -461,8 +461,12 @@ int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, tile_wal
         fm_tile *tl = &t->tile[i];
         double c[4][3];
         fm_tile_corners(tl, c);
-        double zlo = fmin(fmin(c[0][2], c[1][2]), fmin(c[2][2], c[3][2]));
-        double zhi = fmax(fmax(c[0][2], c[1][2]), fmax(c[2][2], c[3][2]));
+        double zlo = INFINITY, zhi = -INFINITY;
+        for (int k = 0; k < 4; k++) {
+            double z = tile_level(t->up[tl->fault], c[k]);
+            zlo = fmin(zlo, z);
+            zhi = fmax(zhi, z);
+        }
         tile_region(w, tl, zlo, zhi);
         tl->flatness = tile_flatness(w, tl);
     }
