@@ -197,8 +197,8 @@ static int mark_pair(size_t j, void *user)
     double la = cut_loss(a, b, -1), lb = cut_loss(b, a, -1);
     if (la > lb)
         return 0; /* b is the one cut: its own turn decides */
-    double area = a->length * a->width, least = c->t->stats.size / 4;
-    if (!(la > 0.1 * area))
+    double area = a->length * a->width, least = c->t->stats.size / 8;
+    if (!(la > 0.05 * area))
         return 0;
     double ls = a->length / 2 >= least ? cut_loss(a, b, 0) : INFINITY;
     double ld = a->width / 2 >= least ? cut_loss(a, b, 1) : INFINITY;
@@ -207,9 +207,13 @@ static int mark_pair(size_t j, void *user)
     return 0;
 }
 
-/* Tiles that would lose more than a tenth of their area where they meet
- * another fault's tile (a junction crossing a row at a slant) split in
- * two first, so that the cut takes less; -1 when memory runs out. */
+/* Tiles that would lose more than a twentieth of their area where they
+ * meet another fault's tile (a junction crossing a row at a slant) split
+ * in two first, down to an eighth of the size, so that the cut takes
+ * less: over rounds the tiles follow the junction as a staircase (on the
+ * whole CFM at 2 km, 64 faults outside 3 % of their area instead of 78
+ * with two rounds, a tenth and a quarter of the size); -1 when memory
+ * runs out. */
 static int split_for_cuts(fm_tiles *t)
 {
     double rmax = max_radius(t);
@@ -246,7 +250,7 @@ int tile_separate(fm_tiles *t)
 {
     if (!t->n)
         return 0;
-    for (int round = 0; round < 2; round++)
+    for (int round = 0; round < 4; round++)
         if (split_for_cuts(t))
             return -1;
     double *rad = malloc(t->n * sizeof *rad), rmax = 0;
