@@ -36,6 +36,10 @@ typedef struct tile_sides {
  * flatness over the surface tile_region finds for it); -1 when memory
  * runs out (tile_apart.c). */
 int tile_separate(fm_tiles *t);
+/* Tiles added for each fault at the junction points (where tile_measure
+ * measures gaps) that none of its tiles comes within 0.4 of the size of;
+ * -1 when memory runs out (tile_fill.c). */
+int tile_fill_junctions(fm_tiles *t, const fm_mesh *set, const tile_sides *sd);
 /* The surface a tile stands for: the triangles joined to the one under its
  * centre (across the sides nbr joins: not across an outline, a junction
  * or a branch line) that reach into its columns between depths zlo and
