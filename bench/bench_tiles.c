@@ -1,7 +1,12 @@
 /* Rectangular elements alone (fm_tiles_create) on a fault set already
  * meshed: the OBJ a `faultmesh remesh --formats obj` run wrote, tiled at
- * SIZE, with the time it takes and the issue's figures, and with -v every
- * fault outside 3 % of its area and every junction with a gap over SIZE/2.
+ * SIZE, with the time it takes and the issue's figures (and how many
+ * tiles' centres lie over 3 km from every vertex of their fault), and with
+ * -v every fault outside 3 % of its area, with tiles the surface departs
+ * from by over SIZE/20, every tile over 3 km off and every junction with
+ * a gap over SIZE/2. BENCH_TILES_DUMP=TEXT writes the triangles and tile
+ * corners of each fault whose name contains TEXT to /tmp/dump_INDEX.txt
+ * ("T" and "Q" lines), to look at.
  * The tiling is a few seconds of a whole run (bench/bench_quads.sh), so
  * this is the quick loop for work on src/mesh/tile*.c.
  *
@@ -123,6 +128,35 @@ int main(int argc, char **argv)
                        nm.v[f]);
         free(nf);
     }
+    /* how far tiles sit from their fault: each centre's distance to the
+     * nearest vertex of its fault's triangles */
+    size_t off3 = 0;
+    double offmax = 0;
+    {
+        const double *x = fm_mesh_vertices(m);
+        const int32_t *tr = fm_mesh_triangles(m), *tg = fm_mesh_tags(m);
+        for (size_t i = 0; i < fm_tiles_count(t); i++) {
+            const fm_tile *tl = fm_tiles_get(t, i);
+            double best = INFINITY;
+            for (size_t k = 0; k < fm_mesh_ntriangles(m); k++) {
+                if (tg[k] != tl->fault)
+                    continue;
+                for (int q = 0; q < 3; q++) {
+                    const double *p = x + 3 * (size_t)tr[3 * k + q];
+                    double d = hypot(hypot(p[0] - tl->centre[0], p[1] - tl->centre[1]),
+                                     p[2] - tl->centre[2]);
+                    best = fmin(best, d);
+                }
+            }
+            offmax = fmax(offmax, best);
+            if (best > 3000) {
+                off3++;
+                if (verbose)
+                    printf("off %.0f m  %s at %.0f,%.0f,%.0f %.0fx%.0f row %d\n", best, nm.v[tl->fault], tl->centre[0], tl->centre[1], tl->centre[2], tl->length, tl->width, tl->row);
+            }
+        }
+    }
+    printf("tiles over 3 km from a vertex of their fault: %zu (farthest %.0f m)\n", off3, offmax);
     for (size_t i = 0; i < fm_tiles_njunctions(t); i++) {
         const fm_tile_junction *j = fm_tiles_junction(t, i);
         if (j->gap_max > size / 2) {

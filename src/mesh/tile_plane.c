@@ -391,6 +391,15 @@ int tile_fit_planes(fm_tiles *t, tile_walk *w, size_t first)
                 return -1;
             flat = bf0; /* the kept half's, as fitted */
         }
+        /* A tile still standing off its surface (its centre over 1.5
+         * times the size from the nearest centroid of the triangles it
+         * stands for: on an undulating detachment neither its row's
+         * contour nor a fitted plane found the surface) stands for
+         * nothing: given up (tile_separate counts it). */
+        double off;
+        flat_of(w, &t->tile[i], &off);
+        if (off > 1.5 * t->stats.size)
+            t->tile[i].length = t->tile[i].width = 0;
     }
     return 0;
 }
