@@ -152,7 +152,9 @@ int main(int argc, char **argv)
             if (best > 3000) {
                 off3++;
                 if (verbose)
-                    printf("off %.0f m  %s at %.0f,%.0f,%.0f %.0fx%.0f row %d\n", best, nm.v[tl->fault], tl->centre[0], tl->centre[1], tl->centre[2], tl->length, tl->width, tl->row);
+                    printf("off %.0f m  %s at %.0f,%.0f,%.0f %.0fx%.0f row %d\n", best,
+                           nm.v[tl->fault], tl->centre[0], tl->centre[1], tl->centre[2],
+                           tl->length, tl->width, tl->row);
             }
         }
     }

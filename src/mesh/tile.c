@@ -49,7 +49,8 @@ typedef struct tiler {
     int32_t *stamp;      /* per triangle: the contour that went through it */
     int32_t cur;         /* this contour's stamp */
     double size;
-    double up[3];        /* the fault's (tile_up) */
+    double up[3];        /* the fault's (tile_fault_best) */
+    int extra_rows;      /* added to the row count closest to the size */
     double rowdw;        /* the row's width down dip (tile_fault) */
     fm_tiles *out;
     /* one contour */
@@ -120,7 +121,8 @@ static int crossed_sides(const tiler *tl, size_t t, double level, int k[2])
 
 static void side_point(const tiler *tl, size_t t, int k, double level, double p[3])
 {
-    crossing(tl->x, tl->up, tl->tri[3 * t + (size_t)k], tl->tri[3 * t + (size_t)(k + 1) % 3], level, p);
+    crossing(tl->x, tl->up, tl->tri[3 * t + (size_t)k], tl->tri[3 * t + (size_t)(k + 1) % 3],
+             level, p);
 }
 
 /* Point at arc length s along the contour, and the segment it lies on. */
@@ -446,10 +448,8 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
             zlo = fmin(zlo, z);
             zhi = fmax(zhi, z);
         }
-    if (!(zhi - zlo > 1e-9 * fmax(1, fabs(zhi)))) {
-        tl->out->stats.unrowed++;
-        return 0;
-    }
+    if (!(zhi - zlo > 1e-9 * fmax(1, fabs(zhi))))
+        return 0; /* no level range: counted by the caller */
     /* area and area x sin(dip) per depth band, a triangle shared among
      * the bands it spans by the share of its depth range in each */
     double area[NBINS] = {0}, asin[NBINS] = {0}, dd[NBINS + 1];
@@ -484,9 +484,12 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
         dd[k + 1] = dd[k] + dz / fmax(s, TILE_MIN_SIN);
     }
     double dtot = dd[NBINS];
-    long nrows = lround(dtot / tl->size);
-    if (nrows < 1)
-        nrows = 1;
+    long nrows = lround(dtot / tl->size) + tl->extra_rows;
+    /* rows other than the closest count stay within 1.5 times the size of
+     * it either way */
+    if (nrows < 1 || (tl->extra_rows && !(dtot / (double)nrows <= 1.5 * tl->size &&
+                                          dtot / (double)nrows >= tl->size / 1.5)))
+        return 0;
     tl->rowdw = dtot / (double)nrows;
     for (long r = 0; r < nrows; r++) {
         double ztop = r == 0 ? zhi : depth_at(dd, zlo, dz, dtot * (double)(nrows - r) / (double)nrows);
@@ -534,52 +537,72 @@ static double tiling_cost(fm_tiles *t, tile_walk *w, size_t first, double atri)
 }
 
 /* Fault f tiled in rows by depth and, where it is worth trying
- * (fault_up), by levels up its mean plane's dip, the one that costs less
- * kept (depth on a tie). Depth lays out every steep fault whatever its
- * strike does; where much of a fault is flat (a detachment, a low-dip
- * thrust, a ramp running into a flat) a few metres of depth are
- * kilometres down dip and a depth band holds pieces of it far apart. But
- * a plane's levels run across the strike where a flat fault's strike
- * turns (a corrugated detachment), so neither is right everywhere. -1
- * when memory runs out. */
+ * (fault_up), by levels up its mean plane's dip; each with the row count
+ * closest to the size and up to two rows fewer and more while the rows
+ * stay within 1.5 times the size of it (a fault whose down-dip extent
+ * falls between two counts, or whose rows' ends meet its outline badly,
+ * fits another better). The tiling that costs least (tiling_cost) is
+ * kept, the first of a tie within a thousandth: depth, the closest count.
+ * Depth lays out every steep fault whatever its strike does; where much
+ * of a fault is flat (a detachment, a low-dip thrust, a ramp running into
+ * a flat) a few metres of depth are kilometres down dip and a depth band
+ * holds pieces of it far apart. But a plane's levels run across the
+ * strike where a flat fault's strike turns (a corrugated detachment), so
+ * neither is right everywhere. -1 when memory runs out. */
 static int tile_fault_best(tiler *tl, tile_walk *w, int32_t f, const size_t *tris, size_t n)
 {
     fm_tiles *t = tl->out;
     const double z[3] = {0, 0, 1};
-    double g[3];
-    size_t first = t->n;
-    int other = fault_up(tl, tris, n, g);
-    memcpy(tl->up, z, sizeof z);
-    if (tile_fault(tl, f, tris, n) || tile_fit_planes(t, w, first))
-        return -1;
-    if (!other || t->n == first)
-        return 0;
-    double atri = 0;
+    static const int extra[5] = {0, -1, 1, -2, 2};
+    double g[3], atri = 0, best = INFINITY, bup[3];
+    size_t first = t->n, nb = 0, cap = 0;
+    int ndir = 1 + fault_up(tl, tris, n, g);
     for (size_t i = 0; i < n; i++)
         atri += fm_triangle_area(tl->x + 3 * (size_t)tl->tri[3 * tris[i]],
                                  tl->x + 3 * (size_t)tl->tri[3 * tris[i] + 1],
                                  tl->x + 3 * (size_t)tl->tri[3 * tris[i] + 2]);
-    double cz = tiling_cost(t, w, first, atri);
-    size_t nz = t->n - first;
-    fm_tile *keep = malloc(nz * sizeof *keep);
-    double(*kb)[4] = malloc(nz * sizeof *kb);
-    if (!keep || !kb) {
-        free(keep);
-        free(kb);
-        return -1;
-    }
-    memcpy(keep, t->tile + first, nz * sizeof *keep);
-    memcpy(kb, t->band + first, nz * sizeof *kb);
+    fm_tile *keep = NULL;
+    double(*kb)[4] = NULL;
+    int bad = 0;
+    memcpy(bup, z, sizeof z);
+    for (int d = 0; d < ndir && !bad; d++)
+        for (int e = 0; e < 5 && !bad; e++) {
+            t->n = first;
+            memcpy(tl->up, d ? g : z, sizeof tl->up);
+            tl->extra_rows = extra[e];
+            bad = tile_fault(tl, f, tris, n) || tile_fit_planes(t, w, first);
+            if (bad || t->n == first)
+                continue;
+            double c = atri > 0 ? tiling_cost(t, w, first, atri) : 0;
+            /* better by a thousandth, not by rounding */
+            if (!(c < best - 1e-3))
+                continue;
+            best = c;
+            memcpy(bup, tl->up, sizeof bup);
+            size_t m = t->n - first;
+            if (m > cap) {
+                fm_tile *k2 = realloc(keep, m * sizeof *k2);
+                if (k2)
+                    keep = k2;
+                double(*b2)[4] = realloc(kb, m * sizeof *b2);
+                if (b2)
+                    kb = b2;
+                bad = !k2 || !b2;
+                cap = bad ? cap : m;
+            }
+            if (!bad) {
+                memcpy(keep, t->tile + first, m * sizeof *keep);
+                memcpy(kb, t->band + first, m * sizeof *kb);
+                nb = m;
+            }
+        }
+    tl->extra_rows = 0;
     t->n = first;
-    memcpy(tl->up, g, sizeof tl->up);
-    int bad = tile_fault(tl, f, tris, n) || tile_fit_planes(t, w, first);
-    if (!bad && tiling_cost(t, w, first, atri) >= cz) {
-        t->n = first;
-        memcpy(tl->up, z, sizeof z);
-        memcpy(t->up[f], z, sizeof z);
-        for (size_t i = 0; !bad && i < nz; i++)
-            bad = tile_push(t, keep + i, kb[i][0], kb[i][1], kb[i][2], (int)kb[i][3]);
-    }
+    if (best == INFINITY && n)
+        t->stats.unrowed++;
+    memcpy(t->up[f], bup, sizeof bup);
+    for (size_t i = 0; !bad && best < INFINITY && i < nb; i++)
+        bad = tile_push(t, keep + i, kb[i][0], kb[i][1], kb[i][2], (int)kb[i][3]);
     free(keep);
     free(kb);
     return bad ? -1 : 0;
