@@ -337,7 +337,7 @@ static int tile_row(tiler *tl, int32_t f, const size_t *tris, size_t n, int32_t 
     return 0;
 }
 
-/* The depth at down-dip distance dv from the bottom (cumulative dd over
+/* The level (tile_level) at down-dip distance dv from the bottom (cumulative dd over
  * the bins). */
 static double depth_at(const double *dd, double zlo, double dz, double dv)
 {
@@ -450,8 +450,9 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
         }
     if (!(zhi - zlo > 1e-9 * fmax(1, fabs(zhi))))
         return 0; /* no level range: counted by the caller */
-    /* area and area x sin(dip) per depth band, a triangle shared among
-     * the bands it spans by the share of its depth range in each */
+    /* area and area x the level's rate along the surface (sin(dip) for
+     * depth) per level band, a triangle shared among the bands it spans
+     * by the share of its level range in each */
     double area[NBINS] = {0}, asin[NBINS] = {0}, dd[NBINS + 1];
     double dz = (zhi - zlo) / NBINS, atot = 0, stot = 0;
     for (size_t i = 0; i < n; i++) {
@@ -496,7 +497,7 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
         double zbot = r == nrows - 1 ? zlo
                                      : depth_at(dd, zlo, dz, dtot * (double)(nrows - r - 1) /
                                                                  (double)nrows);
-        /* the middle depth, then a quarter from the top and from the bottom
+        /* the middle level, then a quarter from the top and from the bottom
          * for what the first leaves out */
         size_t first = tl->out->n;
         for (int q = 0; q < 3; q++) {
@@ -542,7 +543,8 @@ static double tiling_cost(fm_tiles *t, tile_walk *w, size_t first, double atri)
  * stay within 1.5 times the size of it (a fault whose down-dip extent
  * falls between two counts, or whose rows' ends meet its outline badly,
  * fits another better). The tiling that costs least (tiling_cost) is
- * kept, the first of a tie within a thousandth: depth, the closest count.
+ * kept, the first of a tie within a thousandth: depth, the closest count;
+ * one within a hundredth ends the search.
  * Depth lays out every steep fault whatever its strike does; where much
  * of a fault is flat (a detachment, a low-dip thrust, a ramp running into
  * a flat) a few metres of depth are kilometres down dip and a depth band
@@ -565,8 +567,11 @@ static int tile_fault_best(tiler *tl, tile_walk *w, int32_t f, const size_t *tri
     double(*kb)[4] = NULL;
     int bad = 0;
     memcpy(bup, z, sizeof z);
-    for (int d = 0; d < ndir && !bad; d++)
-        for (int e = 0; e < 5 && !bad; e++) {
+    /* a tiling within a hundredth (its area within 1 %, hardly a tile
+     * rough) is good enough: the others are not tried, which saves most
+     * of the time on most faults */
+    for (int d = 0; d < ndir && !bad && !(best < 0.01); d++)
+        for (int e = 0; e < 5 && !bad && !(best < 0.01); e++) {
             t->n = first;
             memcpy(tl->up, d ? g : z, sizeof tl->up);
             tl->extra_rows = extra[e];

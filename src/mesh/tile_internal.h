@@ -42,8 +42,8 @@ int tile_separate(fm_tiles *t);
 int tile_fill_junctions(fm_tiles *t, const fm_mesh *set, const tile_sides *sd);
 /* The surface a tile stands for: the triangles joined to the one under its
  * centre (across the sides nbr joins: not across an outline, a junction
- * or a branch line) that reach into its columns between depths zlo and
- * zhi. Found by walking out from that triangle (tile_plane.c). */
+ * or a branch line) that reach into its columns between levels zlo and
+ * zhi (tile_level). Found by walking out from that triangle (tile_plane.c). */
 typedef struct tile_walk {
     const double *x;
     const double (*up)[3]; /* per fault, as fm_tiles' */

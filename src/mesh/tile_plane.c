@@ -2,11 +2,13 @@
  * fitted to it (tile_internal.h). The strike stays horizontal, as a
  * rectangle given by strike and dip has it, so the fit is a line across
  * the strike: the principal axis of the surface's samples seen along the
- * strike. The contour's normals at the row's middle depth, which a tile
+ * strike. The contour's normals at the row's middle level, which a tile
  * starts with, miss a row whose dip changes and give a width that does
- * not match it; and the surface may fill only part of the row's depth at
- * a tile (a top or bottom edge that climbs along strike), so the tile
- * spans the depths its surface does. */
+ * not match it; and the surface may fill only part of the row's levels
+ * at a tile (a top or bottom edge that climbs along strike), so the tile
+ * spans the levels its surface does. Levels are depth or, on a fault
+ * whose rows follow its mean plane, distance up that plane's dip
+ * (tile_level). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -110,7 +112,7 @@ static double clipped(const double *const c[3], const double *o, const double *s
     return area;
 }
 
-/* The plane and depth span of tile tl (row ztop..zbot, dw wide down dip at
+/* The plane and level span of tile tl (row ztop..zbot, dw wide down dip at
  * the fault's mean dip) from the surface w found for it. */
 static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, double dw)
 {
