@@ -4,18 +4,24 @@
  * size x size, for the simulators that read only rectangles (EQSim
  * record 204, RSQSim's rectangular patches, Okada-based codes).
  *
- * Rows follow depth: the fault's depth range is cut into rows of equal
- * down-dip width (the area-weighted dip of each depth band turns depth
- * into distance down dip), as many as make them closest to size. Columns
- * follow strike: the fault's contour at a row's middle depth is cut into
- * pieces of equal length closest to size, each piece one tile. The
- * contour stops where the fault's triangles stop: at its outline, at the
- * sea-level cut and at every junction with another fault (an edge two
- * faults share), so tiles of two faults end at the curve where they meet
- * instead of running through each other. A tile's centre is the contour
- * point half way along its piece (on the surface), its strike the
- * piece's chord, its plane the length-weighted mean of the triangles the
- * piece crosses, and its top and bottom edges lie at the row's depths.
+ * Rows follow levels: depth, or, for a fault much of which is flat (a
+ * detachment, a low-dip thrust, a ramp running into a flat), distance up
+ * the dip of its mean plane. The fault's level range is cut into rows of
+ * equal down-dip width (the area-weighted slope of each level band turns
+ * levels into distance down dip). Columns follow strike: the fault's
+ * contour at a row's middle level is cut into pieces of equal length
+ * closest to size, each piece one tile. The contour stops where the
+ * fault's triangles stop: at its outline, at the sea-level cut and at
+ * every junction with another fault (an edge two faults share), so tiles
+ * of two faults end at the curve where they meet instead of running
+ * through each other. A tile's plane is fitted to the surface in its
+ * columns and row (its strike horizontal), its width makes its area that
+ * surface's, and it is centred on that surface. Each fault is tiled both
+ * ways (where the plane's levels are worth trying) and with the row
+ * count closest to size and up to two fewer and more; the tiling whose
+ * area and flatness are closest to the triangles' is kept. Where a fault
+ * reaches a junction only as a strip its rows miss, a tile of half the
+ * size on the junction covers it.
  *
  * What rectangles cannot do is measured rather than hidden: where the
  * tiles of two faults still meet (a tile's corner past the other fault's
@@ -79,7 +85,7 @@ typedef struct fm_tile_stats {
                              elements that thin only trouble a simulator */
     size_t meeting;       /* pairs of tiles of different faults that still meet: 0 unless a
                              tile could not be cut back */
-    size_t unrowed;       /* faults that could not be tiled (no depth range: horizontal) */
+    size_t unrowed;       /* faults with triangles that could not be tiled (no level range) */
     double flatness_p99;  /* over tiles, m */
     double flatness_max;  /* m */
     double area_ratio_min, area_ratio_max; /* tiles / triangles over faults with tiles */

@@ -24,9 +24,11 @@ static void tri_normal(const double *x, const int32_t *tri, size_t t, double n[3
         n[d] = l > 0 ? n[d] / l : 0;
 }
 
-/* Where level crosses the edge u-v, computed from the lower-numbered end
- * so that both triangles of the edge get the same point. */
-static void crossing(const double *x, int32_t u, int32_t v, double level, double p[3])
+/* Where level (along up) crosses the edge u-v, computed from the
+ * lower-numbered end so that both triangles of the edge get the same
+ * point. */
+static void crossing(const double *x, const double up[3], int32_t u, int32_t v, double level,
+                     double p[3])
 {
     if (u > v) {
         int32_t w = u;
@@ -34,10 +36,9 @@ static void crossing(const double *x, int32_t u, int32_t v, double level, double
         v = w;
     }
     const double *a = x + 3 * (size_t)u, *b = x + 3 * (size_t)v;
-    double t = (level - a[2]) / (b[2] - a[2]);
+    double la = tile_level(up, a), t = (level - la) / (tile_level(up, b) - la);
     for (int d = 0; d < 3; d++)
         p[d] = a[d] + t * (b[d] - a[d]);
-    p[2] = level;
 }
 
 typedef struct tiler {
@@ -48,6 +49,8 @@ typedef struct tiler {
     int32_t *stamp;      /* per triangle: the contour that went through it */
     int32_t cur;         /* this contour's stamp */
     double size;
+    double up[3];        /* the fault's (tile_fault_best) */
+    int extra_rows;      /* added to the row count closest to the size */
     double rowdw;        /* the row's width down dip (tile_fault) */
     fm_tiles *out;
     /* one contour */
@@ -109,7 +112,7 @@ static int crossed_sides(const tiler *tl, size_t t, double level, int k[2])
 {
     int above[3], m = 0;
     for (int i = 0; i < 3; i++)
-        above[i] = tl->x[3 * (size_t)tl->tri[3 * t + (size_t)i] + 2] > level;
+        above[i] = tile_level(tl->up, tl->x + 3 * (size_t)tl->tri[3 * t + (size_t)i]) > level;
     for (int i = 0; i < 3; i++)
         if (above[i] != above[(i + 1) % 3])
             k[m++] = i;
@@ -118,7 +121,8 @@ static int crossed_sides(const tiler *tl, size_t t, double level, int k[2])
 
 static void side_point(const tiler *tl, size_t t, int k, double level, double p[3])
 {
-    crossing(tl->x, tl->tri[3 * t + (size_t)k], tl->tri[3 * t + (size_t)(k + 1) % 3], level, p);
+    crossing(tl->x, tl->up, tl->tri[3 * t + (size_t)k], tl->tri[3 * t + (size_t)(k + 1) % 3],
+             level, p);
 }
 
 /* Point at arc length s along the contour, and the segment it lies on. */
@@ -174,7 +178,7 @@ static int tile_piece(tiler *tl, int32_t fault, int32_t row, double sa, double s
     double th = (c2 == 0 && s2 == 0) ? 0 : atan2(s2, c2) / 2;
     double n[3] = {cos(th) * r[0], cos(th) * r[1], sin(th)}, dip[3];
     tile_frame(st, n, dip);
-    double sd = fmax(-dip[2], tile_min_sin(ztop - zbot, tl->rowdw));
+    double sd = fmax(fabs(fm_dot3(dip, tl->up)), tile_min_sin(ztop - zbot, tl->rowdw));
     fm_tile t = {.fault = fault, .triangle = tl->seg[mseg], .row = row, .length = len,
                  .width = (ztop - zbot) / sd};
     memcpy(t.centre, pm, sizeof pm);
@@ -333,7 +337,7 @@ static int tile_row(tiler *tl, int32_t f, const size_t *tris, size_t n, int32_t 
     return 0;
 }
 
-/* The depth at down-dip distance dv from the bottom (cumulative dd over
+/* The level (tile_level) at down-dip distance dv from the bottom (cumulative dd over
  * the bins). */
 static double depth_at(const double *dd, double zlo, double dz, double dv)
 {
@@ -346,23 +350,109 @@ static double depth_at(const double *dd, double zlo, double dz, double dv)
     return zlo + ((double)k + t) * dz;
 }
 
+/* How well levels along g lay a fault out in rows: the area-weighted
+ * mean rate at which the level changes along its surface (the sine of
+ * the angle between g and each triangle's normal). */
+static double level_rate(const tiler *tl, const size_t *tris, size_t n, const double g[3])
+{
+    double sum = 0, atot = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t t = tris[i];
+        const double *a = tl->x + 3 * (size_t)tl->tri[3 * t],
+                     *b = tl->x + 3 * (size_t)tl->tri[3 * t + 1],
+                     *c = tl->x + 3 * (size_t)tl->tri[3 * t + 2];
+        double ar = fm_triangle_area(a, b, c), nrm[3];
+        tri_normal(tl->x, tl->tri, t, nrm);
+        double d = fm_dot3(nrm, g);
+        sum += ar * sqrt(fmax(0, 1 - d * d));
+        atot += ar;
+    }
+    return atot > 0 ? sum / atot : 0;
+}
+
+/* The other direction fault f's rows may be levels of (into g): up the
+ * dip of its mean plane (the plane's normal the principal axis of its
+ * triangles' normals, either way round), down-dip distance on that plane,
+ * along strike wherever the fault keeps its strike; a fault flat within
+ * about a degree takes the horizontal across its longer side. 0 when it
+ * is not worth trying: the levels would not change along the surface
+ * faster than depth does (for a plane both give the same rows). */
+static int fault_up(tiler *tl, const size_t *tris, size_t n, double g[3])
+{
+    const double z[3] = {0, 0, 1};
+    double m[3][3] = {{0}}, cxy[3] = {0, 0, 0}, mc[2] = {0, 0}, atot = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t t = tris[i];
+        const double *a = tl->x + 3 * (size_t)tl->tri[3 * t],
+                     *b = tl->x + 3 * (size_t)tl->tri[3 * t + 1],
+                     *c = tl->x + 3 * (size_t)tl->tri[3 * t + 2];
+        double ar = fm_triangle_area(a, b, c), nrm[3];
+        tri_normal(tl->x, tl->tri, t, nrm);
+        for (int p = 0; p < 3; p++)
+            for (int q = 0; q < 3; q++)
+                m[p][q] += ar * nrm[p] * nrm[q];
+        /* the horizontal spread, about the first vertex's place */
+        double cx = (a[0] + b[0] + c[0]) / 3 - tl->x[3 * (size_t)tl->tri[3 * tris[0]]];
+        double cy = (a[1] + b[1] + c[1]) / 3 - tl->x[3 * (size_t)tl->tri[3 * tris[0]] + 1];
+        mc[0] += ar * cx;
+        mc[1] += ar * cy;
+        cxy[0] += ar * cx * cx;
+        cxy[1] += ar * cx * cy;
+        cxy[2] += ar * cy * cy;
+        atot += ar;
+    }
+    if (!(atot > 0))
+        return 0;
+    /* the largest eigenvector by power iteration from the column of the
+     * largest diagonal entry (the normal tensor is positive semidefinite) */
+    int k0 = m[0][0] >= m[1][1] && m[0][0] >= m[2][2] ? 0 : m[1][1] >= m[2][2] ? 1 : 2;
+    double nv[3] = {m[0][k0], m[1][k0], m[2][k0]};
+    for (int it = 0; it < 100; it++) {
+        double w[3];
+        for (int p = 0; p < 3; p++)
+            w[p] = m[p][0] * nv[0] + m[p][1] * nv[1] + m[p][2] * nv[2];
+        double l = sqrt(fm_dot3(w, w));
+        if (!(l > 0))
+            return 0;
+        for (int p = 0; p < 3; p++)
+            nv[p] = w[p] / l;
+    }
+    g[0] = -nv[2] * nv[0];
+    g[1] = -nv[2] * nv[1];
+    g[2] = 1 - nv[2] * nv[2];
+    double gl = sqrt(fm_dot3(g, g));
+    if (gl < 0.02) {
+        double sxx = cxy[0] / atot - mc[0] * mc[0] / atot / atot,
+               sxy = cxy[1] / atot - mc[0] * mc[1] / atot / atot,
+               syy = cxy[2] / atot - mc[1] * mc[1] / atot / atot;
+        double th = 0.5 * atan2(2 * sxy, sxx - syy);
+        g[0] = -sin(th);
+        g[1] = cos(th);
+        g[2] = 0;
+    } else {
+        for (int p = 0; p < 3; p++)
+            g[p] /= gl;
+    }
+    return level_rate(tl, tris, n, g) > level_rate(tl, tris, n, z);
+}
+
 static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
 {
     const double *x = tl->x;
     const int32_t *tri = tl->tri;
+    memcpy(tl->out->up[f], tl->up, sizeof tl->up);
     double zlo = INFINITY, zhi = -INFINITY;
     for (size_t i = 0; i < n; i++)
         for (int k = 0; k < 3; k++) {
-            double z = x[3 * (size_t)tri[3 * tris[i] + (size_t)k] + 2];
+            double z = tile_level(tl->up, x + 3 * (size_t)tri[3 * tris[i] + (size_t)k]);
             zlo = fmin(zlo, z);
             zhi = fmax(zhi, z);
         }
-    if (!(zhi - zlo > 1e-9 * fmax(1, fabs(zhi)))) {
-        tl->out->stats.unrowed++;
-        return 0;
-    }
-    /* area and area x sin(dip) per depth band, a triangle shared among
-     * the bands it spans by the share of its depth range in each */
+    if (!(zhi - zlo > 1e-9 * fmax(1, fabs(zhi))))
+        return 0; /* no level range: counted by the caller */
+    /* area and area x the level's rate along the surface (sin(dip) for
+     * depth) per level band, a triangle shared among the bands it spans
+     * by the share of its level range in each */
     double area[NBINS] = {0}, asin[NBINS] = {0}, dd[NBINS + 1];
     double dz = (zhi - zlo) / NBINS, atot = 0, stot = 0;
     for (size_t i = 0; i < n; i++) {
@@ -371,8 +461,11 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
                      *c = x + 3 * (size_t)tri[3 * t + 2];
         double ar = fm_triangle_area(a, b, c), nrm[3];
         tri_normal(x, tri, t, nrm);
-        double sn = hypot(nrm[0], nrm[1]);
-        double z0 = fmin(a[2], fmin(b[2], c[2])), z1 = fmax(a[2], fmax(b[2], c[2]));
+        double cu = fm_dot3(nrm, tl->up);
+        double sn = tl->up[0] == 0 && tl->up[1] == 0 ? hypot(nrm[0], nrm[1])
+                                                     : sqrt(fmax(0, 1 - cu * cu));
+        double la = tile_level(tl->up, a), lb = tile_level(tl->up, b), lc = tile_level(tl->up, c);
+        double z0 = fmin(la, fmin(lb, lc)), z1 = fmax(la, fmax(lb, lc));
         atot += ar;
         stot += ar * sn;
         long b0 = (long)((z0 - zlo) / dz), b1 = (long)((z1 - zlo) / dz);
@@ -392,16 +485,19 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
         dd[k + 1] = dd[k] + dz / fmax(s, TILE_MIN_SIN);
     }
     double dtot = dd[NBINS];
-    long nrows = lround(dtot / tl->size);
-    if (nrows < 1)
-        nrows = 1;
+    long nrows = lround(dtot / tl->size) + tl->extra_rows;
+    /* rows other than the closest count stay within 1.5 times the size of
+     * it either way */
+    if (nrows < 1 || (tl->extra_rows && !(dtot / (double)nrows <= 1.5 * tl->size &&
+                                          dtot / (double)nrows >= tl->size / 1.5)))
+        return 0;
     tl->rowdw = dtot / (double)nrows;
     for (long r = 0; r < nrows; r++) {
         double ztop = r == 0 ? zhi : depth_at(dd, zlo, dz, dtot * (double)(nrows - r) / (double)nrows);
         double zbot = r == nrows - 1 ? zlo
                                      : depth_at(dd, zlo, dz, dtot * (double)(nrows - r - 1) /
                                                                  (double)nrows);
-        /* the middle depth, then a quarter from the top and from the bottom
+        /* the middle level, then a quarter from the top and from the bottom
          * for what the first leaves out */
         size_t first = tl->out->n;
         for (int q = 0; q < 3; q++) {
@@ -414,7 +510,8 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
                 again = 0;
                 for (size_t i = 0; i < n && !again; i++)
                     for (int k = 0; k < 3; k++)
-                        if (x[3 * (size_t)tri[3 * tris[i] + (size_t)k] + 2] == level) {
+                        if (tile_level(tl->up, x + 3 * (size_t)tri[3 * tris[i] + (size_t)k]) ==
+                            level) {
                             level = nextafter(level, -INFINITY);
                             again = 1;
                             break;
@@ -425,6 +522,95 @@ static int tile_fault(tiler *tl, int32_t f, const size_t *tris, size_t n)
         }
     }
     return 0;
+}
+
+/* How far fault f's tiles from first on are from what it should get: the
+ * share of its area (triangles' area atri) they miss or add, and the share
+ * of them the surface departs from by more than a twentieth of the size. */
+static double tiling_cost(fm_tiles *t, tile_walk *w, size_t first, double atri)
+{
+    double area = 0, rough = 0;
+    for (size_t i = first; i < t->n; i++) {
+        area += t->tile[i].length * t->tile[i].width;
+        rough += tile_flat_as_is(w, &t->tile[i]) > t->stats.size / 20;
+    }
+    return fabs(area / atri - 1) + (t->n > first ? rough / (double)(t->n - first) : 0);
+}
+
+/* Fault f tiled in rows by depth and, where it is worth trying
+ * (fault_up), by levels up its mean plane's dip; each with the row count
+ * closest to the size and up to two rows fewer and more while the rows
+ * stay within 1.5 times the size of it (a fault whose down-dip extent
+ * falls between two counts, or whose rows' ends meet its outline badly,
+ * fits another better). The tiling that costs least (tiling_cost) is
+ * kept, the first of a tie within a thousandth: depth, the closest count;
+ * one within a hundredth ends the search.
+ * Depth lays out every steep fault whatever its strike does; where much
+ * of a fault is flat (a detachment, a low-dip thrust, a ramp running into
+ * a flat) a few metres of depth are kilometres down dip and a depth band
+ * holds pieces of it far apart. But a plane's levels run across the
+ * strike where a flat fault's strike turns (a corrugated detachment), so
+ * neither is right everywhere. -1 when memory runs out. */
+static int tile_fault_best(tiler *tl, tile_walk *w, int32_t f, const size_t *tris, size_t n)
+{
+    fm_tiles *t = tl->out;
+    const double z[3] = {0, 0, 1};
+    static const int extra[5] = {0, -1, 1, -2, 2};
+    double g[3], atri = 0, best = INFINITY, bup[3];
+    size_t first = t->n, nb = 0, cap = 0;
+    int ndir = 1 + fault_up(tl, tris, n, g);
+    for (size_t i = 0; i < n; i++)
+        atri += fm_triangle_area(tl->x + 3 * (size_t)tl->tri[3 * tris[i]],
+                                 tl->x + 3 * (size_t)tl->tri[3 * tris[i] + 1],
+                                 tl->x + 3 * (size_t)tl->tri[3 * tris[i] + 2]);
+    fm_tile *keep = NULL;
+    double(*kb)[4] = NULL;
+    int bad = 0;
+    memcpy(bup, z, sizeof z);
+    /* a tiling within a hundredth (its area within 1 %, hardly a tile
+     * rough) is good enough: the others are not tried, which saves most
+     * of the time on most faults */
+    for (int d = 0; d < ndir && !bad && !(best < 0.01); d++)
+        for (int e = 0; e < 5 && !bad && !(best < 0.01); e++) {
+            t->n = first;
+            memcpy(tl->up, d ? g : z, sizeof tl->up);
+            tl->extra_rows = extra[e];
+            bad = tile_fault(tl, f, tris, n) || tile_fit_planes(t, w, first);
+            if (bad || t->n == first)
+                continue;
+            double c = atri > 0 ? tiling_cost(t, w, first, atri) : 0;
+            /* better by a thousandth, not by rounding */
+            if (!(c < best - 1e-3))
+                continue;
+            best = c;
+            memcpy(bup, tl->up, sizeof bup);
+            size_t m = t->n - first;
+            if (m > cap) {
+                fm_tile *k2 = realloc(keep, m * sizeof *k2);
+                if (k2)
+                    keep = k2;
+                double(*b2)[4] = realloc(kb, m * sizeof *b2);
+                if (b2)
+                    kb = b2;
+                bad = !k2 || !b2;
+                cap = bad ? cap : m;
+            }
+            if (!bad) {
+                memcpy(keep, t->tile + first, m * sizeof *keep);
+                memcpy(kb, t->band + first, m * sizeof *kb);
+                nb = m;
+            }
+        }
+    tl->extra_rows = 0;
+    t->n = first;
+    if (best == INFINITY && n)
+        t->stats.unrowed++;
+    memcpy(t->up[f], bup, sizeof bup);
+    for (size_t i = 0; !bad && best < INFINITY && i < nb; i++)
+        bad = tile_push(t, keep + i, kb[i][0], kb[i][1], kb[i][2], (int)kb[i][3]);
+    free(keep);
+    free(kb);
+    return bad ? -1 : 0;
 }
 
 /* The tiles in fault order, each fault's in the order they were made (a
@@ -512,8 +698,11 @@ fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_ti
     if (!bad) {
         t->nfaults = nfaults;
         t->fault = calloc(nfaults + 1, sizeof *t->fault);
+        t->up = calloc(nfaults + 1, sizeof *t->up);
         t->stats.size = size;
-        bad = !t->fault || make_sides(set, &sd, nbr);
+        bad = !t->fault || !t->up || make_sides(set, &sd, nbr);
+        for (size_t f = 0; !bad && f < nfaults; f++)
+            t->up[f][2] = 1;
     }
     if (!bad) {
         for (size_t i = 0; i < nt; i++)
@@ -532,13 +721,15 @@ fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_ti
             free(pos);
         }
     }
+    tile_walk w = {.x = tl.x, .up = t ? (const double(*)[3])t->up : NULL, .tri = tl.tri,
+                   .nbr = nbr, .stamp = calloc(nt + 1, sizeof(uint32_t)),
+                   .list = malloc((nt + 1) * sizeof(int32_t))};
+    bad = bad || !w.stamp || !w.list;
     for (size_t f = 0; !bad && f < nfaults; f++)
-        bad = tile_fault(&tl, (int32_t)f, order + start[f], start[f + 1] - start[f]) != 0;
-    tile_walk w = {tl.x, tl.tri, nbr, calloc(nt + 1, sizeof(uint32_t)), 0,
-                   malloc((nt + 1) * sizeof(int32_t)), 0, 0};
+        bad = tile_fault_best(&tl, &w, (int32_t)f, order + start[f], start[f + 1] - start[f]) != 0;
     if (!bad)
-        bad = !w.stamp || !w.list || tile_fit_planes(t, &w) || tile_separate(t) ||
-              by_fault(t) || tile_measure(t, set, &sd, &w);
+        bad = tile_fill_junctions(t, set, &sd) || tile_separate(t) || by_fault(t) ||
+              tile_measure(t, set, &sd, &w);
     free(w.stamp);
     free(w.list);
     if (t) {
@@ -568,6 +759,7 @@ void fm_tiles_destroy(fm_tiles *t)
         return;
     free(t->tile);
     free(t->fault);
+    free(t->up);
     free(t->junction);
     free(t);
 }

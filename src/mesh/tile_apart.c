@@ -197,8 +197,8 @@ static int mark_pair(size_t j, void *user)
     double la = cut_loss(a, b, -1), lb = cut_loss(b, a, -1);
     if (la > lb)
         return 0; /* b is the one cut: its own turn decides */
-    double area = a->length * a->width, least = c->t->stats.size / 4;
-    if (!(la > 0.1 * area))
+    double area = a->length * a->width, least = c->t->stats.size / 8;
+    if (!(la > 0.05 * area))
         return 0;
     double ls = a->length / 2 >= least ? cut_loss(a, b, 0) : INFINITY;
     double ld = a->width / 2 >= least ? cut_loss(a, b, 1) : INFINITY;
@@ -207,9 +207,13 @@ static int mark_pair(size_t j, void *user)
     return 0;
 }
 
-/* Tiles that would lose more than a tenth of their area where they meet
- * another fault's tile (a junction crossing a row at a slant) split in
- * two first, so that the cut takes less; -1 when memory runs out. */
+/* Tiles that would lose more than a twentieth of their area where they
+ * meet another fault's tile (a junction crossing a row at a slant) split
+ * in two first, down to an eighth of the size, so that the cut takes
+ * less: over rounds the tiles follow the junction as a staircase (on the
+ * whole CFM at 2 km, 64 faults outside 3 % of their area instead of 78
+ * with two rounds, a tenth and a quarter of the size); -1 when memory
+ * runs out. */
 static int split_for_cuts(fm_tiles *t)
 {
     double rmax = max_radius(t);
@@ -246,7 +250,7 @@ int tile_separate(fm_tiles *t)
 {
     if (!t->n)
         return 0;
-    for (int round = 0; round < 2; round++)
+    for (int round = 0; round < 4; round++)
         if (split_for_cuts(t))
             return -1;
     double *rad = malloc(t->n * sizeof *rad), rmax = 0;
@@ -461,8 +465,12 @@ int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, tile_wal
         fm_tile *tl = &t->tile[i];
         double c[4][3];
         fm_tile_corners(tl, c);
-        double zlo = fmin(fmin(c[0][2], c[1][2]), fmin(c[2][2], c[3][2]));
-        double zhi = fmax(fmax(c[0][2], c[1][2]), fmax(c[2][2], c[3][2]));
+        double zlo = INFINITY, zhi = -INFINITY;
+        for (int k = 0; k < 4; k++) {
+            double z = tile_level(t->up[tl->fault], c[k]);
+            zlo = fmin(zlo, z);
+            zhi = fmax(zhi, z);
+        }
         tile_region(w, tl, zlo, zhi);
         tl->flatness = tile_flatness(w, tl);
     }

@@ -16,7 +16,8 @@ struct fm_tiles {
     fm_tile_junction *junction;
     size_t njunctions;
     fm_tile_stats stats;
-    double (*band)[4];   /* while tiling: each tile's row, its top and bottom depth and its
+    double (*up)[3];     /* per fault, the direction its rows are levels of (tile_up) */
+    double (*band)[4];   /* while tiling: each tile's row, its top and bottom level and its
                             width down dip at the fault's mean dip in that band; and
                             whether its columns are open at the start (1) or the end (2)
                             of the strike: it ends its contour there */
@@ -35,12 +36,17 @@ typedef struct tile_sides {
  * flatness over the surface tile_region finds for it); -1 when memory
  * runs out (tile_apart.c). */
 int tile_separate(fm_tiles *t);
+/* Tiles added for each fault at the junction points (where tile_measure
+ * measures gaps) that none of its tiles comes within 0.4 of the size of;
+ * -1 when memory runs out (tile_fill.c). */
+int tile_fill_junctions(fm_tiles *t, const fm_mesh *set, const tile_sides *sd);
 /* The surface a tile stands for: the triangles joined to the one under its
  * centre (across the sides nbr joins: not across an outline, a junction
- * or a branch line) that reach into its columns between depths zlo and
- * zhi. Found by walking out from that triangle (tile_plane.c). */
+ * or a branch line) that reach into its columns between levels zlo and
+ * zhi (tile_level). Found by walking out from that triangle (tile_plane.c). */
 typedef struct tile_walk {
     const double *x;
+    const double (*up)[3]; /* per fault, as fm_tiles' */
     const int32_t *tri, *nbr;
     uint32_t *stamp; /* per triangle */
     uint32_t cur;
@@ -50,16 +56,26 @@ typedef struct tile_walk {
 } tile_walk;
 void tile_region(tile_walk *w, const fm_tile *tl, double zlo, double zhi);
 
-/* Each tile's plane fitted to the surface it stands for, then a tile over
+/* Each tile's plane (from first on) fitted to the surface it stands for, then a tile over
  * 1.5 times the size wide halved down dip until it is not, and one the
  * surface departs from by more than a 25th of the size split in two
  * (along strike or down dip, whichever leaves it flatter) while its sides
  * stay above an eighth of the size; -1 when memory runs out
  * (tile_plane.c). */
-int tile_fit_planes(fm_tiles *t, tile_walk *w);
+int tile_fit_planes(fm_tiles *t, tile_walk *w, size_t first);
 /* How far the surface w found for tl lies from tl's plane where it lies
  * under tl (tile_region first). */
 double tile_flatness(const tile_walk *w, const fm_tile *tl);
+/* Where p lies along up: the "depth" a fault's rows are cut by. With up
+ * straight up (0, 0, 1) it is p's z exactly. */
+static inline double tile_level(const double up[3], const double p[3])
+{
+    return up[0] * p[0] + up[1] * p[1] + up[2] * p[2];
+}
+
+/* The flatness of a tile as it stands, over the surface its level span
+ * reaches (tile_plane.c). */
+double tile_flat_as_is(tile_walk *w, const fm_tile *tl);
 /* Appends a tile of the row ztop..zbot, dw wide down dip (tile.c). */
 int tile_push(fm_tiles *t, const fm_tile *tile, double ztop, double zbot, double dw, int open);
 

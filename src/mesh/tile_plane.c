@@ -2,11 +2,13 @@
  * fitted to it (tile_internal.h). The strike stays horizontal, as a
  * rectangle given by strike and dip has it, so the fit is a line across
  * the strike: the principal axis of the surface's samples seen along the
- * strike. The contour's normals at the row's middle depth, which a tile
+ * strike. The contour's normals at the row's middle level, which a tile
  * starts with, miss a row whose dip changes and give a width that does
- * not match it; and the surface may fill only part of the row's depth at
- * a tile (a top or bottom edge that climbs along strike), so the tile
- * spans the depths its surface does. */
+ * not match it; and the surface may fill only part of the row's levels
+ * at a tile (a top or bottom edge that climbs along strike), so the tile
+ * spans the levels its surface does. Levels are depth or, on a fault
+ * whose rows follow its mean plane, distance up that plane's dip
+ * (tile_level). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +23,7 @@ static int reaches(const tile_walk *w, size_t t, const fm_tile *tl, double zlo, 
 {
     double ulo = INFINITY, uhi = -INFINITY, z0 = INFINITY, z1 = -INFINITY, wmin = INFINITY;
     double n[3];
+    const double *up = w->up[tl->fault];
     tile_normal(tl, n);
     for (int k = 0; k < 3; k++) {
         const double *p = w->x + 3 * (size_t)w->tri[3 * t + (size_t)k];
@@ -28,8 +31,9 @@ static int reaches(const tile_walk *w, size_t t, const fm_tile *tl, double zlo, 
         double u = fm_dot3(r, tl->strike);
         ulo = fmin(ulo, u);
         uhi = fmax(uhi, u);
-        z0 = fmin(z0, p[2]);
-        z1 = fmax(z1, p[2]);
+        double z = tile_level(up, p);
+        z0 = fmin(z0, z);
+        z1 = fmax(z1, z);
         wmin = fmin(wmin, fabs(fm_dot3(r, n)));
     }
     return (uhi >= -tl->length / 2 || (w->open & 1)) && (ulo <= tl->length / 2 || (w->open & 2)) &&
@@ -60,10 +64,10 @@ void tile_region(tile_walk *w, const fm_tile *tl, double zlo, double zhi)
 }
 
 /* The part of triangle c between u = -L/2 and L/2 along strike st (from
- * centre o) and between depths zbot and ztop: its area, and its area times
- * its centroid added to m[3]. */
+ * centre o) and between levels zbot and ztop along up: its area, and its
+ * area times its centroid added to m[3]. */
 static double clipped(const double *const c[3], const double *o, const double *st, double L,
-                      int open, double zbot, double ztop, double m[3])
+                      int open, const double *up, double zbot, double ztop, double m[3])
 {
     double poly[2][12][3];
     int n = 3, cur = 0;
@@ -77,7 +81,10 @@ static double clipped(const double *const c[3], const double *o, const double *s
         for (int k = 0; k < n; k++) {
             const double *p = poly[cur][k];
             double u = (p[0] - o[0]) * st[0] + (p[1] - o[1]) * st[1] + (p[2] - o[2]) * st[2];
-            f[k] = plane == 0 ? u + L / 2 : plane == 1 ? L / 2 - u : plane == 2 ? p[2] - zbot : ztop - p[2];
+            f[k] = plane == 0   ? u + L / 2
+                   : plane == 1 ? L / 2 - u
+                   : plane == 2 ? tile_level(up, p) - zbot
+                                : ztop - tile_level(up, p);
         }
         for (int k = 0; k < n; k++) {
             int j = (k + 1) % n;
@@ -105,7 +112,7 @@ static double clipped(const double *const c[3], const double *o, const double *s
     return area;
 }
 
-/* The plane and depth span of tile tl (row ztop..zbot, dw wide down dip at
+/* The plane and level span of tile tl (row ztop..zbot, dw wide down dip at
  * the fault's mean dip) from the surface w found for it. */
 static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, double dw)
 {
@@ -113,20 +120,24 @@ static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, dou
                                     {1.0 / 6, 2.0 / 3, 1.0 / 6}, {1.0 / 6, 1.0 / 6, 2.0 / 3},
                                     {1.0 / 6, 5.0 / 12, 5.0 / 12}, {5.0 / 12, 1.0 / 6, 5.0 / 12},
                                     {5.0 / 12, 5.0 / 12, 1.0 / 6}};
+    const double *up = w->up[tl->fault];
     double rh[3] = {tl->strike[1], -tl->strike[0], 0};
     double n = 0, sa = 0, sb = 0, saa = 0, sab = 0, sbb = 0, zlo = INFINITY, zhi = -INFINITY;
     for (size_t i = 0; i < w->n; i++) {
         const double *c[3];
         for (int k = 0; k < 3; k++)
             c[k] = w->x + 3 * (size_t)w->tri[3 * (size_t)w->list[i] + (size_t)k];
-        zlo = fmin(zlo, fmin(c[0][2], fmin(c[1][2], c[2][2])));
-        zhi = fmax(zhi, fmax(c[0][2], fmax(c[1][2], c[2][2])));
+        double l0 = tile_level(up, c[0]), l1 = tile_level(up, c[1]), l2 = tile_level(up, c[2]);
+        zlo = fmin(zlo, fmin(l0, fmin(l1, l2)));
+        zhi = fmax(zhi, fmax(l0, fmax(l1, l2)));
         for (int k = 0; k < 7; k++) {
-            double p[3];
-            for (int d = 0; d < 3; d++)
-                p[d] = bw[k][0] * c[0][d] + bw[k][1] * c[1][d] + bw[k][2] * c[2][d] -
-                       tl->centre[d];
-            if (p[2] + tl->centre[2] > ztop || p[2] + tl->centre[2] < zbot ||
+            double p[3], pa[3];
+            for (int d = 0; d < 3; d++) {
+                pa[d] = bw[k][0] * c[0][d] + bw[k][1] * c[1][d] + bw[k][2] * c[2][d];
+                p[d] = pa[d] - tl->centre[d];
+            }
+            double lv = tile_level(up, pa);
+            if (lv > ztop || lv < zbot ||
                 fabs(fm_dot3(p, tl->strike)) > tl->length / 2)
                 continue;
             double a = fm_dot3(p, rh), b = p[2];
@@ -149,10 +160,13 @@ static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, dou
     double ma = n > 0 ? sa / n : 0, mb = n > 0 ? sb / n : 0;
     double caa = n > 0 ? saa / n - ma * ma : 0, cab = n > 0 ? sab / n - ma * mb : 0,
            cbb = n > 0 ? sbb / n - mb * mb : 0;
+    /* the samples' spread in level (seen along the strike) */
+    double ga = fm_dot3(up, rh), gb = up[2];
+    double cll = ga * ga * caa + 2 * ga * gb * cab + gb * gb * cbb;
     double st[3] = {tl->strike[0], tl->strike[1], 0}, dip[3];
     double q[3] = {tl->centre[0], tl->centre[1], tl->centre[2]};
-    /* samples all at one depth say nothing of the dip: the plane stays */
-    if (n >= 3 && cbb > dz * dz / 400) {
+    /* samples all at one level say nothing of the dip: the plane stays */
+    if (n >= 3 && cll > dz * dz / 400) {
         double phi = 0.5 * atan2(2 * cab, caa - cbb);
         /* the normal is across the principal axis (cos phi, sin phi) */
         double nr[3] = {-sin(phi) * rh[0], -sin(phi) * rh[1], cos(phi)};
@@ -164,7 +178,7 @@ static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, dou
     } else {
         memcpy(dip, tl->dip, sizeof dip);
     }
-    double sd = fmax(-dip[2], sdmin);
+    double sd = fmax(fabs(fm_dot3(dip, up)), sdmin);
     /* The tile's width makes its area the surface's within its columns and
      * depth span, and it is centred on that surface's centroid: a top or
      * bottom edge across the column at a slant (a sea floor, a climbing
@@ -178,12 +192,12 @@ static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, dou
         int open = w->open;
         if (st[0] * tl->strike[0] + st[1] * tl->strike[1] < 0)
             open = (open & 1) << 1 | (open & 2) >> 1;
-        area += clipped(c, tl->centre, st, tl->length, open, zbot, ztop, m);
+        area += clipped(c, tl->centre, st, tl->length, open, up, zbot, ztop, m);
     }
     double width = dz / sd, s = 0;
     if (area > 0 && tl->length > 0) {
         /* within the depth span, at the plane's own dip however flat */
-        double sdt = -dip[2];
+        double du = fm_dot3(dip, up), sdt = fabs(du);
         width = fmin(sdt > 1e-9 ? dz / sdt : INFINITY, area / tl->length);
         /* down the plane to the surface's centroid (across the strike
          * only: along it the columns stay where they are) */
@@ -194,10 +208,10 @@ static void refit(fm_tile *tl, const tile_walk *w, double ztop, double zbot, dou
          * detachment) a few metres of depth are kilometres down dip, and
          * the centroid, on the surface, is the better guide */
         if (sdt >= TILE_MIN_SIN) {
-            double h = width * sdt / 2, z = q[2] + s * dip[2];
+            double h = width * sdt / 2, z = tile_level(up, q) + s * du;
             double zc = fmin(fmax(z, zbot + h), ztop - h);
             if (zc != z)
-                s = (zc - q[2]) / dip[2];
+                s = (zc - tile_level(up, q)) / du;
         }
     }
     for (int d = 0; d < 3; d++)
@@ -230,12 +244,21 @@ double tile_flatness(const tile_walk *w, const fm_tile *tl)
     return flat;
 }
 
-/* The depth span of a tile as it stands. */
-static void span(const fm_tile *tl, double *ztop, double *zbot)
+/* The level span of a tile as it stands. */
+static void span(const tile_walk *w, const fm_tile *tl, double *ztop, double *zbot)
 {
-    double h = fabs(tl->dip[2]) * tl->width / 2;
-    *ztop = tl->centre[2] + h;
-    *zbot = tl->centre[2] - h;
+    const double *up = w->up[tl->fault];
+    double h = fabs(fm_dot3(tl->dip, up)) * tl->width / 2, c = tile_level(up, tl->centre);
+    *ztop = c + h;
+    *zbot = c - h;
+}
+
+double tile_flat_as_is(tile_walk *w, const fm_tile *tl)
+{
+    double lo, hi;
+    span(w, tl, &hi, &lo);
+    tile_region(w, tl, lo, hi);
+    return tile_flatness(w, tl);
 }
 
 /* The flatness of a tile as it stands; its triangle made the one of its
@@ -244,7 +267,7 @@ static void span(const fm_tile *tl, double *ztop, double *zbot)
 static double flat_of(tile_walk *w, fm_tile *tl, double *off)
 {
     double lo, hi;
-    span(tl, &hi, &lo);
+    span(w, tl, &hi, &lo);
     tile_region(w, tl, lo, hi);
     double best = INFINITY;
     for (size_t k = 0; k < w->n; k++) {
@@ -286,10 +309,15 @@ static double fitted(tile_walk *w, fm_tile *tl, double ztop, double zbot, double
 }
 
 /* Halves of tile tl (of row band b): along strike (dip 0) or down dip. */
-static void halves(const fm_tile *tl, const double b[4], int dip, fm_tile h[2], double hb[2][4])
+static void halves(const tile_walk *w, const fm_tile *tl, const double b[4], int dip, fm_tile h[2],
+                   double hb[2][4])
 {
     double ztop, zbot;
-    span(tl, &ztop, &zbot);
+    span(w, tl, &ztop, &zbot);
+    const double *up = w->up[tl->fault];
+    double zc = tile_level(up, tl->centre);
+    /* the half down dip is the lower one unless the tile dips against up */
+    int low = fm_dot3(tl->dip, up) > 0 ? 0 : 1;
     for (int k = 0; k < 2; k++) {
         h[k] = *tl;
         double sg = k ? 0.5 : -0.5;
@@ -303,8 +331,8 @@ static void halves(const fm_tile *tl, const double b[4], int dip, fm_tile h[2], 
             h[k].width = tl->width / 2;
             for (int d = 0; d < 3; d++)
                 h[k].centre[d] += sg * tl->width / 2 * tl->dip[d];
-            hb[k][0] = k ? tl->centre[2] : ztop;
-            hb[k][1] = k ? zbot : tl->centre[2];
+            hb[k][0] = k == low ? zc : ztop;
+            hb[k][1] = k == low ? zbot : zc;
             h[k].row = tl->row + k; /* only the upper half keeps the top edge */
         }
         hb[k][2] = b[2] / (dip ? 2 : 1);
@@ -313,10 +341,10 @@ static void halves(const fm_tile *tl, const double b[4], int dip, fm_tile h[2], 
     }
 }
 
-int tile_fit_planes(fm_tiles *t, tile_walk *w)
+int tile_fit_planes(fm_tiles *t, tile_walk *w, size_t first)
 {
     double tol = t->stats.size / 25, least = t->stats.size / 8;
-    for (size_t i = 0; i < t->n; i++) {
+    for (size_t i = first; i < t->n; i++) {
         if (!t->band) /* after a failed push */
             return -1;
         double flat = fitted(w, &t->tile[i], t->band[i][0], t->band[i][1], t->band[i][2],
@@ -328,7 +356,7 @@ int tile_fit_planes(fm_tiles *t, tile_walk *w)
         while (t->tile[i].width > 1.5 * t->stats.size) {
             fm_tile h[2];
             double hb[2][4];
-            halves(&t->tile[i], t->band[i], 1, h, hb);
+            halves(w, &t->tile[i], t->band[i], 1, h, hb);
             fitted(w, &h[1], hb[1][0], hb[1][1], hb[1][2], (int)hb[1][3]);
             flat = fitted(w, &h[0], hb[0][0], hb[0][1], hb[0][2], (int)hb[0][3]);
             t->tile[i] = h[0];
@@ -346,7 +374,7 @@ int tile_fit_planes(fm_tiles *t, tile_walk *w)
                     continue;
                 fm_tile h[2];
                 double hb[2][4];
-                halves(tl, t->band[i], dip, h, hb);
+                halves(w, tl, t->band[i], dip, h, hb);
                 double f0 = fitted(w, &h[0], hb[0][0], hb[0][1], hb[0][2], (int)hb[0][3]);
                 double f1 = fitted(w, &h[1], hb[1][0], hb[1][1], hb[1][2], (int)hb[1][3]);
                 if (fmax(f0, f1) < bf) {
@@ -365,6 +393,15 @@ int tile_fit_planes(fm_tiles *t, tile_walk *w)
                 return -1;
             flat = bf0; /* the kept half's, as fitted */
         }
+        /* A tile still standing off its surface (its centre over 1.5
+         * times the size from the nearest centroid of the triangles it
+         * stands for: on an undulating detachment neither its row's
+         * contour nor a fitted plane found the surface) stands for
+         * nothing: given up (tile_separate counts it). */
+        double off;
+        flat_of(w, &t->tile[i], &off);
+        if (off > 1.5 * t->stats.size)
+            t->tile[i].length = t->tile[i].width = 0;
     }
     return 0;
 }

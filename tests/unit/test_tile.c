@@ -132,6 +132,40 @@ static void test_tee_junction(void)
     }
 }
 
+/* Fault 1 reaching fault 0 only as a strip 500 m tall and 3 km long from
+ * its body (the tee's fault 1 with its triangles below 500 m gone for
+ * x < 3 km): its rows' contours pass below the strip or leave it to
+ * slivers, and the junction was bare of its tiles (as on the CFM's
+ * Western Deep fault against Oak Ridge, 2.7 km at 2 km). A tile on the
+ * strip's edge covers it. */
+static void test_thin_strip_to_junction(void)
+{
+    fm_mesh *tee_m = tee(3.14159265358979 / 2);
+    fm_mesh *m = fm_mesh_create();
+    const double *x = fm_mesh_vertices(tee_m);
+    for (size_t v = 0; v < fm_mesh_nvertices(tee_m); v++)
+        fm_mesh_add_vertex(m, x[3 * v], x[3 * v + 1], x[3 * v + 2]);
+    const int32_t *tri = fm_mesh_triangles(tee_m), *tag = fm_mesh_tags(tee_m);
+    for (size_t i = 0; i < fm_mesh_ntriangles(tee_m); i++) {
+        const double *a = x + 3 * (size_t)tri[3 * i], *b = x + 3 * (size_t)tri[3 * i + 1],
+                     *c = x + 3 * (size_t)tri[3 * i + 2];
+        double cx = (a[0] + b[0] + c[0]) / 3, cz = (a[2] + b[2] + c[2]) / 3;
+        if (tag[i] == 1 && cx < 3000 && cz < -500)
+            continue;
+        fm_mesh_add_triangle(m, tri[3 * i], tri[3 * i + 1], tri[3 * i + 2], tag[i]);
+    }
+    fm_tiles *t = NULL;
+    CHECK_EQ(fm_tiles_create(m, 2, 2000, &t, NULL), FM_OK);
+    CHECK_EQ(fm_tiles_stats(t)->meeting, 0);
+    CHECK_EQ(fm_tiles_njunctions(t), 1);
+    const fm_tile_junction *j = fm_tiles_junction(t, 0);
+    CHECK(fabs(j->length - 500) < 1e-6);
+    CHECK(j->gap_max <= 1000);
+    fm_tiles_destroy(t);
+    fm_mesh_destroy(m);
+    fm_mesh_destroy(tee_m);
+}
+
 /* Fault 1 crossing fault 0 at a slant: tile corners reach across, and are
  * cut back. */
 static void tilted(const void *ctx, double s, double t, double p[3])
@@ -267,6 +301,48 @@ static void test_detachment_tiles_on_it(void)
     fm_mesh_destroy(m);
 }
 
+/* A ramp running into a flat, as the CFM's Padre Juan fault (lower) and
+ * many thrusts and detachments do: 5 km down dip at 60 degrees, then
+ * 15 km at 4 degrees the same way, 24 km along strike. Rows by depth put
+ * the whole flat in one or two bands, its tiles anywhere in them (0.74 of
+ * Padre Juan's area at 2 km; here the flat's tiles stand off it, flatness
+ * p99 over 5 % of the size); rows by levels up the mean plane's dip follow
+ * the flat down dip. */
+static void ramp_flat(const void *ctx, double s, double t, double p[3])
+{
+    (void)ctx;
+    const double c60 = 0.5, s60 = 0.86602540378443865, c4 = 0.99756405025982425,
+                 s4 = 0.069756473744125301;
+    double r = fmin(t, 5000), f = fmax(t - 5000, 0);
+    p[0] = 300000 + r * c60 + f * c4;
+    p[1] = 3800000 + s;
+    p[2] = -500 - r * s60 - f * s4;
+}
+
+static void test_ramp_into_flat(void)
+{
+    fm_mesh *m = fm_test_grid_mesh(24000, 20000, 500, ramp_flat, NULL);
+    fm_tiles *t = NULL;
+    CHECK_EQ(fm_tiles_create(m, 1, 2000, &t, NULL), FM_OK);
+    const fm_tile_fault *f = fm_tiles_fault(t, 0);
+    CHECK(fabs(f->area_tiles / f->area_triangles - 1) < 0.03);
+    CHECK(fm_tiles_stats(t)->flatness_p99 < 0.05 * 2000);
+    /* every tile on the surface: its centre within a grid cell of a vertex */
+    const double *x = fm_mesh_vertices(m);
+    double worst = 0;
+    for (size_t i = 0; i < fm_tiles_count(t); i++) {
+        const fm_tile *tl = fm_tiles_get(t, i);
+        double best = INFINITY;
+        for (size_t v = 0; v < fm_mesh_nvertices(m); v++)
+            best = fmin(best, hypot(hypot(x[3 * v] - tl->centre[0], x[3 * v + 1] - tl->centre[1]),
+                                    x[3 * v + 2] - tl->centre[2]));
+        worst = fmax(worst, best);
+    }
+    CHECK(worst < 500);
+    fm_tiles_destroy(t);
+    fm_mesh_destroy(m);
+}
+
 static void test_bad_input(void)
 {
     fm_mesh *m = fm_test_grid_mesh(2000, 2000, 500, vertical, NULL);
@@ -281,4 +357,6 @@ static void test_bad_input(void)
 FM_TEST_MAIN(FM_CASE(test_planar_rows_and_columns), FM_CASE(test_curved_area),
              FM_CASE(test_tee_junction), FM_CASE(test_crossing_faults_cut_apart),
              FM_CASE(test_climbing_top_edge), FM_CASE(test_valley_in_top_edge),
-             FM_CASE(test_detachment_tiles_on_it), FM_CASE(test_bad_input))
+             FM_CASE(test_detachment_tiles_on_it), FM_CASE(test_ramp_into_flat),
+             FM_CASE(test_thin_strip_to_junction),
+             FM_CASE(test_bad_input))
