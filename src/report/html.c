@@ -59,7 +59,7 @@ void rp_badge(FILE *fp, const rp_fault *f)
 
 static void summary(FILE *fp, const fm_report *r, const size_t kinds[RP_NKINDS])
 {
-    fputs("<h2 id=\"summary\">Summary</h2>\n<table>\n", fp);
+    fputs("<h2 id=\"summary\">Summary</h2>\n<table id=\"summary-table\">\n", fp);
     for (size_t i = 0; i + 1 < r->nfact; i += 2) {
         fputs("<tr><th>", fp);
         rp_esc(fp, r->fact[i]);

@@ -165,14 +165,18 @@ static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t 
             continue;
         fault_result *r = res[f];
         char msg[512];
+        /* the two shares the rule decides on come first: the pair is a
+         * near-duplicate because one of them reaches min_share, which the
+         * share of the fault given up alone often does not */
         if (d)
             snprintf(msg, sizeof msg,
-                     "near-duplicate of %s: %.0f%% of its area lies within %.0f m of the faults "
-                     "it pairs with (%.0f%% within %.0f m of that one, which is kept: the %s of "
-                     "the two)",
-                     res[d->kept]->name, 100 * d->cover, po.duplicates.tolerance,
-                     100 * d->share[0], po.duplicates.tolerance,
-                     d->area[1] > d->area[0] ? "larger" : "smaller");
+                     "near-duplicate of %s: %.0f%% of that one's area lies within %.0f m of "
+                     "this fault, %.0f%% of this one's within %.0f m of it (a pair is a "
+                     "near-duplicate when either share reaches %.0f%%); that one, the %s of the "
+                     "two, is kept; the faults this one pairs with cover %.0f%% of it",
+                     res[d->kept]->name, 100 * d->share[1], po.duplicates.tolerance,
+                     100 * d->share[0], po.duplicates.tolerance, 100 * po.duplicates.min_share,
+                     d->area[1] > d->area[0] ? "larger" : "smaller", 100 * d->cover);
         else
             snprintf(msg, sizeof msg, "near-duplicate of another fault");
         r->status = "dropped";
