@@ -38,8 +38,8 @@ void rp_toc(FILE *fp, const fm_report *r)
     }
     fprintf(fp,
             "<nav class=\"toc\">Contents: <a href=\"#summary\">Summary</a>"
-            "<a href=\"#problems\">Problems (%zu faults not meshed, %zu with warnings, %zu cut "
-            "back; %zu junctions unjoined)</a><a href=\"#map\">Map</a><a href=\"#quality\">"
+            "<a href=\"#problems\">Problems (%zu faults not meshed, %zu with warnings, %zu "
+            "near-overlaps; %zu junctions unjoined)</a><a href=\"#map\">Map</a><a href=\"#quality\">"
             "Quality</a><a href=\"#faults\">Faults (%zu)</a><a href=\"#junctions\">Junctions "
             "(%zu)</a></nav>\n",
             nm, nw, nc, count_unjoined(r), r->nf, r->nj);

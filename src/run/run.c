@@ -351,7 +351,7 @@ fm_status run_execute(fm_run_result *res, const char *const *files, size_t nfile
     double t2 = fm_clock_seconds();
     run_jobs(cli, plan, 1, NULL, jobs, nfiles);
     if (plan && !run_cancelled(cli->ctl))
-        settle_curves(cli, plan, jobs, nfiles);
+        rs->mesh_rounds = settle_curves(cli, plan, jobs, nfiles);
     if (run_cancelled(cli->ctl))
         return cancelled(res, err);
     double t3 = fm_clock_seconds();
@@ -404,7 +404,7 @@ fm_status fm_run_result_write(fm_run_result *res, const char *dir, unsigned form
     if (html && cli->jobs > 1)
         html_async = pthread_create(&html_thread, NULL, html_worker, &hj) == 0;
     if (html && !html_async) {
-        run_progress_begin(cli->ctl, "report.html", 0, NULL, 0);
+        run_progress_begin(cli->ctl, "write report.html", 0, NULL, 0);
         html_worker(&hj);
         run_progress_end(cli->ctl);
     }
@@ -423,13 +423,15 @@ fm_status fm_run_result_write(fm_run_result *res, const char *dir, unsigned form
     }
     release_jobs(res);
     rs->time[4] = fm_clock_seconds() - res->t4;
+    /* the stage ends with the time report.json records for it, so that
+     * the log and the summary agree */
+    run_progress_end(cli->ctl);
     /* report.json even when the meshes could not be written: it says what
      * each fault came to, and which files are missing */
     fm_error rerr;
     fm_error_clear(&rerr);
     fm_status rst = write_report(cli, rs, sa.slip ? &sa : NULL, &rerr);
     sim_attrs_free(&sa);
-    run_progress_end(cli->ctl);
     note_report(outputs, "report.json", rst == FM_OK ? NULL : &rerr);
     if (first == FM_OK && rst != FM_OK) {
         first = rst;
