@@ -15,7 +15,10 @@
  * across its parent's edge (a, b) as (b, a, third), the parent's
  * orientation carried over. Then the
  * count of its junction edges (sides it shares with a triangle of another
- * tag) and their local vertices. All numbers are LEB128 varints, signed
+ * tag) and their local vertices; then the outline of the fault's
+ * original (none when it has none): the count of its chains, and per
+ * chain its count of points and each point less the one before (the
+ * grid's origin at first). All numbers are LEB128 varints, signed
  * ones zigzagged. One grid of step H / 16 over the whole set, so that the
  * nodes two faults share coincide on the page; at 1 km a node moves at
  * most 55 m, a twentieth of a triangle. The stream is deflated (zlib
@@ -205,6 +208,29 @@ static void pack_junctions(packer *p, size_t g, const size_t *tris, size_t n, bu
     put_bytes(p->out, tmp);
 }
 
+/* The outline of the original m (NULL: none) on the grid. */
+static fm_status pack_outline(packer *p, const fm_mesh *m, const double origin[3], double step)
+{
+    rp_chains c = {0};
+    fm_status st = m ? rp_outline(m, &c) : FM_OK;
+    if (st != FM_OK)
+        return st;
+    put(p->out, c.n);
+    const double *X = m ? fm_mesh_vertices(m) : NULL;
+    int64_t last[3] = {0, 0, 0};
+    for (size_t k = 0; k < c.n; k++) {
+        put(p->out, c.start[k + 1] - c.start[k]);
+        for (size_t i = c.start[k]; i < c.start[k + 1]; i++)
+            for (int d = 0; d < 3; d++) {
+                int64_t q = llround((X[3 * (size_t)c.v[i] + d] - origin[d]) / step);
+                put_signed(p->out, q - last[d]);
+                last[d] = q;
+            }
+    }
+    rp_chains_free(&c);
+    return FM_OK;
+}
+
 /* For each side 3t + e, where its key's run starts in side. */
 static size_t *side_groups(const fm_mesh *m, const fm_keyed *side, size_t ns)
 {
@@ -267,11 +293,17 @@ fm_status rp_pack_set(const fm_report *r, size_t ntags, rp_pack *out)
             start[g] = start[g - 1];
         start[0] = 0;
         packer p = {fm_mesh_triangles(m), tag, q, side, group, ns, local, stamp, queue, qv, done, 0, {0, 0, 0}, &b};
-        for (size_t g = 0; g < ntags && !b.bad; g++) {
+        for (size_t g = 0; g < ntags && !b.bad && st == FM_OK; g++) {
             pack_tag(&p, g, order + start[g], start[g + 1] - start[g]);
             pack_junctions(&p, g, order + start[g], start[g + 1] - start[g], &tmp);
+            const fm_mesh *orig = NULL;
+            for (size_t i = 0; i < r->nf && !orig; i++)
+                if (r->f[i].tag == (int32_t)g)
+                    orig = r->f[i].original;
+            st = pack_outline(&p, orig, out->origin, out->step);
         }
-        st = b.bad ? FM_ERR_NOMEM : FM_OK;
+        if (st == FM_OK && b.bad)
+            st = FM_ERR_NOMEM;
     }
     if (st == FM_OK) {
         uLongf n = compressBound((uLong)b.n);

@@ -126,9 +126,18 @@
       }
       var nj = uint(), J = new Uint32Array(2 * nj);
       for (var j = 0; j < 2 * nj; j++) J[j] = uint();
+      var O = [], at0 = [0, 0, 0];
+      for (var no = uint(); no > 0; no--) {
+        var np = uint(), L = new Float32Array(3 * np);
+        for (var i = 0; i < 3 * np; i++) {
+          at0[i % 3] += sint();
+          L[i] = at0[i % 3] * D.step / 1000;
+        }
+        O.push(L);
+      }
       var P = new Float32Array(Q.length);
       for (var q = 0; q < Q.length; q++) P[q] = Q[q] * D.step / 1000; /* km from the origin */
-      out.push({ P: P, T: T, J: J });
+      out.push({ P: P, T: T, J: J, O: O });
     }
     return out;
   }
@@ -205,6 +214,16 @@
       ctx.stroke();
     });
     var m = items[0].m, P = m.P;
+    ctx.strokeStyle = '#333';
+    ctx.lineWidth = 1.2;
+    ctx.setLineDash([6, 4]);
+    ctx.beginPath();
+    m.O.forEach(function (L) {
+      for (var i = 0; i < L.length; i += 3)
+        (i ? ctx.lineTo : ctx.moveTo).call(ctx, sx(L, i), sy(L, i));
+    });
+    ctx.stroke();
+    ctx.setLineDash([]);
     ctx.strokeStyle = '#000';
     ctx.lineWidth = 2.5;
     ctx.beginPath();
@@ -269,6 +288,12 @@
     });
     var m = items[0].m;
     for (var j = 0; j < m.J.length; j++) push(line, m.P, 3 * m.J[j], [0, 0, 1], [0, 0, 0]);
+    m.O.forEach(function (L) {
+      for (var i = 3; i < L.length; i += 3) {
+        push(line, L, i - 3, [0, 0, 1], [0.2, 0.2, 0.2]);
+        push(line, L, i, [0, 0, 1], [0.2, 0.2, 0.2]);
+      }
+    });
     function buffer(a) {
       var b = gl.createBuffer();
       gl.bindBuffer(gl.ARRAY_BUFFER, b);

@@ -145,15 +145,27 @@ fm_status rp_draw_map(const fm_report *r, rp_png *out, double *km_per_px);
  * square and from 25 to 65 degrees above the horizon. */
 void rp_camera_for(const fm_mesh *m, int32_t tag, rp_camera *cam);
 
-/* The set's triangles per tag 0..ntags-1, packed and deflated for the
- * page's script (mesh_pack.c tells the format): grid coordinates of step
- * `step` m from `origin`. */
+/* The set's triangles per tag 0..ntags-1 and the outlines of their
+ * faults' originals, packed and deflated for the page's script
+ * (mesh_pack.c tells the format): grid coordinates of step `step` m from
+ * `origin`. */
 typedef struct rp_pack {
     unsigned char *data;
     size_t n, raw; /* deflated and raw bytes */
     double origin[3], step;
 } rp_pack;
 fm_status rp_pack_set(const fm_report *r, size_t ntags, rp_pack *out);
+
+/* Vertex chains: chain k is v[start[k] .. start[k + 1]), n chains. */
+typedef struct rp_chains {
+    uint32_t *v;
+    size_t *start;
+    size_t n;
+} rp_chains;
+/* The outline of m (sides of one triangle) as chains, a closed one ending
+ * where it began. */
+fm_status rp_outline(const fm_mesh *m, rp_chains *out);
+void rp_chains_free(rp_chains *c);
 
 /* n bytes as base64, no line breaks. */
 void rp_base64(FILE *fp, const unsigned char *d, size_t n);

@@ -10,7 +10,8 @@ near-duplicate described by the shares the 50 % rule decides on, the
 pictures PNGs that decode and are not blank, and the packed triangles the
 page draws decoded here (base64, zlib, the format of
 src/report/mesh_pack.c) into each fault's very triangles of mesh.obj, to
-H/16, with its junction edges those it shares with another fault.
+H/16, with its junction edges those it shares with another fault, and
+its original's outline chains around it.
 Standard library only.
 usage: check_report_html.py DIR [--page FILE] [--max-mb X]
   --page: check FILE (the DOM a browser made of the page) instead of
@@ -135,7 +136,15 @@ def unpack(b, ntags):
                 T.append((bb, a, vertex(pred)))
         nj = uint()
         J = [(uint(), uint()) for _ in range(nj)]
-        out.append((Q, T, J))
+        O, at0 = [], [0, 0, 0]
+        for _c in range(uint()):
+            chain = []
+            for _p in range(uint()):
+                for k in range(3):
+                    at0[k] += sint()
+                chain.append(tuple(at0))
+            O.append(chain)
+        out.append((Q, T, J, O))
     if at[0] != len(b):
         raise ValueError("%d bytes left over" % (len(b) - at[0]))
     return out
@@ -182,7 +191,7 @@ def check_mesh(page, data, out, fails):
             for k in range(3):
                 edges.setdefault(frozenset((t[k], t[(k + 1) % 3])), set()).add(h)
     bad = 0
-    for g, ((Q, T, J), tris) in enumerate(zip(tags, faults)):
+    for g, ((Q, T, J, O), tris) in enumerate(zip(tags, faults)):
         # the same triangles, corner by corner on the grid; as many vertices
         mine = {v for t in tris for v in t}
         got = sorted(tuple(sorted(Q[v] for v in t)) for t in T)
@@ -200,9 +209,27 @@ def check_mesh(page, data, out, fails):
             fails.append("fault %d: %d junction edges packed, %d shared in mesh.obj" % (
                 g + 1, len(got_j), len(want_j)))
             bad += 1
+        # its original's outline: chains (closed but where a branching
+        # fault's sheets meet) around the new mesh's extent (the mesh is the
+        # original trimmed, cut or extended a little)
+        if not O or any(len(c) < 2 for c in O) or sum(c[0] == c[-1] for c in O) == 0:
+            fails.append("fault %d: its original's outline has no closed chain" % (g + 1))
+            bad += 1
+            continue
+        lo = [min(q[k] for q in Q) for k in range(3)]
+        hi = [max(q[k] for q in Q) for k in range(3)]
+        olo = [min(q[k] for c in O for q in c) for k in range(3)]
+        ohi = [max(q[k] for c in O for q in c) for k in range(3)]
+        slack = 20 * 16  # 20 H: extensions to sea level and gaps closed
+        if any(olo[k] > hi[k] or ohi[k] < lo[k] or abs(olo[k] - lo[k]) > slack
+               or (k < 2 and abs(ohi[k] - hi[k]) > slack) for k in range(3)):
+            fails.append("fault %d: its original's outline (%s..%s) far from its mesh (%s..%s)" % (
+                g + 1, olo, ohi, lo, hi))
+            bad += 1
     if not bad:
         print("ok    report.html: the packed triangles of %d faults are mesh.obj's on a grid of "
-              "%g m, junction edges too" % (len(tags), step))
+              "%g m, junction edges too; their originals' outlines around them"
+              % (len(tags), step))
 
 
 def why(j):
