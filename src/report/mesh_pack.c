@@ -71,7 +71,7 @@ static void put(buf *b, uint64_t u)
 static void put_bytes(buf *b, const buf *more)
 {
     b->bad |= more->bad;
-    if (reserve(b, more->n + 1)) {
+    if (more->n && reserve(b, more->n)) {
         memcpy(b->d + b->n, more->d, more->n);
         b->n += more->n;
     }
