@@ -79,8 +79,8 @@ static void summary(FILE *fp, const fm_report *r, const size_t kinds[RP_NKINDS])
 static fm_status map_section(FILE *fp, const fm_report *r, const size_t kinds[RP_NKINDS])
 {
     rp_png png;
-    double km_per_px = 0;
-    fm_status st = rp_draw_map(r, &png, &km_per_px);
+    double km_per_px = 0, frame[3];
+    fm_status st = rp_draw_map(r, &png, &km_per_px, frame);
     if (st != FM_OK)
         return st;
     fputs("<h2 id=\"map\">Map</h2>\n<p>Every fault seen from above (x east, y north, ", fp);
@@ -93,10 +93,13 @@ static fm_status map_section(FILE *fp, const fm_report *r, const size_t kinds[RP
         rp_colour(fp, (rp_kind)k);
         fprintf(fp, "\"></span>%s (%zu)", rp_kind_label[k], kinds[k]);
     }
-    fputs("</p>\n", fp);
+    /* the frame lets the script find the fault under a click */
+    fprintf(fp, "</p>\n<p>A click on a meshed fault opens it.</p>\n<div id=\"fm-map\" "
+                "data-frame=\"%.17g %.17g %.17g\">",
+            frame[0], frame[1], frame[2]);
     rp_png_write_img(fp, &png, "map of the faults");
     rp_png_free(&png);
-    fputc('\n', fp);
+    fputs("</div>\n", fp);
     return FM_OK;
 }
 

@@ -362,6 +362,32 @@
     });
   }
 
+  /* ---- the map: a click opens the meshed fault nearest to it (within
+   * 12 pixels), found among the packed nodes ---- */
+  var map = $('fm-map');
+  if (map) {
+    var img = map.querySelector('img'), fr = map.getAttribute('data-frame').split(' ').map(Number);
+    img.style.cursor = 'crosshair';
+    img.title = 'click a fault to open it';
+    img.addEventListener('click', function (e) {
+      var box = img.getBoundingClientRect(), s = img.naturalWidth / box.width;
+      var x = (fr[0] + (e.clientX - box.left) * s / fr[2] - D.origin[0]) / 1000;
+      var y = (fr[1] - (e.clientY - box.top) * s / fr[2] - D.origin[1]) / 1000;
+      meshes().then(function (M) {
+        var best = -1, bd = Math.pow(12 / fr[2] / 1000, 2);
+        D.f.forEach(function (f, i) {
+          if (f.g < 0) return;
+          var P = M[f.g].P;
+          for (var k = 0; k < P.length; k += 3) {
+            var d = (P[k] - x) * (P[k] - x) + (P[k + 1] - y) * (P[k + 1] - y);
+            if (d < bd) { bd = d; best = i; }
+          }
+        });
+        if (best >= 0) location.hash = 'fault=' + encodeURIComponent(D.f[best].n);
+      });
+    });
+  }
+
   /* ---- the fault panel ---- */
   var panel = $('fm-panel'), shown = -1;
   function setView(how) { root.setAttribute('data-fm-view', how); }

@@ -137,8 +137,9 @@ void rp_raster_line_over(rp_raster *r, double k, double ox, double oy, const dou
  * leaving img as it was. */
 void rp_raster_put(const rp_raster *r, cairo_surface_t *img, int x, int y);
 
-/* The map of every fault, seen from above. */
-fm_status rp_draw_map(const fm_report *r, rp_png *out, double *km_per_px);
+/* The map of every fault, seen from above; frame: x (m) at the picture's
+ * left edge, y (m) at its top, pixels per m. */
+fm_status rp_draw_map(const fm_report *r, rp_png *out, double *km_per_px, double frame[3]);
 
 /* Looking onto the face of the triangles of m tagged tag (tag < 0: all):
  * right along the strike, from the side that sees it, a little off

@@ -9,7 +9,8 @@ triangles and filters the junction table to the unjoined ones. Checked:
 no error; the page's script ran to its end; the panel shows the fault
 asked for with its very number of triangles decoded, and its neighbours'
 in the 3D view (report.json's junctions name them); the sort and the
-filter work; the DOM the browser made holds the figures of report.json
+filter work; a click on the map where only that fault has a node opens
+its panel; the DOM the browser made holds the figures of report.json
 (check_report_html.py on it, with the packed triangles against mesh.obj);
 a screenshot is saved (OUTDIR/report_panel.png) and is not blank.
 usage: report_browser_check.py FAULTMESH OUTDIR [INPUTDIR]
@@ -36,6 +37,13 @@ PROBE = """<script>(function () {
   console.error = function () { note(Array.prototype.join.call(arguments, ' ')); ce.apply(console, arguments); };
   window.addEventListener('load', function () { setTimeout(function () {
     try {
+      var click = CLICK;
+      if (click) {
+        var img = document.querySelector('#fm-map img'), b = img.getBoundingClientRect();
+        img.dispatchEvent(new MouseEvent('click', { bubbles: true,
+          clientX: b.left + click[0] * b.width / img.naturalWidth,
+          clientY: b.top + click[1] * b.height / img.naturalHeight }));
+      }
       var t = document.getElementById('fault-table');
       t.tHead.rows[0].cells[3].click();
       var v = [].map.call(t.tBodies[0].rows, function (r) { return r.cells[3].textContent.trim(); })
@@ -52,6 +60,37 @@ PROBE = """<script>(function () {
     } catch (e) { note('probe: ' + e.message); }
   }, 0); });
 })();</script>"""
+
+
+def map_point(out, page, name):
+    """A pixel of the map where fault `name` has a node and no other fault
+    one within 20 pixels, from mesh.obj and the map's frame; None when
+    there is none."""
+    import math
+    import re
+    x0, y1, k = map(float, re.search(r'id="fm-map" data-frame="([^"]*)"', page).group(1).split())
+    V, owner, faults, cur = [], {}, [], None
+    for line in open(os.path.join(out, "mesh.obj")):
+        if line.startswith("v "):
+            V.append(tuple(float(x) for x in line.split()[1:3]))
+        elif line.startswith("o "):
+            cur = line[2:].strip()
+            faults.append(cur)
+        elif line.startswith("f "):
+            for x in line.split()[1:4]:
+                owner.setdefault(int(x.split("/")[0]) - 1, set()).add(cur)
+    cell = 20 / k
+    grid = {}
+    for v, who in owner.items():
+        grid.setdefault((math.floor(V[v][0] / cell), math.floor(V[v][1] / cell)), []).append(v)
+    for v, who in sorted(owner.items()):
+        if who != {name}:
+            continue
+        cx, cy = math.floor(V[v][0] / cell), math.floor(V[v][1] / cell)
+        near = [u for dx in (-1, 0, 1) for dy in (-1, 0, 1) for u in grid.get((cx + dx, cy + dy), [])]
+        if all(owner[u] == {name} or math.dist(V[u], V[v]) > cell for u in near):
+            return [(V[v][0] - x0) * k, (y1 - V[v][1]) * k]
+    return None
 
 
 def chromium():
@@ -125,7 +164,11 @@ def main():
     page = open(os.path.join(out, "report.html"), encoding="utf-8").read()
     at = page.index("<head>") + len("<head>")
     probe = os.path.join(outdir, "probe.html")
-    open(probe, "w", encoding="utf-8").write(page[:at] + PROBE + page[at:])
+    open(probe, "w", encoding="utf-8").write(page[:at] + PROBE.replace("CLICK", "null") + page[at:])
+    click = map_point(out, page, name)
+    probe_map = os.path.join(outdir, "probe_map.html")
+    open(probe_map, "w", encoding="utf-8").write(
+        page[:at] + PROBE.replace("CLICK", json.dumps(click)) + page[at:])
     url = "file://" + urllib.parse.quote(probe) + "#fault=" + urllib.parse.quote(name)
     profile = os.path.join(outdir, "profile")
     fails = []
@@ -156,6 +199,16 @@ def main():
                      "--page", domfile, "--max-mb", "3"]
             if subprocess.run(check).returncode:
                 fails.append("the page as the browser made it disagrees with report.json")
+    # the map: a click on a node of the fault opens its panel
+    if click is None:
+        fails.append("no pixel of the map where %s alone has a node" % name)
+    else:
+        a = attrs(browse(exe, profile, "file://" + urllib.parse.quote(probe_map), "--dump-dom"))
+        if a.get("data-fm-panel") != name or "data-probe-errors" in a:
+            fails.append("a click on the map at %s opened %r, not %s (%s)" % (
+                click, a.get("data-fm-panel"), name, a.get("data-probe-errors", "no error")))
+        else:
+            print("ok    a click on the map at (%.0f, %.0f) opens %s" % (click[0], click[1], name))
     shot = os.path.join(outdir, "report_panel.png")
     browse(exe, profile, url, "--screenshot=" + shot, "--window-size=1400,1800")
     if not os.path.exists(shot) or blank(shot):
