@@ -88,10 +88,15 @@ static size_t *schedule(const file_job *jobs, size_t n)
     return order;
 }
 
-/* Runs one phase of the jobs on cli->jobs threads (the calling one
- * included). */
 void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
               const curve_filter *flt, file_job *jobs, size_t n)
+{
+    run_jobs_open(cli, plan, phase, flt, jobs, n);
+    run_progress_end(cli->ctl);
+}
+
+void run_jobs_open(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
+                   const curve_filter *flt, file_job *jobs, size_t n)
 {
     size_t *order = schedule(jobs, n);
     size_t count = 0;
@@ -108,7 +113,6 @@ void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
     pool p = {cli, plan, phase, flt, jobs, order};
     fm_parallel_for(n, cli->jobs, run_one, &p, NULL, NULL, 0, 0);
     free(order);
-    run_progress_end(cli->ctl);
 }
 
 /* A fault that failed in meshing or came out empty took none of the plan

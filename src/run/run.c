@@ -330,15 +330,21 @@ fm_status run_execute(fm_run_result *res, const char *const *files, size_t nfile
         jobs[i].ctl = cli->ctl;
     }
     double t0 = fm_clock_seconds();
-    run_jobs(cli, NULL, 0, NULL, jobs, nfiles);
+    /* the checks of what was read belong to its stage, so that the log's
+     * time for it is the summary's */
+    run_jobs_open(cli, NULL, 0, NULL, jobs, nfiles);
+    fm_status st = FM_OK;
+    if (!run_cancelled(cli->ctl)) {
+        st = too_many_triangles(cli, jobs, nfiles, err);
+        if (st == FM_OK)
+            st = settle_crs(cli, jobs, nfiles, rs, err);
+    }
+    run_progress_end(cli->ctl);
+    double t1 = fm_clock_seconds();
     if (run_cancelled(cli->ctl))
         return cancelled(res, err);
-    fm_status st = too_many_triangles(cli, jobs, nfiles, err);
-    if (st == FM_OK)
-        st = settle_crs(cli, jobs, nfiles, rs, err);
     if (st != FM_OK)
         return give_up(res, st);
-    double t1 = fm_clock_seconds();
     fm_connect_plan *plan = NULL;
     if (cli->connect) {
         run_progress_begin(cli->ctl, "connect", 0, NULL, 0);
@@ -388,6 +394,9 @@ fm_status fm_run_result_write(fm_run_result *res, const char *dir, unsigned form
                                 ? "a run's outputs are written once, into a folder"
                                 : "outputs asked for that the run's options did not include");
     res->written = 1;
+    /* the write's time runs from here: what the caller did between the
+     * run and its writing is no stage of the log */
+    double tw = fm_clock_seconds();
     remesh_cli *cli = &res->cli;
     run_state *rs = &res->rs;
     cli->dir = dir;
@@ -422,7 +431,7 @@ fm_status fm_run_result_write(fm_run_result *res, const char *dir, unsigned form
             *err = hj.err;
     }
     release_jobs(res);
-    rs->time[4] = fm_clock_seconds() - res->t4;
+    rs->time[4] = fm_clock_seconds() - tw;
     /* the stage ends with the time report.json records for it, so that
      * the log and the summary agree */
     run_progress_end(cli->ctl);

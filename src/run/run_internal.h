@@ -270,8 +270,13 @@ void release_job(file_job *job);
 void abandon_job(file_job *job);
 
 /* remesh_pool.c */
+/* Runs one phase of the jobs on cli->jobs threads (the calling one
+ * included), a progress stage of its own; run_jobs_open leaves the stage
+ * open, for the caller to end when what belongs to it is done too. */
 void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
               const curve_filter *flt, file_job *jobs, size_t n);
+void run_jobs_open(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
+                   const curve_filter *flt, file_job *jobs, size_t n);
 /* The number of rounds of meshing again it took. */
 int settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
                   size_t njobs);
