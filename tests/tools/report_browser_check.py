@@ -64,8 +64,8 @@ PROBE = """<script>(function () {
 
 def map_point(out, page, name):
     """A pixel of the map where fault `name` has a node and no other fault
-    one within 20 pixels, from mesh.obj and the map's frame; None when
-    there is none."""
+    one within 3 pixels (the page opens the fault of the node nearest to a
+    click), from mesh.obj and the map's frame; None when there is none."""
     import math
     import re
     x0, y1, k = map(float, re.search(r'id="fm-map" data-frame="([^"]*)"', page).group(1).split())
@@ -79,7 +79,7 @@ def map_point(out, page, name):
         elif line.startswith("f "):
             for x in line.split()[1:4]:
                 owner.setdefault(int(x.split("/")[0]) - 1, set()).add(cur)
-    cell = 20 / k
+    cell = 3 / k
     grid = {}
     for v, who in owner.items():
         grid.setdefault((math.floor(V[v][0] / cell), math.floor(V[v][1] / cell)), []).append(v)
