@@ -16,6 +16,10 @@ packages=(
   python3-netcdf4            # meshio's Exodus II reader in the tests
   python3-pyproj             # independent lat/lon conversion in the EQSim test (check_sim.py)
   libcairo2-dev              # cairo: the pictures of report.html, drawn to PNG
+  zlib1g-dev                 # zlib: deflates the triangles report.html draws itself
+  chromium                   # headless browser: report.html opened, its script run and
+                             # checked, a screenshot taken (report_browser_*); without it
+                             # those tests skip
   libjson-c-dev              # json-c: the deformation model's GeoJSON fault sections
   pkg-config                 # how CMake finds cairo and fontconfig (only recommended by
                              # the -dev packages, which --no-install-recommends skips)

@@ -22,7 +22,9 @@ struct progress {
     const char *unit;
     size_t count, done;
     double weight, done_weight;
-    double t0, last_draw;
+    double t0;      /* the ETA runs from here: when the count became known */
+    double t_begin; /* the stage's start: "done in" is the whole stage, as the summary's times */
+    double last_draw;
     int quarter; /* plain mode: the last quarter logged */
     /* tty: a thread that keeps the clock of a stage without steps moving */
     pthread_t ticker;
@@ -74,7 +76,7 @@ static void draw(progress *p, double now)
 {
     double f = share(p), el = now - p->t0;
     char eta[32] = "--:--", elapsed[32];
-    clock_text(el, elapsed, sizeof elapsed);
+    clock_text(now - p->t_begin, elapsed, sizeof elapsed);
     /* the first few percent say little about the rest */
     if (f >= 0.03 && f < 1)
         clock_text(el * (1 - f) / f, eta, sizeof eta);
@@ -91,6 +93,22 @@ static void draw(progress *p, double now)
     }
     fflush(p->fp);
     p->last_draw = now;
+}
+
+/* Plain mode (a log, not a terminal): a line at each quarter, with its
+ * ETA, once a stage has run a second (short stages need no interim
+ * lines). Caller holds the lock. */
+static void log_quarter(progress *p, double now)
+{
+    int q = (int)(4 * share(p));
+    if (q > p->quarter && q < 4 && now - p->t_begin >= 1.0) {
+        p->quarter = q;
+        double f = share(p), el = now - p->t0;
+        char eta[32];
+        clock_text(el * (1 - f) / f, eta, sizeof eta);
+        fprintf(p->fp, "faultmesh: %s: %zu/%zu %s, %.0f%%, ETA %s\n", p->stage, p->done,
+                p->count, p->unit, 100 * f, eta);
+    }
 }
 
 static void *tick(void *arg)
@@ -127,7 +145,7 @@ void progress_begin(progress *p, const char *stage, size_t count, const char *un
     p->weight = weight;
     p->done_weight = 0;
     p->quarter = 0;
-    p->t0 = fm_clock_seconds();
+    p->t0 = p->t_begin = fm_clock_seconds();
     if (p->level != PROGRESS_QUIET) {
         if (p->tty)
             draw(p, p->t0);
@@ -154,17 +172,7 @@ void progress_step(progress *p, double weight)
             if (now - p->last_draw >= REDRAW_S || p->done == p->count)
                 draw(p, now);
         } else if (p->count) {
-            /* a log line at each quarter, with its ETA */
-            int q = (int)(4 * share(p));
-            /* short stages need no interim lines */
-            if (q > p->quarter && q < 4 && now - p->t0 >= 1.0) {
-                p->quarter = q;
-                double f = share(p), el = now - p->t0;
-                char eta[32];
-                clock_text(el * (1 - f) / f, eta, sizeof eta);
-                fprintf(p->fp, "faultmesh: %s: %zu/%zu %s, %.0f%%, ETA %s\n", p->stage, p->done,
-                        p->count, p->unit, 100 * f, eta);
-            }
+            log_quarter(p, now);
         }
     }
     pthread_mutex_unlock(&p->mu);
@@ -176,7 +184,8 @@ void progress_set(progress *p, size_t done, size_t count, const char *unit)
         return;
     pthread_mutex_lock(&p->mu);
     double now = fm_clock_seconds();
-    if (p->count == 0 && count > 0) {
+    int known = p->count == 0 && count > 0;
+    if (known) {
         /* the ETA runs from when the count is known */
         p->t0 = now;
         p->unit = unit ? unit : "";
@@ -186,6 +195,10 @@ void progress_set(progress *p, size_t done, size_t count, const char *unit)
     p->done = done;
     if (p->level != PROGRESS_QUIET && p->tty && (now - p->last_draw >= REDRAW_S || done == count))
         draw(p, now);
+    else if (p->level != PROGRESS_QUIET && !p->tty && known)
+        fprintf(p->fp, "faultmesh: %s: %zu %s\n", p->stage, count, p->unit);
+    else if (p->level != PROGRESS_QUIET && !p->tty)
+        log_quarter(p, now);
     pthread_mutex_unlock(&p->mu);
 }
 
@@ -202,7 +215,7 @@ double progress_end(progress *p)
         p->ticking = 0;
     }
     pthread_mutex_lock(&p->mu);
-    double now = fm_clock_seconds(), el = now - p->t0;
+    double now = fm_clock_seconds(), el = now - p->t_begin;
     if (p->level != PROGRESS_QUIET) {
         if (p->tty) {
             fprintf(p->fp, "\r%-16s done in %.1f s", p->stage, el);

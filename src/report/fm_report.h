@@ -1,7 +1,10 @@
 /* faultmesh report: DIR/report.html, one self-contained page a person
- * reads to judge a remeshed fault set, with pictures drawn here (cairo, to
- * PNG, embedded as data: URIs) so that no browser or Python is needed to
- * make them.
+ * reads to judge a remeshed fault set: problems first, sortable and
+ * filterable tables, the overview pictures drawn here (cairo, to PNG,
+ * embedded as data: URIs), and every fault's triangles packed for the
+ * page's own script, which draws a fault and its neighbours when it is
+ * opened (so that no browser or Python is needed to make the page, and
+ * no network to read it).
  *
  * The caller fills it with plain data: the fault set written (its
  * triangles tagged with the fault's index in the set), then every fault

@@ -1,5 +1,8 @@
-/* report.html: the facts of report.json for a reader, with the pictures
- * drawn here and embedded, written atomically. */
+/* report.html: the facts of report.json for a reader, problems first, the
+ * overview pictures drawn here and embedded, the tables sortable and
+ * filterable, and every fault drawn on demand by the page's own script
+ * from the packed triangles (a picture per fault made the CFM's page
+ * 10 MB); written atomically. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,7 +10,7 @@
 #include "fm_atomic.h"
 #include "report_internal.h"
 
-static void esc(FILE *fp, const char *s)
+void rp_esc(FILE *fp, const char *s)
 {
     for (; s && *s; s++) {
         switch (*s) {
@@ -20,52 +23,54 @@ static void esc(FILE *fp, const char *s)
     }
 }
 
-static double pct(size_t a, size_t b)
+/* s as a JSON string inside a <script> element: no "</" can end it. */
+static void json_str(FILE *fp, const char *s)
+{
+    fputc('"', fp);
+    for (; s && *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(fp, "\\%c", c);
+        else if (c < 0x20 || c == '<' || c == '>' || c == '&')
+            fprintf(fp, "\\u%04x", c);
+        else
+            fputc(c, fp);
+    }
+    fputc('"', fp);
+}
+
+double rp_pct(size_t a, size_t b)
 {
     return b ? 100.0 * (double)a / (double)b : 0;
 }
 
-static const char *style =
-    "body{font-family:sans-serif;margin:1.5em;color:#222;max-width:1500px}"
-    "h1{font-size:1.5em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ccc}"
-    "table{border-collapse:collapse;font-size:0.85em}"
-    "td,th{border:1px solid #ddd;padding:2px 6px;vertical-align:top}"
-    "th{background:#f2f2f2;text-align:left}td.n{text-align:right;white-space:nowrap}"
-    ".sw{display:inline-block;width:0.9em;height:0.9em;margin:0 0.3em 0 1em;"
-    "vertical-align:middle;border:1px solid #555}"
-    ".b{padding:0 0.4em;border-radius:0.3em;color:#fff;white-space:nowrap}"
-    ".w{color:#8a5a00}.why{color:#a33}figure{display:inline-block;margin:0 1em 1em 0}"
-    "figcaption{font-size:0.85em;max-width:380px}img{display:block}";
-
-static void colour(FILE *fp, rp_kind k)
+void rp_colour(FILE *fp, rp_kind k)
 {
     fprintf(fp, "#%02x%02x%02x", (int)lround(255 * rp_kind_rgb[k][0]),
             (int)lround(255 * rp_kind_rgb[k][1]), (int)lround(255 * rp_kind_rgb[k][2]));
 }
 
-static void badge(FILE *fp, const rp_fault *f)
+void rp_badge(FILE *fp, const rp_fault *f)
 {
     fputs("<span class=\"b\" style=\"background:", fp);
-    colour(fp, f->kind);
-    fputs("\">", fp);
-    esc(fp, f->status);
-    fputs("</span>", fp);
+    rp_colour(fp, f->kind);
+    fprintf(fp, "\" title=\"%s\">%s</span>", rp_kind_label[f->kind], rp_kind_badge[f->kind]);
 }
 
 static void summary(FILE *fp, const fm_report *r, const size_t kinds[RP_NKINDS])
 {
-    fputs("<table>\n", fp);
+    fputs("<h2 id=\"summary\">Summary</h2>\n<table id=\"summary-table\">\n", fp);
     for (size_t i = 0; i + 1 < r->nfact; i += 2) {
         fputs("<tr><th>", fp);
-        esc(fp, r->fact[i]);
+        rp_esc(fp, r->fact[i]);
         fputs("</th><td>", fp);
-        esc(fp, r->fact[i + 1]);
+        rp_esc(fp, r->fact[i + 1]);
         fputs("</td></tr>\n", fp);
     }
     fputs("<tr><th>faults by outcome</th><td>", fp);
     for (int k = 0; k < RP_NKINDS; k++) {
         fputs("<span class=\"sw\" style=\"background:", fp);
-        colour(fp, (rp_kind)k);
+        rp_colour(fp, (rp_kind)k);
         fprintf(fp, "\"></span>%s: %zu", rp_kind_label[k], kinds[k]);
     }
     fputs("</td></tr>\n</table>\n", fp);
@@ -74,24 +79,27 @@ static void summary(FILE *fp, const fm_report *r, const size_t kinds[RP_NKINDS])
 static fm_status map_section(FILE *fp, const fm_report *r, const size_t kinds[RP_NKINDS])
 {
     rp_png png;
-    double km_per_px = 0;
-    fm_status st = rp_draw_map(r, &png, &km_per_px);
+    double km_per_px = 0, frame[3];
+    fm_status st = rp_draw_map(r, &png, &km_per_px, frame);
     if (st != FM_OK)
         return st;
-    fputs("<h2>Map</h2>\n<p>Every fault seen from above (x east, y north, ", fp);
-    esc(fp, r->crs);
+    fputs("<h2 id=\"map\">Map</h2>\n<p>Every fault seen from above (x east, y north, ", fp);
+    rp_esc(fp, r->crs);
     fprintf(fp, "; %.3g km per pixel), the new meshes coloured by outcome and darker "
                 "the steeper they dip; faults not meshed are drawn from their originals.</p>\n<p>",
             km_per_px);
     for (int k = 0; k < RP_NKINDS; k++) {
         fputs("<span class=\"sw\" style=\"background:", fp);
-        colour(fp, (rp_kind)k);
+        rp_colour(fp, (rp_kind)k);
         fprintf(fp, "\"></span>%s (%zu)", rp_kind_label[k], kinds[k]);
     }
-    fputs("</p>\n", fp);
+    /* the frame lets the script find the fault under a click */
+    fprintf(fp, "</p>\n<p>A click on a meshed fault opens it.</p>\n<div id=\"fm-map\" "
+                "data-frame=\"%.17g %.17g %.17g\">",
+            frame[0], frame[1], frame[2]);
     rp_png_write_img(fp, &png, "map of the faults");
     rp_png_free(&png);
-    fputc('\n', fp);
+    fputs("</div>\n", fp);
     return FM_OK;
 }
 
@@ -104,7 +112,7 @@ static fm_status figure(FILE *fp, const rp_hist *h, const char *caption)
     fputs("<figure>", fp);
     rp_png_write_img(fp, &png, "histogram");
     fputs("<figcaption>", fp);
-    esc(fp, caption);
+    rp_esc(fp, caption);
     fputs("</figcaption></figure>\n", fp);
     rp_png_free(&png);
     return FM_OK;
@@ -145,20 +153,21 @@ static fm_status histograms(FILE *fp, const fm_report *r)
     d.band_hi = FM_FIDELITY_TOL;
     c.band_lo = 0.97;
     c.band_hi = 1.2;
-    char cap[4][256];
+    char cap[4][300];
     size_t below30 = a.under, in_band = 0, far = d.over;
     for (size_t i = 0; i < 30 && a.count; i++)
         below30 += a.count[i];
-    for (size_t i = 0; i < e.nbins && e.count; i++)
-        in_band += (i >= 14 && i < 28) ? e.count[i] : 0;
+    for (size_t i = 14; i < 28 && e.count; i++)
+        in_band += e.count[i];
     for (size_t i = 20; i < d.nbins && d.count; i++)
         far += d.count[i];
     snprintf(cap[0], sizeof cap[0],
              "%zu triangles, %zu (%.3f%%) with an angle under 30 degrees (target: shaded).",
-             a.total, below30, pct(below30, a.total));
+             a.total, below30, rp_pct(below30, a.total));
     snprintf(cap[1], sizeof cap[1],
-             "%zu edges (each once) at H = %g m, %.2f%% within [0.7, 1.4] H (shaded).", e.total,
-             r->size, pct(in_band, e.total));
+             "%zu edges (each once per fault, as report.json counts them: an edge two faults "
+             "share counts for both) at H = %g m, %.2f%% within [0.7, 1.4] H (shaded).",
+             e.total, r->size, rp_pct(in_band, e.total));
     snprintf(cap[2], sizeof cap[2],
              "%zu nodes (per fault), %zu farther than %g m from their fault's original: "
              "extended tops and gaps closed to a neighbour lie off it by design.",
@@ -169,7 +178,7 @@ static fm_status histograms(FILE *fp, const fm_report *r)
              c.total, low);
     const rp_hist *h[4] = {&a, &e, &d, &c};
     if (st == FM_OK)
-        fputs("<h2>Quality, size, fidelity and fit</h2>\n", fp);
+        fputs("<h2 id=\"quality\">Quality, size, fidelity and fit</h2>\n", fp);
     for (int k = 0; k < 4 && st == FM_OK; k++)
         st = figure(fp, h[k], cap[k]);
     rp_hist_free(&a);
@@ -179,169 +188,111 @@ static fm_status histograms(FILE *fp, const fm_report *r)
     return st;
 }
 
-static void junctions(FILE *fp, const fm_report *r)
+/* The index of the fault named s, or SIZE_MAX. */
+static size_t fault_named(const fm_report *r, const char *s)
 {
-    size_t n[4] = {0, 0, 0, 0};
-    static const char *const types[4] = {"crossing", "T", "corner", "unjoined"};
-    for (size_t i = 0; i < r->nj; i++)
-        for (int t = 0; t < 4; t++)
-            n[t] += !strcmp(r->j[i].type, types[t]);
-    fprintf(fp, "<h2>Junctions</h2>\n<p>%zu junctions: %zu crossing, %zu T, %zu corner, %zu "
-                "unjoined.</p>\n",
-            r->nj, n[0], n[1], n[2], n[3]);
-    if (!r->nj)
-        return;
-    fputs("<table>\n<tr><th>#</th><th>fault</th><th>fault</th><th>type</th><th>gap closed, m</th>"
-          "<th>overshoot trimmed, m</th><th>curve length, m</th><th>min crossing angle, "
-          "deg</th><th>reason</th></tr>\n",
-          fp);
-    for (size_t i = 0; i < r->nj; i++) {
-        const rp_junction *j = &r->j[i];
-        fprintf(fp, "<tr><td class=\"n\">%zu</td><td>", i);
-        esc(fp, j->fault[0]);
-        fputs("</td><td>", fp);
-        esc(fp, j->fault[1]);
-        fputs("</td><td>", fp);
-        esc(fp, j->type);
-        fprintf(fp, "</td><td class=\"n\">%.0f</td><td class=\"n\">%.0f</td><td class=\"n\">%.0f"
-                    "</td><td class=\"n\">%.1f</td><td>",
-                j->gap, j->overshoot, j->length, j->min_angle);
-        esc(fp, j->reason);
-        fputs("</td></tr>\n", fp);
-    }
-    fputs("</table>\n", fp);
+    for (size_t i = 0; i < r->nf; i++)
+        if (!strcmp(r->f[i].name, s))
+            return i;
+    return SIZE_MAX;
 }
 
-static void problems(FILE *fp, const fm_report *r)
+static int by_pair(const void *a, const void *b)
 {
-    fputs("<h2>Failed, dropped, excluded, unjoined</h2>\n<ul>\n", fp);
+    const size_t *x = a, *y = b;
+    return x[0] != y[0] ? (x[0] < y[0] ? -1 : 1) : x[1] < y[1] ? -1 : x[1] > y[1];
+}
+
+/* What the script needs beside the tables: per fault its name, kind, tag,
+ * first view and neighbours (the faults it has a junction with, joined
+ * or not); the grid of the packed triangles and the colours. */
+static fm_status data_island(FILE *fp, const fm_report *r, size_t ntags, const rp_pack *pk)
+{
+    size_t *nb = malloc((2 * r->nj + 1) * 2 * sizeof *nb);
+    if (!nb)
+        return FM_ERR_NOMEM;
     size_t n = 0;
+    for (size_t j = 0; j < r->nj; j++) {
+        size_t a = fault_named(r, r->j[j].fault[0]), b = fault_named(r, r->j[j].fault[1]);
+        if (a == SIZE_MAX || b == SIZE_MAX || a == b)
+            continue;
+        nb[2 * n] = a;
+        nb[2 * n + 1] = b;
+        nb[2 * n + 2] = b;
+        nb[2 * n + 3] = a;
+        n += 2;
+    }
+    qsort(nb, n, 2 * sizeof *nb, by_pair);
+    fprintf(fp, "<script type=\"application/json\" id=\"fm-data\">{\"H\":%.17g,\"step\":%.17g,"
+                "\"origin\":[%.17g,%.17g,%.17g],\"ntags\":%zu,\"rgb\":[",
+            r->size, pk->step, pk->origin[0], pk->origin[1], pk->origin[2], ntags);
+    for (int k = 0; k < RP_NKINDS; k++)
+        fprintf(fp, "%s[%.3f,%.3f,%.3f]", k ? "," : "", rp_kind_rgb[k][0], rp_kind_rgb[k][1],
+                rp_kind_rgb[k][2]);
+    fputs("],\"f\":[\n", fp);
+    size_t at = 0;
     for (size_t i = 0; i < r->nf; i++) {
         const rp_fault *f = &r->f[i];
-        if (f->kind != RP_FAILED && f->kind != RP_DROPPED && f->kind != RP_EMPTY &&
-            f->kind != RP_EXCLUDED && !f->join_error && !f->carved)
-            continue;
-        n++;
-        fputs("<li><b>", fp);
-        esc(fp, f->name);
-        fputs("</b> ", fp);
-        badge(fp, f);
-        fputs(" <span class=\"why\">", fp);
-        if (f->reason)
-            esc(fp, f->reason);
-        if (f->join_error) {
-            fputs(f->reason ? "; " : "", fp);
-            fputs("shared curves left out: ", fp);
-            esc(fp, f->join_error);
+        fputs(i ? ",\n{\"n\":" : "{\"n\":", fp);
+        json_str(fp, f->name);
+        fprintf(fp, ",\"k\":%d,\"g\":%d,\"c\":", (int)f->kind, (int)f->tag);
+        if (f->tag >= 0 && r->set) {
+            rp_camera cam;
+            rp_camera_for(f->original ? f->original : r->set, f->original ? -1 : f->tag, &cam);
+            fprintf(fp, "[%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f]", cam.r[0], cam.r[1],
+                    cam.r[2], cam.u[0], cam.u[1], cam.u[2], cam.d[0], cam.d[1], cam.d[2]);
+        } else {
+            fputs("null", fp);
         }
-        if (f->carved)
-            fprintf(fp, "%s%zu triangles (%.2f km&sup2;) removed where it ran through another "
-                        "fault",
-                    f->reason || f->join_error ? "; " : "", f->carved, f->carved_area / 1e6);
-        fputs("</span></li>\n", fp);
+        fputs(",\"nb\":[", fp);
+        for (size_t k = 0; at < n && nb[2 * at] == i; at++)
+            if (!at || nb[2 * at - 2] != i || nb[2 * at + 1] != nb[2 * at - 1])
+                fprintf(fp, "%s%zu", k++ ? "," : "", nb[2 * at + 1]);
+        fputs("]}", fp);
     }
-    for (size_t i = 0; i < r->nj; i++) {
-        const rp_junction *j = &r->j[i];
-        if (strcmp(j->type, "unjoined"))
-            continue;
-        n++;
-        fprintf(fp, "<li>junction %zu, <b>", i);
-        esc(fp, j->fault[0]);
-        fputs("</b> / <b>", fp);
-        esc(fp, j->fault[1]);
-        fputs("</b>: unjoined <span class=\"why\">", fp);
-        esc(fp, j->reason ? j->reason : "no reason recorded");
-        fputs("</span></li>\n", fp);
-    }
-    if (!n)
-        fputs("<li>none</li>\n", fp);
-    fputs("</ul>\n", fp);
+    fputs("]}</script>\n", fp);
+    free(nb);
+    return FM_OK;
 }
 
-static void figures(FILE *fp, const rp_fault *f)
-{
-    if (strcmp(f->status, "ok")) {
-        fputs("<td colspan=\"7\" class=\"why\">", fp);
-        esc(fp, f->reason ? f->reason : "");
-        fputs("</td>", fp);
-        return;
-    }
-    const fm_quality *q = &f->q;
-    fprintf(fp,
-            "<td class=\"n\">%zu</td><td class=\"n\">%.1f</td><td class=\"n\">%.2f</td>"
-            "<td class=\"n\">%.1f</td><td class=\"n\">%.1f / %.1f</td><td class=\"n\">%.3f</td>"
-            "<td>",
-            q->triangles, q->angle_min, pct(q->below_30, q->triangles),
-            pct(q->edges_in_band, q->edges), f->fid.rms, f->fid.max,
-            f->fitted_area > 0 ? q->area / f->fitted_area : 0);
-    for (size_t k = 0; k < f->nwarnings; k++) {
-        fputs("<div class=\"w\">", fp);
-        esc(fp, f->warnings[k]);
-        fputs("</div>", fp);
-    }
-    if (f->carved)
-        fprintf(fp, "<div>%zu triangles carved</div>", f->carved);
-    /* what connecting cost it (report.json's connect_measures), when anything */
-    const fm_loss_fault *l = &f->loss;
-    if (f->has_loss && l->missing_area > 0)
-        fprintf(fp, "<div>original area missing: %.3f km&sup2; (%.2f%%), %.3f km&sup2; of it "
-                    "away from other faults</div>",
-                l->missing_area / 1e6, l->orig_area > 0 ? 100 * l->missing_area / l->orig_area : 0,
-                l->missing_away / 1e6);
-    if (f->has_loss && l->islands)
-        fprintf(fp, "<div>%zu island%s (%zu triangles)</div>", l->islands,
-                l->islands > 1 ? "s" : "", l->island_triangles);
-    if (f->has_loss && l->moved_max > FM_FIDELITY_TOL)
-        fprintf(fp, "<div class=\"w\">inside of the original moved %.0f m</div>", l->moved_max);
-    if (f->has_loss && l->gap > 0)
-        fprintf(fp, "<div>outline left beside other faults: %.1f km</div>", l->gap / 1e3);
-    if (f->join_error) {
-        fputs("<div class=\"why\">", fp);
-        esc(fp, f->join_error);
-        fputs("</div>", fp);
-    }
-    fputs("</td>", fp);
-}
+static const char *const panel_html =
+    "<section id=\"fm-panel\" hidden aria-label=\"fault\">\n"
+    "<button id=\"fm-close\" title=\"close (Esc)\">&times; close</button>\n"
+    "<h2 id=\"fm-name\"></h2>\n"
+    "<p>Neighbours (a junction with it, joined or not): <span id=\"fm-neighbours\"></span></p>\n"
+    "<p id=\"fm-note\" class=\"why\"></p>\n"
+    "<h3>The new mesh</h3>\n<p>Seen onto its face (22.5 degrees off square, 25 to 65 degrees "
+    "above the horizon, its strike across), triangles outlined where they are large enough "
+    "to see; its junction curves (edges it shares with another fault) thick and black; the "
+    "outline of its original (as read) dashed. Nodes are drawn on a grid of H/16.</p>\n"
+    "<canvas id=\"fm-picture\" width=\"1200\" height=\"620\"></canvas>\n"
+    "<h3>In 3D with its neighbours</h3>\n<p>The fault in its colour, its neighbours grey. "
+    "Drag to turn, wheel to zoom, shift-drag to pan, double click to go back.</p>\n"
+    "<canvas id=\"fm-3d\" width=\"1200\" height=\"620\"></canvas>\n"
+    "<h3>Figures</h3>\n<table id=\"fm-facts\"></table>\n"
+    "</section>\n";
 
-static fm_status faults(FILE *fp, const fm_report *r)
+static fm_status script(FILE *fp, const fm_report *r)
 {
-    rp_raster *ras = rp_fault_raster();
-    rp_scene sc[2] = {{0}, {0}};
-    fm_status st = ras ? FM_OK : FM_ERR_NOMEM;
-    fputs("<h2>Faults</h2>\n<p>In the order of report.json. Each picture: the original (left) "
-          "and the new mesh (right) at one scale, seen from the side its mean normal faces, "
-          "22.5 degrees off square and 25 to 65 degrees above the horizon, its strike across "
-          "the picture.</p>\n<table>\n<tr><th>fault</th><th>status</th>"
-          "<th>original | new mesh</th><th>triangles</th><th>min angle, deg</th>"
-          "<th>% under 30 deg</th><th>% edges in [0.7, 1.4] H</th><th>node distance rms / "
-          "max, m</th><th>coverage (area / fitted)</th><th>warnings</th></tr>\n",
-          fp);
-    for (size_t i = 0; st == FM_OK && i < r->nf; i++) {
-        const rp_fault *f = &r->f[i];
-        fputs("<tr><td><b>", fp);
-        esc(fp, f->name);
-        fputs("</b><br><small>", fp);
-        esc(fp, f->file);
-        fputs("</small></td><td>", fp);
-        badge(fp, f);
-        fputs("</td><td>", fp);
-        if (f->original || f->tag >= 0) {
-            rp_png png;
-            fm_status drawn = rp_draw_fault(r, f, ras, sc, &png);
-            if (drawn == FM_OK)
-                rp_png_write_img(fp, &png, "original and new mesh");
-            else if (drawn == FM_ERR_NOMEM)
-                st = drawn;
-            rp_png_free(&png);
-        }
-        fputs("</td>", fp);
-        figures(fp, f);
-        fputs("</tr>\n", fp);
+    size_t ntags = 0;
+    if (r->set) {
+        const int32_t *tag = fm_mesh_tags(r->set);
+        for (size_t t = 0; t < fm_mesh_ntriangles(r->set); t++)
+            if (tag[t] >= 0 && (size_t)tag[t] + 1 > ntags)
+                ntags = (size_t)tag[t] + 1;
     }
-    fputs("</table>\n", fp);
-    rp_scene_free(&sc[0]);
-    rp_scene_free(&sc[1]);
-    rp_raster_destroy(ras);
+    rp_pack pk;
+    fm_status st = rp_pack_set(r, ntags, &pk);
+    if (st != FM_OK)
+        return st;
+    fputs(panel_html, fp);
+    st = data_island(fp, r, ntags, &pk);
+    if (st == FM_OK) {
+        fputs("<script type=\"application/octet-stream\" id=\"fm-mesh\">", fp);
+        rp_base64(fp, pk.data, pk.n);
+        fprintf(fp, "</script>\n<script>\n%s</script>\n", rp_page_script);
+    }
+    free(pk.data);
     return st;
 }
 
@@ -355,18 +306,20 @@ fm_status fm_report_write_html(fm_report *r, const char *path, fm_error *err)
     for (size_t i = 0; i < r->nf; i++)
         kinds[r->f[i].kind]++;
     fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>", fp);
-    esc(fp, r->title);
-    fprintf(fp, "</title>\n<style>%s</style>\n</head>\n<body>\n<h1>", style);
-    esc(fp, r->title);
+    rp_esc(fp, r->title);
+    fprintf(fp, "</title>\n<style>\n%s</style>\n</head>\n<body>\n<h1>", rp_page_style);
+    rp_esc(fp, r->title);
     fputs("</h1>\n", fp);
+    rp_toc(fp, r);
     summary(fp, r, kinds);
+    rp_problems(fp, r);
     fm_status st = map_section(fp, r, kinds);
     if (st == FM_OK)
         st = histograms(fp, r);
     if (st == FM_OK) {
-        junctions(fp, r);
-        problems(fp, r);
-        st = faults(fp, r);
+        rp_fault_table(fp, r);
+        rp_junction_table(fp, r);
+        st = script(fp, r);
     }
     fputs("</body>\n</html>\n", fp);
     if (st != FM_OK) {

@@ -97,7 +97,7 @@ static fm_status outline(rp_raster *ras, const fm_mesh *m, double k, double ox, 
     return FM_OK;
 }
 
-fm_status rp_draw_map(const fm_report *r, rp_png *out, double *km_per_px)
+fm_status rp_draw_map(const fm_report *r, rp_png *out, double *km_per_px, double frame[3])
 {
     /* from above: depth is -z, the deepest drawn first; brightness by
      * the cosine of the dip */
@@ -185,5 +185,8 @@ fm_status rp_draw_map(const fm_report *r, rp_png *out, double *km_per_px)
     cairo_destroy(cr);
     cairo_surface_destroy(img);
     *km_per_px = 1 / k / 1000;
+    frame[0] = lo[0] - ML / k;
+    frame[1] = lo[1] + (MT + h) / k;
+    frame[2] = k;
     return st;
 }

@@ -1,5 +1,5 @@
 /* The distributions behind the histograms, measured on the set as
- * written: every triangle's smallest angle, every edge once, and every
+ * written: every triangle's smallest angle, every edge once per fault, and every
  * node of a fault against that fault's original. */
 #include <math.h>
 #include <stdlib.h>
@@ -75,8 +75,16 @@ fm_status rp_measure(const fm_report *r, rp_hist *angle, rp_hist *edge, rp_hist 
     fm_keyed *side = fm_mesh_sides(m, &ns);
     if (!side && nt)
         return FM_ERR_NOMEM;
-    for (size_t i = 0; i < ns; i++) {
-        if (i > 0 && side[i].key == side[i - 1].key)
+    const int32_t *tag = fm_mesh_tags(m);
+    for (size_t i = 0, start = 0; i < ns; i++) {
+        if (i > 0 && side[i].key != side[i - 1].key)
+            start = i;
+        /* once per fault, as report.json counts edges: an edge two faults
+         * share is an edge of each */
+        int seen = 0;
+        for (size_t k = start; k < i && !seen; k++)
+            seen = tag[side[k].index] == tag[side[i].index];
+        if (seen)
             continue;
         /* its vertices from its key (fm_edge_key: smaller << 32 | larger) */
         uint32_t a = (uint32_t)(side[i].key >> 32), b = (uint32_t)side[i].key;

@@ -44,7 +44,7 @@ void rp_png_free(rp_png *p)
     memset(p, 0, sizeof *p);
 }
 
-static void base64(FILE *fp, const unsigned char *d, size_t n)
+void rp_base64(FILE *fp, const unsigned char *d, size_t n)
 {
     static const char abc[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     char line[4 * 1024 + 4];
@@ -71,7 +71,7 @@ void rp_png_write_img(FILE *fp, const rp_png *p, const char *alt)
 {
     fprintf(fp, "<img width=\"%d\" height=\"%d\" alt=\"%s\" src=\"data:image/png;base64,",
             p->width, p->height, alt);
-    base64(fp, p->data, p->n);
+    rp_base64(fp, p->data, p->n);
     fputs("\">", fp);
 }
 

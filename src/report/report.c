@@ -16,6 +16,9 @@ const char *const rp_kind_label[RP_NKINDS] = {
     "meshed", "meshed, with warnings", "meshed, cut back where it crossed another",
     "empty (above sea level)", "failed", "dropped (near-duplicate)", "excluded",
 };
+const char *const rp_kind_badge[RP_NKINDS] = {
+    "ok", "warnings", "cut back", "empty", "failed", "dropped", "excluded",
+};
 
 static char *dup_or_null(const char *s, int *bad)
 {

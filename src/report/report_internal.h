@@ -23,6 +23,9 @@ typedef enum rp_kind {
 
 extern const double rp_kind_rgb[RP_NKINDS][3];
 extern const char *const rp_kind_label[RP_NKINDS];
+/* The word on a fault's badge: one per kind, so that no two colours read
+ * the same. */
+extern const char *const rp_kind_badge[RP_NKINDS];
 
 typedef struct rp_fault {
     char *name, *file, *status, *reason, *join_error;
@@ -134,14 +137,56 @@ void rp_raster_line_over(rp_raster *r, double k, double ox, double oy, const dou
  * leaving img as it was. */
 void rp_raster_put(const rp_raster *r, cairo_surface_t *img, int x, int y);
 
-/* The map of every fault, seen from above. */
-fm_status rp_draw_map(const fm_report *r, rp_png *out, double *km_per_px);
-/* Original (left) beside the new mesh (right) of fault f; ras (from
- * rp_fault_raster, reused from fault to fault) and the scenes hold the
- * drawing. */
-rp_raster *rp_fault_raster(void);
-fm_status rp_draw_fault(const fm_report *r, const rp_fault *f, rp_raster *ras, rp_scene sc[2],
-                        rp_png *out);
+/* The map of every fault, seen from above; frame: x (m) at the picture's
+ * left edge, y (m) at its top, pixels per m. */
+fm_status rp_draw_map(const fm_report *r, rp_png *out, double *km_per_px, double frame[3]);
+
+/* Looking onto the face of the triangles of m tagged tag (tag < 0: all):
+ * right along the strike, from the side that sees it, a little off
+ * square and from 25 to 65 degrees above the horizon. */
+void rp_camera_for(const fm_mesh *m, int32_t tag, rp_camera *cam);
+
+/* The set's triangles per tag 0..ntags-1 and the outlines of their
+ * faults' originals, packed and deflated for the page's script
+ * (mesh_pack.c tells the format): grid coordinates of step `step` m from
+ * `origin`. */
+typedef struct rp_pack {
+    unsigned char *data;
+    size_t n, raw; /* deflated and raw bytes */
+    double origin[3], step;
+} rp_pack;
+fm_status rp_pack_set(const fm_report *r, size_t ntags, rp_pack *out);
+
+/* Vertex chains: chain k is v[start[k] .. start[k + 1]), n chains. */
+typedef struct rp_chains {
+    uint32_t *v;
+    size_t *start;
+    size_t n;
+} rp_chains;
+/* The outline of m (sides of one triangle) as chains, a closed one ending
+ * where it began. */
+fm_status rp_outline(const fm_mesh *m, rp_chains *out);
+void rp_chains_free(rp_chains *c);
+
+/* n bytes as base64, no line breaks. */
+void rp_base64(FILE *fp, const unsigned char *d, size_t n);
+
+/* Pieces of the page (html.c): text escaped for HTML, a percentage, a
+ * kind's colour as #rrggbb, a fault's badge. */
+void rp_esc(FILE *fp, const char *s);
+double rp_pct(size_t a, size_t b);
+void rp_colour(FILE *fp, rp_kind k);
+void rp_badge(FILE *fp, const rp_fault *f);
+/* Its tables (html_tables.c): contents, problems, faults, junctions. */
+void rp_toc(FILE *fp, const fm_report *r);
+void rp_problems(FILE *fp, const fm_report *r);
+void rp_fault_table(FILE *fp, const fm_report *r);
+void rp_junction_table(FILE *fp, const fm_report *r);
+
+/* The page's own style sheet and script (page.css, page.js, embedded by
+ * embed.cmake). */
+extern const char rp_page_style[];
+extern const char rp_page_script[];
 
 /* A histogram: counts over [lo, hi) in nbins equal bins, what falls
  * outside counted apart; band (if band_lo < band_hi) shaded as the

@@ -22,7 +22,6 @@ typedef struct pool {
     const curve_filter *flt; /* phase 2: plan curves (or pieces) left out */
     file_job *jobs;
     const size_t *order; /* the order jobs are handed out in */
-    const double *bytes;  /* per job: its file's size, the progress weight */
 } pool;
 
 /* Whether a job has faults to mesh again. */
@@ -48,7 +47,7 @@ static void run_one(void *arg, size_t i)
     else
         mesh_file(p->plan, p->flt, job, p->phase == 2);
     if (p->phase != 2 || marked(job))
-        run_progress_step(p->cli->ctl, p->bytes ? p->bytes[at] : 1);
+        run_progress_step(p->cli->ctl, 1);
 }
 
 typedef struct job_key {
@@ -68,7 +67,7 @@ static int larger_first(const void *a, const void *b)
  * busy while the others idle (longest-processing-time-first scheduling).
  * Which thread meshes a fault never changes its result, and results are
  * merged in input order, so the order is free. */
-static size_t *schedule(const file_job *jobs, size_t n, double *bytes)
+static size_t *schedule(const file_job *jobs, size_t n)
 {
     size_t *order = malloc((n ? n : 1) * sizeof *order);
     job_key *key = malloc((n ? n : 1) * sizeof *key);
@@ -86,8 +85,6 @@ static size_t *schedule(const file_job *jobs, size_t n, double *bytes)
         else
             key[i].bytes = stat(jobs[i].path, &sb) == 0 ? (long long)sb.st_size : 0;
         key[i].index = i;
-        if (bytes)
-            bytes[i] = (double)key[i].bytes;
     }
     qsort(key, n, sizeof *key, larger_first);
     for (size_t i = 0; i < n; i++)
@@ -96,29 +93,31 @@ static size_t *schedule(const file_job *jobs, size_t n, double *bytes)
     return order;
 }
 
-/* Runs one phase of the jobs on cli->jobs threads (the calling one
- * included). */
 void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
               const curve_filter *flt, file_job *jobs, size_t n)
 {
-    double *bytes = malloc((n ? n : 1) * sizeof *bytes);
-    size_t *order = schedule(jobs, n, bytes);
+    run_jobs_open(cli, plan, phase, flt, jobs, n);
+    run_progress_end(cli->ctl);
+}
+
+void run_jobs_open(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
+                   const curve_filter *flt, file_job *jobs, size_t n)
+{
+    size_t *order = schedule(jobs, n);
     size_t count = 0;
-    double weight = 0;
     for (size_t i = 0; i < n; i++)
-        if (phase != 2 || marked(&jobs[i])) {
-            count++;
-            weight += bytes ? bytes[i] : 1;
-        }
-    /* a third round meshes again the faults a dropped shared curve changed */
-    static const char *stage[3] = {"read and fit", "mesh",
-                                   "mesh again (faults whose shared curves were dropped)"};
-    run_progress_begin(cli->ctl, stage[phase], count, "files", weight);
-    pool p = {cli, plan, phase, flt, jobs, order, bytes};
+        count += phase != 2 || marked(&jobs[i]);
+    /* Progress counts files done, not their bytes: a share of bytes read
+     * as a share of files ("24/438 files, 25%") misleads, and the time a
+     * file takes follows its surface more than its size. Later rounds
+     * mesh again the files whose shared curves a neighbour dropped; the
+     * summary's mesh time includes them. */
+    static const char *stage[3] = {"read and fit", "mesh", "mesh again"};
+    static const char *unit[3] = {"files", "files", "files whose shared curves changed"};
+    run_progress_begin(cli->ctl, stage[phase], count, unit[phase], 0);
+    pool p = {cli, plan, phase, flt, jobs, order};
     fm_parallel_for(n, cli->jobs, run_one, &p, NULL, NULL, 0, 0);
     free(order);
-    free(bytes);
-    run_progress_end(cli->ctl);
 }
 
 /* A fault that failed in meshing or came out empty took none of the plan
@@ -301,19 +300,20 @@ static size_t settle_pieces(const fm_connect_plan *plan, file_job *jobs, size_t 
  * that filled a gap along more of a curve than its partner holds is meshed
  * again with the curve clipped (settle_pieces); and so on until nothing
  * changes (what is taken only shrinks, so this ends). */
-void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
-                   size_t njobs)
+int settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
+                  size_t njobs)
 {
     size_t nc = fm_connect_plan_get_stats(plan)->curves;
     curve_filter flt = {calloc(nc + 1, 1), calloc(nc + 1, 1), NULL, 0};
     if (!flt.excluded || !flt.clipped) {
         free(flt.excluded);
         free(flt.clipped);
-        return;
+        return 0;
     }
     unsigned char *excluded = flt.excluded;
     /* Each round only shrinks what is taken, so this ends; the bound keeps
      * a chain of clips from costing more than a few meshings. */
+    int rounds = 0;
     for (int round = 0; round < SETTLE_ROUNDS; round++) {
         size_t added = 0, again = 0;
         for (size_t i = 0; i < njobs; i++)
@@ -345,6 +345,7 @@ void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job 
         if (!again)
             break;
         run_jobs(cli, plan, 2, &flt, jobs, njobs);
+        rounds++;
         for (size_t i = 0; i < njobs; i++)
             if (jobs[i].redo)
                 memset(jobs[i].redo, 0, jobs[i].n);
@@ -352,4 +353,5 @@ void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job 
     free(flt.excluded);
     free(flt.clipped);
     free(flt.keep);
+    return rounds;
 }

@@ -478,9 +478,15 @@ void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp)
     if (t.worst_dist_fault)
         fprintf(fp, "  %-14s node %.0f m from the original (%s)\n", "worst fidelity",
                 t.worst_dist, t.worst_dist_fault);
-    fprintf(fp, "  %-14s read and fit %.1f s, connect %.1f s, mesh %.1f s, merge and check "
+    /* the stages of the log, summed where the log splits one: mesh and its
+     * rounds of meshing again, write and report.html */
+    char again[64] = "";
+    if (rs->mesh_rounds)
+        snprintf(again, sizeof again, " (with %d round%s of meshing again)", rs->mesh_rounds,
+                 rs->mesh_rounds > 1 ? "s" : "");
+    fprintf(fp, "  %-14s read and fit %.1f s, connect %.1f s, mesh %.1f s%s, merge and check "
                 "%.1f s, write %.1f s; %.1f s in all\n",
-            "time", rs->time[0], rs->time[1], rs->time[2], rs->time[3], rs->time[4], T);
+            "time", rs->time[0], rs->time[1], rs->time[2], again, rs->time[3], rs->time[4], T);
     cache_print(cli, rs, fp);
     if (rs->outputs)
         outputs_print(rs->outputs, fp);

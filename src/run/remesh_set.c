@@ -444,7 +444,9 @@ static int junction_set(const run_state *rs, size_t i, const fm_keyed *edges, si
         free(v);
         return nv ? -1 : 0;
     }
-    snprintf(name, len, "junction %zu: %s / %s", i, ra->name, rb->name);
+    /* numbered from 1, as every output numbers faults and junctions
+     * (docs/formats.md): the junction's line in report.json */
+    snprintf(name, len, "junction %zu: %s / %s", i + 1, ra->name, rb->name);
     js->names[js->n] = name;
     js->vertices[js->n] = v;
     js->set[js->n] = (fm_faultset_nodeset){name, v, nv};

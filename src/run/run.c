@@ -165,14 +165,18 @@ static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t 
             continue;
         fault_result *r = res[f];
         char msg[512];
+        /* the two shares the rule decides on come first: the pair is a
+         * near-duplicate because one of them reaches min_share, which the
+         * share of the fault given up alone often does not */
         if (d)
             snprintf(msg, sizeof msg,
-                     "near-duplicate of %s: %.0f%% of its area lies within %.0f m of the faults "
-                     "it pairs with (%.0f%% within %.0f m of that one, which is kept: the %s of "
-                     "the two)",
-                     res[d->kept]->name, 100 * d->cover, po.duplicates.tolerance,
-                     100 * d->share[0], po.duplicates.tolerance,
-                     d->area[1] > d->area[0] ? "larger" : "smaller");
+                     "near-duplicate of %s: %.0f%% of that one's area lies within %.0f m of "
+                     "this fault, %.0f%% of this one's within %.0f m of it (a pair is a "
+                     "near-duplicate when either share reaches %.0f%%); that one, the %s of the "
+                     "two, is kept; the faults this one pairs with cover %.0f%% of it",
+                     res[d->kept]->name, 100 * d->share[1], po.duplicates.tolerance,
+                     100 * d->share[0], po.duplicates.tolerance, 100 * po.duplicates.min_share,
+                     d->area[1] > d->area[0] ? "larger" : "smaller", 100 * d->cover);
         else
             snprintf(msg, sizeof msg, "near-duplicate of another fault");
         r->status = "dropped";
@@ -327,15 +331,21 @@ fm_status run_execute(fm_run_result *res, const char *const *files,
         jobs[i].ctl = cli->ctl;
     }
     double t0 = fm_clock_seconds();
-    run_jobs(cli, NULL, 0, NULL, jobs, nfiles);
+    /* the checks of what was read belong to its stage, so that the log's
+     * time for it is the summary's */
+    run_jobs_open(cli, NULL, 0, NULL, jobs, nfiles);
+    fm_status st = FM_OK;
+    if (!run_cancelled(cli->ctl)) {
+        st = too_many_triangles(cli, jobs, nfiles, err);
+        if (st == FM_OK)
+            st = settle_crs(cli, jobs, nfiles, rs, err);
+    }
+    run_progress_end(cli->ctl);
+    double t1 = fm_clock_seconds();
     if (run_cancelled(cli->ctl))
         return cancelled(res, err);
-    fm_status st = too_many_triangles(cli, jobs, nfiles, err);
-    if (st == FM_OK)
-        st = settle_crs(cli, jobs, nfiles, rs, err);
     if (st != FM_OK)
         return give_up(res, st);
-    double t1 = fm_clock_seconds();
     fm_connect_plan *plan = NULL;
     if (cli->connect) {
         run_progress_begin(cli->ctl, "connect", 0, NULL, 0);
@@ -348,7 +358,7 @@ fm_status run_execute(fm_run_result *res, const char *const *files,
     double t2 = fm_clock_seconds();
     run_jobs(cli, plan, 1, NULL, jobs, nfiles);
     if (plan && !run_cancelled(cli->ctl))
-        settle_curves(cli, plan, jobs, nfiles);
+        rs->mesh_rounds = settle_curves(cli, plan, jobs, nfiles);
     if (run_cancelled(cli->ctl))
         return cancelled(res, err);
     double t3 = fm_clock_seconds();
@@ -390,6 +400,9 @@ fm_status fm_run_result_write(fm_run_result *res, const char *dir, unsigned form
     if (!res->dir)
         return fm_error_set(err, FM_ERR_NOMEM, dir, 0, "out of memory");
     res->written = 1;
+    /* the write's time runs from here: what the caller did between the
+     * run and its writing is no stage of the log */
+    double tw = fm_clock_seconds();
     remesh_cli *cli = &res->cli;
     run_state *rs = &res->rs;
     cli->dir = res->dir;
@@ -406,7 +419,7 @@ fm_status fm_run_result_write(fm_run_result *res, const char *dir, unsigned form
     if (html && cli->jobs > 1)
         html_async = pthread_create(&html_thread, NULL, html_worker, &hj) == 0;
     if (html && !html_async) {
-        run_progress_begin(cli->ctl, "report.html", 0, NULL, 0);
+        run_progress_begin(cli->ctl, "write report.html", 0, NULL, 0);
         html_worker(&hj);
         run_progress_end(cli->ctl);
     }
@@ -424,14 +437,16 @@ fm_status fm_run_result_write(fm_run_result *res, const char *dir, unsigned form
             *err = hj.err;
     }
     release_jobs(res);
-    rs->time[4] = fm_clock_seconds() - res->t4;
+    rs->time[4] = fm_clock_seconds() - tw;
+    /* the stage ends with the time report.json records for it, so that
+     * the log and the summary agree */
+    run_progress_end(cli->ctl);
     /* report.json even when the meshes could not be written: it says what
      * each fault came to, and which files are missing */
     fm_error rerr;
     fm_error_clear(&rerr);
     fm_status rst = write_report(cli, rs, sa.slip ? &sa : NULL, &rerr);
     sim_attrs_free(&sa);
-    run_progress_end(cli->ctl);
     note_report(outputs, "report.json", rst == FM_OK ? NULL : &rerr);
     if (first == FM_OK && rst != FM_OK) {
         first = rst;

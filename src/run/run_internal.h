@@ -194,6 +194,7 @@ typedef struct run_state {
     size_t nplan_faults;
     double time[5];       /* read and fit, connect, mesh, merge and check, write (wall
                              clock, s) */
+    int mesh_rounds;      /* rounds of meshing again, within time[2] */
     size_t *set_res;      /* per fault of the set (triangle tag): its entry in res */
     const fm_mesh **set_orig; /* and its original (valid until the jobs are released) */
     fm_carve_result *carve; /* faults that still met after meshing; NULL when not carved */
@@ -270,10 +271,16 @@ void release_job(file_job *job);
 void abandon_job(file_job *job);
 
 /* remesh_pool.c */
+/* Runs one phase of the jobs on cli->jobs threads (the calling one
+ * included), a progress stage of its own; run_jobs_open leaves the stage
+ * open, for the caller to end when what belongs to it is done too. */
 void run_jobs(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
               const curve_filter *flt, file_job *jobs, size_t n);
-void settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
-                   size_t njobs);
+void run_jobs_open(const remesh_cli *cli, const fm_connect_plan *plan, int phase,
+                   const curve_filter *flt, file_job *jobs, size_t n);
+/* The number of rounds of meshing again it took. */
+int settle_curves(const remesh_cli *cli, const fm_connect_plan *plan, file_job *jobs,
+                  size_t njobs);
 
 /* remesh_outputs.c: an output file written (err NULL) or not (said on
  * the log); outputs_done is the same as an fm_output_done of the set's

@@ -89,14 +89,14 @@ def check_exodus(out, faults, crs, junctions, verts, groups):
     nc = netCDF4.Dataset(path)
     eb = chars(nc.variables["eb_names"])
     ns_names = chars(nc.variables["ns_names"])
-    # junction sets: "junction I: A / B", I the index in report.json, cut
-    # by the short-name rule with the fault names
+    # junction sets: "junction I: A / B", I the number (from 1) of its line
+    # in report.json, cut by the short-name rule with the fault names
     made = {i: j for i, j in enumerate(junctions) if j["type"] != "unjoined"}
     full_sets = []
     for name in ns_names[len(faults):]:
         mt = re.match(r"junction_(\d+)_", name)
-        ji = int(mt.group(1)) if mt else -1
-        full_sets.append("junction %d: %s / %s" % (ji, *made[ji]["faults"]) if ji in made else "")
+        ji = int(mt.group(1)) - 1 if mt else -1
+        full_sets.append("junction %d: %s / %s" % (ji + 1, *made[ji]["faults"]) if ji in made else "")
     short = short_names(faults + full_sets, 32)
     check(all(len(n) <= 32 for n in eb + ns_names) and len(set(eb)) == len(eb) and
           len(set(ns_names)) == len(ns_names),
@@ -139,7 +139,7 @@ def check_exodus(out, faults, crs, junctions, verts, groups):
     with_set = set()
     for k, name in enumerate(sets):
         mt = re.match(r"junction_(\d+)_", name)
-        ji = int(mt.group(1)) if mt else -1
+        ji = int(mt.group(1)) - 1 if mt else -1
         if ji not in made or name != short[len(faults) + k]:
             bad_names.append(name)
             continue

@@ -18,6 +18,29 @@ for stage in "read and fit" connect mesh "merge and check" write; do
     grep -q "^faultmesh: $stage: done in [0-9.]* s" "$tmp/err" && ok || bad "no end line for $stage"
 done
 grep -q $'\r' "$tmp/err" && bad "carriage returns in a log file" || ok
+# The log agrees with the summary: each stage's "done in" is the summary's
+# time for it (mesh with its rounds of meshing again), and a share is the
+# share of the count done, not of bytes.
+python3 - "$tmp/err" "$tmp/out" <<'PY' && ok || bad "log and summary disagree"
+import re, sys
+log, out = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+done = {}
+for stage, s in re.findall(r"^faultmesh: ([a-z ]+): done in ([0-9.]+) s", log, re.M):
+    done[stage] = done.get(stage, 0) + float(s)
+done["mesh"] = done.get("mesh", 0) + done.pop("mesh again", 0)
+m = re.search(r"read and fit ([0-9.]+) s, connect ([0-9.]+) s, mesh ([0-9.]+) s.*merge and check "
+              r"([0-9.]+) s, write ([0-9.]+) s", out)
+summary = dict(zip(("read and fit", "connect", "mesh", "merge and check", "write"),
+                   map(float, m.groups())))
+rounds = len(re.findall(r"^faultmesh: mesh again: done", log, re.M))
+bad = [(k, done.get(k), v) for k, v in summary.items()
+       if done.get(k) is None or abs(done[k] - v) > 0.051 * (2 + rounds)]
+for d, n, pct in re.findall(r": (\d+)/(\d+) [a-z ]+, (\d+)%", log):
+    if abs(100 * int(d) / int(n) - int(pct)) > 1:
+        bad.append(("share", d + "/" + n, pct))
+print("log %s, summary %s" % (done, summary))
+sys.exit(1 if bad else 0)
+PY
 for row in "summary (" "  faults  *$nin read, $nin meshed" "  sheets " "  junctions  *[0-9]* crossing, [0-9]* T, [0-9]* corner, [0-9]* unjoined" \
     "  triangles  *[0-9]*, " "  worst quality  *smallest angle" "  worst fidelity" "  time  *read and fit"; do
     grep -q "^$row" "$tmp/out" && ok || bad "summary lacks '$row': $(cat "$tmp/out")"

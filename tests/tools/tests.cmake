@@ -410,3 +410,22 @@ if(DOXYGEN_FOUND)
     COMMAND sh -c "{ cat '${PROJECT_BINARY_DIR}/Doxyfile.doc'; echo 'WARN_AS_ERROR = YES'; echo 'OUTPUT_DIRECTORY = ${PROJECT_BINARY_DIR}/tests/tmp/api_docs'; } | '${DOXYGEN_EXECUTABLE}' -"
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
 endif()
+
+# report.html in headless Chromium (Debian's chromium; skipped, 77, without
+# it): no script error with WebGL or without, the fault panel drawn from
+# the packed triangles (its triangle count and its neighbours'), sorting
+# and filtering, the DOM the browser made checked against report.json and
+# mesh.obj (check_report_html.py), a screenshot saved as
+# tmp/report_browser_*/report_panel.png. On the demo, and on the whole CFM
+# 500 m set at 1 km when ../shared is present (there also report.html
+# at most 3 MB).
+if(FM_SYSTEM_PYTHON)
+  add_test(NAME report_browser_demo
+    COMMAND ${FM_SYSTEM_PYTHON} ${FM_TOOLS}/report_browser_check.py $<TARGET_FILE:faultmesh_cli>
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/report_browser_demo)
+  set_tests_properties(report_browser_demo PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+  add_test(NAME cfm_report_browser_500m_1000
+    COMMAND ${FM_SYSTEM_PYTHON} ${FM_TOOLS}/report_browser_check.py $<TARGET_FILE:faultmesh_cli>
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/report_browser_cfm ${FM_CFM_DIR}/CFM5.3/500m)
+  set_tests_properties(cfm_report_browser_500m_1000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
+endif()

@@ -579,7 +579,7 @@ static void test_exodus(void)
     int32_t column[4];
     for (int r = 0; r < 4; r++)
         column[r] = col(0, 4, r);
-    fm_faultset_nodeset ns = {"junction 0: a / b", column, 4};
+    fm_faultset_nodeset ns = {"junction 1: a / b", column, 4};
     fs.nodesets = &ns;
     fs.nnodesets = 1;
     char dir[4096], a[4200], b[4200];
@@ -598,7 +598,7 @@ static void test_exodus(void)
     CHECK(sn && buf && find_bytes(buf, n, sn[1], strlen(sn[1])) != NULL);
     fm_short_names_free(sn, fs.nfaults);
     CHECK(buf && find_bytes(buf, n, "crs: EPSG:26711", 15) != NULL);
-    CHECK(buf && find_bytes(buf, n, "junction_0_a_b", 14) != NULL);
+    CHECK(buf && find_bytes(buf, n, "junction_1_a_b", 14) != NULL);
     free(buf);
     int tmp = 0;
     CHECK_EQ(count_entries(dir, &tmp), 2);

@@ -1,20 +1,13 @@
-/* One fault in 3D: its original (left) beside the new mesh (right), both
- * seen the same way at the same scale, looking onto the fault's face
- * whatever its strike and dip. */
+/* How a fault is first seen on the page: looking onto its face whatever
+ * its strike and dip. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "report_internal.h"
 
-#define VIEW_W 360
-#define VIEW_H 200
-#define PANEL (VIEW_W / 2)
-#define PAD 8
 #define DEG 0.017453292519943295 /* radians per degree */
 #define AZIMUTH_OFF (22.5 * DEG)
-
-static const double original_rgb[3] = {0.62, 0.66, 0.74};
 
 /* The horizontal direction of largest spread of m's vertices, pointing
  * east or, for a north-south fault, north: the strike of a fault that
@@ -84,7 +77,7 @@ static void mean_normal(const fm_mesh *m, int32_t tag, double n[3])
  * that sees it, turned a little off square and from 25 to 65 degrees above
  * the horizon so that a vertical fault still shows its depth and a flat
  * one its outline. */
-static void camera_for(const fm_mesh *m, int32_t tag, rp_camera *cam)
+void rp_camera_for(const fm_mesh *m, int32_t tag, rp_camera *cam)
 {
     double n[3], *r = cam->r;
     mean_normal(m, tag, n);
@@ -133,82 +126,4 @@ static void camera_for(const fm_mesh *m, int32_t tag, rp_camera *cam)
     for (int k = 0; k < 3; k++)
         cam->light[k] = l[k] / sqrt(len);
     cam->ambient = 0.45;
-}
-
-/* A scale bar of a round number of km, bottom left of the left panel. */
-static void view_scale(cairo_t *cr, double k)
-{
-    double target = PANEL / 3.0 / k / 1000, km = pow(10, floor(log10(target)));
-    if (target >= 5 * km)
-        km *= 5;
-    else if (target >= 2 * km)
-        km *= 2;
-    char s[32];
-    snprintf(s, sizeof s, "%g km", km);
-    cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
-    cairo_set_line_width(cr, 2);
-    cairo_move_to(cr, PAD, VIEW_H - 5);
-    cairo_line_to(cr, PAD + km * 1000 * k, VIEW_H - 5);
-    cairo_stroke(cr);
-    rp_text(cr, PAD + km * 1000 * k + 4, VIEW_H - 2, 9, 0, s);
-}
-
-rp_raster *rp_fault_raster(void)
-{
-    return rp_raster_create(PANEL, VIEW_H);
-}
-
-fm_status rp_draw_fault(const fm_report *r, const rp_fault *f, rp_raster *ras, rp_scene sc[2],
-                        rp_png *out)
-{
-    memset(out, 0, sizeof *out);
-    int meshed = f->tag >= 0 && r->set;
-    const fm_mesh *shape = f->original ? f->original : meshed ? r->set : NULL;
-    if (!shape)
-        return FM_ERR_INVALID;
-    rp_camera cam;
-    camera_for(shape, f->original ? -1 : f->tag, &cam);
-    rp_scene *orig = &sc[0], *now = &sc[1];
-    rp_scene_reset(orig);
-    rp_scene_reset(now);
-    int bad = (f->original && rp_scene_add(orig, f->original, -1, &cam, original_rgb, 0)) ||
-              (meshed && rp_scene_add(now, r->set, f->tag, &cam, rp_kind_rgb[f->kind], 1));
-    double lo[2], hi[2], lo2[2], hi2[2];
-    int any = rp_scene_bounds(orig, lo, hi), any2 = rp_scene_bounds(now, lo2, hi2);
-    if (bad || (!any && !any2))
-        return bad ? FM_ERR_NOMEM : FM_ERR_INVALID;
-    for (int c = 0; c < 2 && any2; c++) {
-        lo[c] = any ? fmin(lo[c], lo2[c]) : lo2[c];
-        hi[c] = any ? fmax(hi[c], hi2[c]) : hi2[c];
-    }
-    double wx = fmax(hi[0] - lo[0], 1), wy = fmax(hi[1] - lo[1], 1);
-    double k = fmin((PANEL - 2 * PAD) / wx, (VIEW_H - 2 * PAD - 10) / wy);
-    double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]);
-    cairo_surface_t *img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, VIEW_W, VIEW_H);
-    cairo_t *cr = cairo_create(img);
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_paint(cr);
-    /* edges fade out where triangles shrink to a few pixels (a long
-     * fault), or they would hide the faces */
-    double px = r->size * k, shown = fmin(fmax((px - 2) / 4, 0), 1);
-    rp_lines lines = {shown > 0 ? 1 : 0, 0, 1 - 0.45 * shown};
-    for (int side = 0; side < 2; side++) {
-        rp_raster_clear(ras);
-        rp_raster_scene(ras, side ? now : orig, k, PANEL / 2.0 - k * cx, VIEW_H / 2.0 + 2 + k * cy,
-                        &lines);
-        rp_raster_put(ras, img, side * PANEL, 0);
-    }
-    cairo_set_source_rgb(cr, 0.8, 0.8, 0.8);
-    cairo_set_line_width(cr, 1);
-    cairo_move_to(cr, PANEL + 0.5, 0);
-    cairo_line_to(cr, PANEL + 0.5, VIEW_H);
-    cairo_stroke(cr);
-    cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-    rp_text(cr, 4, 11, 9, 0, f->original ? "original" : "original not read");
-    rp_text(cr, PANEL + 4, 11, 9, 0, meshed ? "new mesh" : "not meshed");
-    view_scale(cr, k);
-    fm_status st = cairo_status(cr) == CAIRO_STATUS_SUCCESS ? rp_png_encode(img, out) : FM_ERR_NOMEM;
-    cairo_destroy(cr);
-    cairo_surface_destroy(img);
-    return st;
 }
