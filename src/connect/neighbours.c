@@ -158,13 +158,7 @@ void fm_connect_neighbours_key(const unsigned char (*model_keys)[FM_MODEL_KEY_BY
 
 static char *nb_path(const char *dir, const unsigned char key[FM_CONNECT_KEY_BYTES])
 {
-    char hex[2 * FM_SHA256_BYTES + 1];
-    fm_sha256_hex(key, hex);
-    size_t n = strlen(dir) + sizeof "/connect/xx/" + sizeof hex + sizeof ".fmn";
-    char *p = malloc(n);
-    if (p)
-        snprintf(p, n, "%s/connect/%.2s/%s.fmn", dir, hex, hex + 2);
-    return p;
+    return fm_cache_key_path(dir, "connect", key, ".fmn");
 }
 
 fm_status fm_connect_neighbours_put(const char *dir, const unsigned char key[FM_CONNECT_KEY_BYTES],
@@ -216,11 +210,7 @@ fm_status fm_connect_neighbours_put(const char *dir, const unsigned char key[FM_
         free(b.p);
         return fm_error_set(err, FM_ERR_NOMEM, dir, 0, "out of memory");
     }
-    /* the connect/XX folder, made by whichever run comes first */
-    char *slash = strrchr(path, '/');
-    *slash = '\0';
-    fm_status st = fm_mkdir_p(path, err);
-    *slash = '/';
+    fm_status st = fm_cache_key_folder(path, err);
     fm_atomic_file *af = st == FM_OK ? fm_atomic_open(path, err) : NULL;
     if (st == FM_OK && !af)
         st = err ? err->code : FM_ERR_IO;

@@ -70,6 +70,13 @@ fm_status fm_model_cache_put(const char *dir, const unsigned char key[FM_MODEL_K
 /* The file a key is stored in (malloc'ed; NULL when out of memory). */
 char *fm_model_cache_path(const char *dir, const unsigned char key[FM_MODEL_KEY_BYTES]);
 
+/* A cache's file for a key: DIR/FOLDER/XX/REST.EXT, XX the key's first two
+ * hexadecimal digits and REST the others (malloc'ed; NULL when out of
+ * memory); and its XX folder made, by whichever run comes first. */
+char *fm_cache_key_path(const char *dir, const char *folder, const unsigned char key[32],
+                        const char *ext);
+fm_status fm_cache_key_folder(char *path, fm_error *err);
+
 #ifdef __cplusplus
 }
 #endif

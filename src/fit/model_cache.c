@@ -43,15 +43,32 @@ fm_status fm_model_cache_open(const char *dir, fm_error *err)
     return st;
 }
 
-char *fm_model_cache_path(const char *dir, const unsigned char key[FM_MODEL_KEY_BYTES])
+char *fm_cache_key_path(const char *dir, const char *folder, const unsigned char key[32],
+                        const char *ext)
 {
     char hex[2 * FM_SHA256_BYTES + 1];
     fm_sha256_hex(key, hex);
-    size_t n = strlen(dir) + sizeof "/models/xx/" + sizeof hex + sizeof ".fmm";
+    size_t n = strlen(dir) + strlen(folder) + strlen(ext) + sizeof hex + 8;
     char *p = malloc(n);
     if (p)
-        snprintf(p, n, "%s/models/%.2s/%s.fmm", dir, hex, hex + 2);
+        snprintf(p, n, "%s/%s/%.2s/%s%s", dir, folder, hex, hex + 2, ext);
     return p;
+}
+
+fm_status fm_cache_key_folder(char *path, fm_error *err)
+{
+    char *slash = strrchr(path, '/');
+    if (!slash)
+        return FM_OK;
+    *slash = '\0';
+    fm_status st = fm_mkdir_p(path, err);
+    *slash = '/';
+    return st;
+}
+
+char *fm_model_cache_path(const char *dir, const unsigned char key[FM_MODEL_KEY_BYTES])
+{
+    return fm_cache_key_path(dir, "models", key, ".fmm");
 }
 
 fm_status fm_model_cache_get(const char *dir, const unsigned char key[FM_MODEL_KEY_BYTES],
@@ -74,11 +91,7 @@ fm_status fm_model_cache_put(const char *dir, const unsigned char key[FM_MODEL_K
     char *path = fm_model_cache_path(dir, key);
     if (!path)
         return fm_error_set(err, FM_ERR_NOMEM, dir, 0, "out of memory");
-    /* the models/XX folder, made by whichever run comes first */
-    char *slash = strrchr(path, '/');
-    *slash = '\0';
-    fm_status st = fm_mkdir_p(path, err);
-    *slash = '/';
+    fm_status st = fm_cache_key_folder(path, err);
     if (st == FM_OK)
         st = model_store_write(m, key, path, err);
     free(path);

@@ -320,6 +320,14 @@ static int nearest_of_fault(size_t j, void *user)
     return 0;
 }
 
+double tile_nearest_of_fault(const tile_grid *g, const fm_tiles *t, const double p[3],
+                             double reach, int32_t fault, double none)
+{
+    near_ctx c = {t, p, fault, none, 0, 0};
+    tile_grid_near(g, p, reach, nearest_of_fault, &c);
+    return c.best;
+}
+
 static int count_meeting(size_t j, void *user)
 {
     near_ctx *c = user;
@@ -401,11 +409,8 @@ static int measure_gaps(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, c
                     double pt[3];
                     for (int d = 0; d < 3; d++)
                         pt[d] = a[d] + (b[d] - a[d]) * k / 4.0;
-                    near_ctx ca = {t, pt, fa, reach, 0, 0};
-                    near_ctx cb = {t, pt, fb, reach, 0, 0};
-                    tile_grid_near(g, pt, reach, nearest_of_fault, &ca);
-                    tile_grid_near(g, pt, reach, nearest_of_fault, &cb);
-                    double gap = fmax(ca.best, cb.best);
+                    double gap = fmax(tile_nearest_of_fault(g, t, pt, reach, fa, reach),
+                                      tile_nearest_of_fault(g, t, pt, reach, fb, reach));
                     gr.gmax = fmax(gr.gmax, gap);
                     gr.gsum += gap * len / 3;
                     if (gap > t->stats.size / 2)

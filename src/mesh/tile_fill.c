@@ -15,22 +15,6 @@
 #include "tile_internal.h"
 #include "fm_vec3.h"
 
-typedef struct fill_ctx {
-    const fm_tiles *t;
-    const double *p;
-    int32_t fault;
-    double best;
-} fill_ctx;
-
-static int nearest_own(size_t j, void *user)
-{
-    fill_ctx *c = user;
-    const fm_tile *b = &c->t->tile[j];
-    if (b->fault == c->fault)
-        c->best = fmin(c->best, tile_distance(b, c->p, NULL, NULL));
-    return 0;
-}
-
 /* The filling tile of fault f at junction point p on the edge u-v of its
  * triangle k; 0 when that triangle has no plane. */
 static int make_fill(const double *x, const int32_t *tri, size_t k, int32_t f, const double p[3],
@@ -120,12 +104,11 @@ int tile_fill_junctions(fm_tiles *t, const fm_mesh *set, const tile_sides *sd)
                 double p[3];
                 for (int d = 0; d < 3; d++)
                     p[d] = a[d] + (b[d] - a[d]) * h / 4.0;
-                fill_ctx c = {t, p, f, INFINITY};
-                tile_grid_near(&g, p, rmax + size, nearest_own, &c);
+                double best = tile_nearest_of_fault(&g, t, p, rmax + size, f, INFINITY);
                 for (size_t m = n0; m < t->n; m++)
                     if (t->tile[m].fault == f)
-                        c.best = fmin(c.best, tile_distance(&t->tile[m], p, NULL, NULL));
-                if (c.best <= 0.4 * size)
+                        best = fmin(best, tile_distance(&t->tile[m], p, NULL, NULL));
+                if (best <= 0.4 * size)
                     continue;
                 fm_tile tl;
                 if (make_fill(x, tri, k, f, p, u, v, size / 2, &tl))

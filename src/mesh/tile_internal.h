@@ -146,5 +146,9 @@ int tile_grid_make(tile_grid *g, const fm_tiles *t, double reach);
 typedef int (*tile_grid_fn)(size_t tile, void *user);
 void tile_grid_near(const tile_grid *g, const double p[3], double reach, tile_grid_fn fn,
                     void *user);
+/* The distance from p to the nearest tile of fault among those the grid
+ * lists within reach of it (tile_apart.c); none when there is none. */
+double tile_nearest_of_fault(const tile_grid *g, const fm_tiles *t, const double p[3],
+                             double reach, int32_t fault, double none);
 
 #endif
