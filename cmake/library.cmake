@@ -20,7 +20,7 @@ endforeach()
 # link it (plain names: Debian keeps them where the linker looks). The
 # ones with a .pc file go to faultmesh.pc's Requires.private, the rest to
 # its Libs.private. Keep in step with the stages' CMakeLists.txt.
-set(FM_PC_REQUIRES_PRIVATE proj cairo fontconfig json-c netcdf lapacke)
+set(FM_PC_REQUIRES_PRIVATE proj cairo fontconfig json-c netcdf lapacke zlib)
 get_filename_component(fm_cholmod ${CHOLMOD_LIBRARY} NAME_WE)
 get_filename_component(fm_exodus ${FM_EXODUS_LIB} NAME_WE)
 string(REGEX REPLACE "^lib" "" fm_cholmod ${fm_cholmod})
@@ -28,7 +28,7 @@ string(REGEX REPLACE "^lib" "" fm_exodus ${fm_exodus})
 find_package(OpenMP REQUIRED COMPONENTS C)
 set(FM_OTHER_LIBS ${fm_cholmod} ${fm_exodus} ${OpenMP_C_LIB_NAMES} pthread ${CMAKE_DL_LIBS} m)
 list(REMOVE_DUPLICATES FM_OTHER_LIBS)
-set(FM_STATIC_DEPS proj cairo fontconfig json-c netcdf lapacke ${FM_OTHER_LIBS})
+set(FM_STATIC_DEPS proj cairo fontconfig json-c netcdf lapacke z ${FM_OTHER_LIBS})
 
 set(fm_build_includes
   $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
