@@ -68,7 +68,7 @@ static void print_object(const fm_tsurf *ts, const fm_surface *s, const fm_mesh_
             fm_mesh_compute_stats(fm_surface_sheet_mesh(s, i), &st);
             printf("    sheet %zu: %zu vertices, %zu triangles, %.3f km2, %zu loops "
                    "(%zu holes)\n",
-                   i, st.vertices, st.triangles, st.area * 1e-6, fm_surface_sheet_nloops(s, i),
+                   i + 1, st.vertices, st.triangles, st.area * 1e-6, fm_surface_sheet_nloops(s, i),
                    fm_surface_sheet_nholes(s, i));
             print_stats_line(&st, "      ");
         }
@@ -76,9 +76,10 @@ static void print_object(const fm_tsurf *ts, const fm_surface *s, const fm_mesh_
             size_t np, ns;
             fm_surface_junction_points(s, k, &np);
             const int32_t *sh = fm_surface_junction_sheets(s, k, &ns);
-            printf("    junction %zu: %zu points, %.1f m, sheets", k, np, fm_surface_junction_length(s, k));
+            printf("    junction %zu: %zu points, %.1f m, sheets", k + 1, np,
+                   fm_surface_junction_length(s, k));
             for (size_t q = 0; q < ns; q++)
-                printf(" %d", sh[q]);
+                printf(" %d", sh[q] + 1);
             printf("\n");
         }
     }

@@ -124,7 +124,7 @@ void fm_surface_json(fm_json *j, const char *name, size_t nparts, const fm_mesh 
         fm_mesh_stats st;
         fm_mesh_compute_stats(fm_surface_sheet_mesh(s, i), &st);
         fm_json_begin_object(j);
-        fm_json_kv_int(j, "index", (int64_t)i);
+        fm_json_kv_int(j, "index", (int64_t)i + 1); /* from 1, as outputs number sheets */
         fm_mesh_stats_json(j, &st);
         fm_json_kv_int(j, "boundary_loops", (int64_t)fm_surface_sheet_nloops(s, i));
         fm_json_kv_int(j, "holes", (int64_t)fm_surface_sheet_nholes(s, i));
@@ -154,7 +154,7 @@ void fm_surface_json(fm_json *j, const char *name, size_t nparts, const fm_mesh 
         fm_json_key(j, "sheets");
         fm_json_begin_array(j);
         for (size_t q = 0; q < ns; q++)
-            fm_json_int(j, sh[q]);
+            fm_json_int(j, (int64_t)sh[q] + 1);
         fm_json_end_array(j);
         fm_json_kv_int(j, "points", (int64_t)np);
         fm_json_kv_bool(j, "closed", fm_surface_junction_closed(s, k));

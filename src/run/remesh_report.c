@@ -133,7 +133,7 @@ static void json_carve(fm_json *j, const run_state *rs)
         fm_json_key(j, "sheets");
         fm_json_begin_array(j);
         for (int s2 = 0; s2 < 2; s2++)
-            fm_json_int(j, (int64_t)(p->fault[s2] - rs->sheet_unit_first[f]));
+            fm_json_int(j, (int64_t)(p->fault[s2] - rs->sheet_unit_first[f]) + 1);
         fm_json_end_array(j);
         fm_json_kv_int(j, "triangle_pairs_met", (int64_t)p->contacts);
         if (p->kept) {
@@ -141,7 +141,7 @@ static void json_carve(fm_json *j, const run_state *rs)
             fm_json_null(j);
         } else {
             fm_json_kv_int(j, "removed_from_sheet",
-                           (int64_t)(p->fault[p->yielded] - rs->sheet_unit_first[f]));
+                           (int64_t)(p->fault[p->yielded] - rs->sheet_unit_first[f]) + 1);
         }
         fm_json_kv_int(j, "triangles_removed", (int64_t)p->removed);
         fm_json_kv_number(j, "area_removed_m2", p->area);
@@ -308,7 +308,7 @@ static void json_connect(fm_json *j, const remesh_cli *cli, const run_state *rs,
         fm_json_key(j, "sheets");
         fm_json_begin_array(j);
         for (int s = 0; s < 2; s++)
-            fm_json_int(j, (int64_t)jn->sheet[s]);
+            fm_json_int(j, (int64_t)jn->sheet[s] + 1); /* from 1, as the VTU's sheet */
         fm_json_end_array(j);
         fm_json_kv_string(j, "type", fm_junction_type_name(t));
         /* how each sheet meets the curve, whatever was made of it: tells a

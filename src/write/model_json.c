@@ -114,7 +114,7 @@ void fm_model_write_sheet_report(fm_json *j, const fm_model *m, size_t i, int wi
     const fm_fit_stats *fs = fm_fit_surface_stats(fm_model_surface(m, i));
     const fm_fit_frame *fr = fm_fit_surface_frame(fm_model_surface(m, i));
     fm_json_begin_object(j);
-    fm_json_kv_int(j, "index", (int64_t)i);
+    fm_json_kv_int(j, "index", (int64_t)i + 1); /* sheets count from 1 */
     fm_json_kv_int(j, "vertices", (int64_t)r->vertices);
     fm_json_kv_int(j, "triangles", (int64_t)r->triangles);
     fm_json_kv_string(j, "kind", fs->kind == FM_FIT_PARAMETRIC ? "parametric" : "height_field");
@@ -158,7 +158,7 @@ fm_status fm_model_write_json(const char *path, const char *name, const fm_model
     for (size_t i = 0; i < fm_model_nsheets(m) && !bad; i++) {
         const fm_fit_surface *s = fm_model_surface(m, i);
         fm_json_begin_object(&j);
-        fm_json_kv_int(&j, "index", (int64_t)i);
+        fm_json_kv_int(&j, "index", (int64_t)i + 1);
         write_frame(&j, fm_fit_surface_frame(s));
         bad = write_surface(&j, s);
         fm_json_key(&j, "trimming_loops");

@@ -19,7 +19,7 @@ fm_status fm_model_write_vtu(const char *path, const char *name, const fm_model 
         const fm_mesh *s = fm_model_samples(m, i);
         memcpy(dist + fm_mesh_nvertices(all), fm_model_sample_distance(m, i),
                fm_mesh_nvertices(s) * sizeof *dist);
-        rc = fm_mesh_append(all, s, (int32_t)i);
+        rc = fm_mesh_append(all, s, (int32_t)i + 1); /* the sheet, from 1 */
     }
     if (rc != FM_OK) {
         fm_mesh_destroy(all);
