@@ -7,13 +7,14 @@
  * near-duplicates (u64 each); each pair's indices (u64) and values (f64,
  * their bits), each near-duplicate's likewise; and the SHA-256 of all that
  * precedes it, so that a damaged or truncated file is rejected. */
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "connect_internal.h"
 #include "fm_atomic.h"
+#include "fm_bytes.h"
 #include "fm_connect_code.h"
 #include "fm_model_cache.h"
 #include "fm_sha256.h"
@@ -49,76 +50,6 @@ void cn_neighbours_view(const fm_connect_neighbours *nb, const fm_connect_pair *
 
 size_t cn_neighbours_nfaults(const fm_connect_neighbours *nb) { return nb->nfaults; }
 
-/* ---- bytes ---- */
-
-typedef struct buf {
-    unsigned char *p;
-    size_t n, cap;
-    int nomem;
-} buf;
-
-static void put_bytes(buf *b, const void *v, size_t n)
-{
-    if (b->nomem)
-        return;
-    if (b->n + n > b->cap) {
-        size_t cap = b->cap ? 2 * b->cap : 4096;
-        while (cap < b->n + n)
-            cap *= 2;
-        unsigned char *p = realloc(b->p, cap);
-        if (!p) {
-            b->nomem = 1;
-            return;
-        }
-        b->p = p;
-        b->cap = cap;
-    }
-    memcpy(b->p + b->n, v, n);
-    b->n += n;
-}
-
-static void put_u64(buf *b, uint64_t v)
-{
-    unsigned char c[8];
-    for (int i = 0; i < 8; i++)
-        c[i] = (unsigned char)(v >> (8 * i));
-    put_bytes(b, c, 8);
-}
-
-static void put_f64(buf *b, double x)
-{
-    uint64_t v;
-    memcpy(&v, &x, sizeof v);
-    put_u64(b, v);
-}
-
-typedef struct reader {
-    const unsigned char *p;
-    size_t n, at;
-    int bad;
-} reader;
-
-static uint64_t get_u64(reader *r)
-{
-    if (r->bad || r->n - r->at < 8) {
-        r->bad = 1;
-        return 0;
-    }
-    uint64_t v = 0;
-    for (int i = 0; i < 8; i++)
-        v |= (uint64_t)r->p[r->at + i] << (8 * i);
-    r->at += 8;
-    return v;
-}
-
-static double get_f64(reader *r)
-{
-    uint64_t v = get_u64(r);
-    double x;
-    memcpy(&x, &v, sizeof x);
-    return x;
-}
-
 /* ---- key ---- */
 
 void fm_connect_neighbours_key(const unsigned char (*model_keys)[FM_MODEL_KEY_BYTES], size_t n,
@@ -130,21 +61,21 @@ void fm_connect_neighbours_key(const unsigned char (*model_keys)[FM_MODEL_KEY_BY
         o = *opt;
     else
         fm_connect_plan_options_default(&o);
-    buf b = {0};
-    put_bytes(&b, NB_MAGIC, 4);
-    put_u64(&b, NB_VERSION);
+    fm_store_out b = {0};
+    fm_store_raw(&b, NB_MAGIC, 4);
+    fm_store_u64(&b, NB_VERSION);
     /* the code that finds them: connect and what it calls (core, fit) */
-    put_bytes(&b, FM_CONNECT_CODE, strlen(FM_CONNECT_CODE) + 1);
-    put_bytes(&b, fm_model_code_id(), strlen(fm_model_code_id()) + 1);
-    put_u64(&b, n);
+    fm_store_raw(&b, FM_CONNECT_CODE, strlen(FM_CONNECT_CODE) + 1);
+    fm_store_raw(&b, fm_model_code_id(), strlen(fm_model_code_id()) + 1);
+    fm_store_u64(&b, n);
     for (size_t f = 0; f < n; f++)
-        put_bytes(&b, model_keys[f], FM_MODEL_KEY_BYTES);
+        fm_store_raw(&b, model_keys[f], FM_MODEL_KEY_BYTES);
     /* what they depend on: D bounds the search; the near-duplicate rule */
-    put_f64(&b, o.distance);
-    put_f64(&b, o.duplicates.tolerance);
-    put_f64(&b, o.duplicates.min_share);
-    put_u64(&b, (uint64_t)o.duplicates.keep);
-    if (b.nomem) {
+    fm_store_f64(&b, o.distance);
+    fm_store_f64(&b, o.duplicates.tolerance);
+    fm_store_f64(&b, o.duplicates.min_share);
+    fm_store_u64(&b, (uint64_t)o.duplicates.keep);
+    if (b.failed) {
         /* a key nobody stored: the neighbours are found again */
         memset(key, 0, FM_CONNECT_KEY_BYTES);
         key[0] = 1;
@@ -165,47 +96,46 @@ fm_status fm_connect_neighbours_put(const char *dir, const unsigned char key[FM_
                                     size_t nfaults, const fm_connect_pairs *pairs,
                                     const fm_connect_duplicate *dup, size_t ndup, fm_error *err)
 {
-    buf b = {0};
-    put_bytes(&b, NB_MAGIC, 4);
-    unsigned char v[4] = {NB_VERSION & 0xff, 0, 0, 0};
-    put_bytes(&b, v, 4);
-    put_bytes(&b, key, FM_CONNECT_KEY_BYTES);
+    fm_store_out b = {0};
+    fm_store_raw(&b, NB_MAGIC, 4);
+    fm_store_u32(&b, NB_VERSION);
+    fm_store_raw(&b, key, FM_CONNECT_KEY_BYTES);
     size_t np = fm_connect_pairs_count(pairs);
-    put_u64(&b, nfaults);
-    put_u64(&b, np);
-    put_u64(&b, ndup);
+    fm_store_u64(&b, nfaults);
+    fm_store_u64(&b, np);
+    fm_store_u64(&b, ndup);
     for (size_t i = 0; i < np; i++) {
         const fm_connect_pair *p = fm_connect_pairs_get(pairs, i);
-        put_u64(&b, p->fault_a);
-        put_u64(&b, p->sheet_a);
-        put_u64(&b, p->fault_b);
-        put_u64(&b, p->sheet_b);
-        put_f64(&b, p->distance);
-        put_u64(&b, (uint64_t)p->crosses);
-        put_f64(&b, p->trimmed_distance);
-        put_u64(&b, (uint64_t)p->trimmed_crosses);
+        fm_store_u64(&b, p->fault_a);
+        fm_store_u64(&b, p->sheet_a);
+        fm_store_u64(&b, p->fault_b);
+        fm_store_u64(&b, p->sheet_b);
+        fm_store_f64(&b, p->distance);
+        fm_store_u64(&b, (uint64_t)p->crosses);
+        fm_store_f64(&b, p->trimmed_distance);
+        fm_store_u64(&b, (uint64_t)p->trimmed_crosses);
         for (int k = 0; k < 3; k++)
-            put_f64(&b, p->point_a[k]);
+            fm_store_f64(&b, p->point_a[k]);
         for (int k = 0; k < 3; k++)
-            put_f64(&b, p->point_b[k]);
+            fm_store_f64(&b, p->point_b[k]);
     }
     for (size_t i = 0; i < ndup; i++) {
         const fm_connect_duplicate *d = &dup[i];
-        put_u64(&b, d->dropped);
-        put_u64(&b, d->kept);
+        fm_store_u64(&b, d->dropped);
+        fm_store_u64(&b, d->kept);
         for (int k = 0; k < 2; k++)
-            put_f64(&b, d->share[k]);
+            fm_store_f64(&b, d->share[k]);
         for (int k = 0; k < 2; k++)
-            put_f64(&b, d->area[k]);
-        put_f64(&b, d->cover);
-        put_u64(&b, (uint64_t)d->decided);
+            fm_store_f64(&b, d->area[k]);
+        fm_store_f64(&b, d->cover);
+        fm_store_u64(&b, (uint64_t)d->decided);
     }
     unsigned char sum[FM_SHA256_BYTES];
-    if (!b.nomem) {
+    if (!b.failed) {
         fm_sha256_of(b.p, b.n, sum);
-        put_bytes(&b, sum, sizeof sum);
+        fm_store_raw(&b, sum, sizeof sum);
     }
-    char *path = b.nomem ? NULL : nb_path(dir, key);
+    char *path = b.failed ? NULL : nb_path(dir, key);
     if (!path) {
         free(b.p);
         return fm_error_set(err, FM_ERR_NOMEM, dir, 0, "out of memory");
@@ -247,10 +177,10 @@ static fm_status parse(const char *path, const unsigned char *p, size_t n,
         return rejected(path, err, "another format version");
     if (memcmp(p + 8, key, FM_CONNECT_KEY_BYTES) != 0)
         return rejected(path, err, "stored under another key");
-    reader r = {p, n - FM_SHA256_BYTES, 8 + FM_CONNECT_KEY_BYTES, 0};
-    uint64_t nf = get_u64(&r), np = get_u64(&r), nd = get_u64(&r);
+    fm_store_in r = {p, n - FM_SHA256_BYTES, 8 + FM_CONNECT_KEY_BYTES, 0};
+    uint64_t nf = fm_load_u64(&r), np = fm_load_u64(&r), nd = fm_load_u64(&r);
     /* each pair takes 14 numbers, each near-duplicate 8 */
-    if (r.bad || nf != nfaults || np > (r.n - r.at) / (14 * 8) ||
+    if (r.failed || nf != nfaults || np > (r.n - r.at) / (14 * 8) ||
         nd > (r.n - r.at - np * 14 * 8) / (8 * 8))
         return rejected(path, err, "counts do not fit the file");
     fm_connect_neighbours *nb = calloc(1, sizeof *nb);
@@ -269,34 +199,34 @@ static fm_status parse(const char *path, const unsigned char *p, size_t n,
     for (size_t i = 0; i < np; i++) {
         fm_connect_pair *q = &nb->pair[i];
         memset(q, 0, sizeof *q);
-        q->fault_a = get_u64(&r);
-        q->sheet_a = get_u64(&r);
-        q->fault_b = get_u64(&r);
-        q->sheet_b = get_u64(&r);
-        q->distance = get_f64(&r);
-        q->crosses = (int)get_u64(&r);
-        q->trimmed_distance = get_f64(&r);
-        q->trimmed_crosses = (int)get_u64(&r);
+        q->fault_a = fm_load_u64(&r);
+        q->sheet_a = fm_load_u64(&r);
+        q->fault_b = fm_load_u64(&r);
+        q->sheet_b = fm_load_u64(&r);
+        q->distance = fm_load_f64(&r);
+        q->crosses = (int)fm_load_u64(&r);
+        q->trimmed_distance = fm_load_f64(&r);
+        q->trimmed_crosses = (int)fm_load_u64(&r);
         for (int k = 0; k < 3; k++)
-            q->point_a[k] = get_f64(&r);
+            q->point_a[k] = fm_load_f64(&r);
         for (int k = 0; k < 3; k++)
-            q->point_b[k] = get_f64(&r);
+            q->point_b[k] = fm_load_f64(&r);
         bad |= q->fault_a >= nf || q->fault_b >= nf;
     }
     for (size_t i = 0; i < nd; i++) {
         fm_connect_duplicate *d = &nb->dup[i];
         memset(d, 0, sizeof *d);
-        d->dropped = get_u64(&r);
-        d->kept = get_u64(&r);
+        d->dropped = fm_load_u64(&r);
+        d->kept = fm_load_u64(&r);
         for (int k = 0; k < 2; k++)
-            d->share[k] = get_f64(&r);
+            d->share[k] = fm_load_f64(&r);
         for (int k = 0; k < 2; k++)
-            d->area[k] = get_f64(&r);
-        d->cover = get_f64(&r);
-        d->decided = (int)get_u64(&r);
+            d->area[k] = fm_load_f64(&r);
+        d->cover = fm_load_f64(&r);
+        d->decided = (int)fm_load_u64(&r);
         bad |= d->dropped >= nf || d->kept >= nf;
     }
-    if (r.bad || bad || r.at != r.n) {
+    if (r.failed || bad || r.at != r.n) {
         fm_connect_neighbours_destroy(nb);
         return rejected(path, err, "fault indices or length do not fit");
     }
@@ -311,40 +241,13 @@ fm_status fm_connect_neighbours_get(const char *dir, const unsigned char key[FM_
     char *path = nb_path(dir, key);
     if (!path)
         return fm_error_set(err, FM_ERR_NOMEM, dir, 0, "out of memory");
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        fm_status st = errno == ENOENT ? FM_OK
-                                       : fm_error_set(err, FM_ERR_IO, path, 0, "cannot read: %s",
-                                                      strerror(errno));
-        free(path);
-        return st;
-    }
-    unsigned char *p = NULL;
-    size_t n = 0, cap = 0;
     fm_status st = FM_OK;
-    for (;;) {
-        if (n == cap) {
-            size_t c = cap ? 2 * cap : 1 << 16;
-            unsigned char *q = realloc(p, c);
-            if (!q) {
-                st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
-                break;
-            }
-            p = q;
-            cap = c;
-        }
-        size_t got = fread(p + n, 1, cap - n, f);
-        n += got;
-        if (got == 0) {
-            if (ferror(f))
-                st = fm_error_set(err, FM_ERR_IO, path, 0, "cannot read");
-            break;
-        }
+    if (access(path, F_OK) == 0) { /* none stored yet: no error */
+        size_t n = 0;
+        unsigned char *p = fm_read_file(path, &n, err);
+        st = p ? parse(path, p, n, key, nfaults, out, err) : err ? err->code : FM_ERR_IO;
+        free(p);
     }
-    fclose(f);
-    if (st == FM_OK)
-        st = parse(path, p, n, key, nfaults, out, err);
-    free(p);
     free(path);
     return st;
 }

@@ -13,7 +13,7 @@
 
 #include "fm_fit_code.h"
 #include "fm_sha256.h"
-#include "store_bytes.h"
+#include "fm_bytes.h"
 
 /* Raised when the key's layout below changes. */
 #define KEY_LAYOUT 1
@@ -78,7 +78,7 @@ const char *fm_model_code_id(void)
 
 typedef struct key_state {
     fm_sha256 sha;
-    store_out buf;
+    fm_store_out buf;
     unsigned char space[SLICE * sizeof(double)];
 } key_state;
 
@@ -98,19 +98,19 @@ static void room(key_state *k, size_t bytes)
 static void key_f64(key_state *k, double v)
 {
     room(k, 8);
-    store_f64(&k->buf, v);
+    fm_store_f64(&k->buf, v);
 }
 
 static void key_int(key_state *k, long long v)
 {
     room(k, 8);
-    store_i64(&k->buf, (int64_t)v);
+    fm_store_i64(&k->buf, (int64_t)v);
 }
 
 static void key_size(key_state *k, size_t v)
 {
     room(k, 8);
-    store_size(&k->buf, v);
+    fm_store_size(&k->buf, v);
 }
 
 static void key_string(key_state *k, const char *s)
@@ -125,7 +125,7 @@ static void key_f64s(key_state *k, const double *p, size_t n)
 {
     for (size_t i = 0; i < n; i += SLICE) {
         flush(k);
-        store_f64s(&k->buf, p + i, n - i < SLICE ? n - i : SLICE);
+        fm_store_f64s(&k->buf, p + i, n - i < SLICE ? n - i : SLICE);
     }
 }
 
@@ -133,7 +133,7 @@ static void key_i32s(key_state *k, const int32_t *p, size_t n)
 {
     for (size_t i = 0; i < n; i += SLICE) {
         flush(k);
-        store_i32s(&k->buf, p + i, n - i < SLICE ? n - i : SLICE);
+        fm_store_i32s(&k->buf, p + i, n - i < SLICE ? n - i : SLICE);
     }
 }
 
@@ -197,7 +197,7 @@ void fm_model_key(const fm_mesh *input, const fm_repair_options *repair,
     }
     key_state k;
     fm_sha256_init(&k.sha);
-    k.buf = (store_out){k.space, 0, sizeof k.space, 0};
+    k.buf = (fm_store_out){k.space, 0, sizeof k.space, 0};
     key_string(&k, "faultmesh fit cache key");
     key_int(&k, FM_MODEL_FORMAT_VERSION);
     key_int(&k, KEY_LAYOUT);

@@ -8,7 +8,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "fm_atomic.h"
 #include "fm_sha256.h"
@@ -27,69 +26,69 @@ static const unsigned char MAGIC[8] = {'F', 'M', 'M', 'O', 'D', 'E', 'L', 0x1a};
 /* magic, version, reserved, key, payload length */
 #define HEADER_BYTES (8 + 4 + 4 + FM_SHA256_BYTES + 8)
 
-static void store_report(store_out *o, const fm_sheet_report *r)
+static void store_report(fm_store_out *o, const fm_sheet_report *r)
 {
-    store_size(o, r->vertices);
-    store_size(o, r->triangles);
-    store_size(o, r->loops);
-    store_size(o, r->holes);
-    store_size(o, r->corners);
-    store_size(o, r->trim_pieces);
-    store_f64(o, r->to_surface_rms);
-    store_f64(o, r->to_surface_max);
-    store_f64(o, r->from_trimmed_rms);
-    store_f64(o, r->from_trimmed_max);
-    store_f64(o, r->outline_max);
-    store_f64(o, r->outline_rms);
-    store_size(o, r->samples);
-    store_size(o, r->repair_sheet);
-    store_f64(o, r->time);
+    fm_store_size(o, r->vertices);
+    fm_store_size(o, r->triangles);
+    fm_store_size(o, r->loops);
+    fm_store_size(o, r->holes);
+    fm_store_size(o, r->corners);
+    fm_store_size(o, r->trim_pieces);
+    fm_store_f64(o, r->to_surface_rms);
+    fm_store_f64(o, r->to_surface_max);
+    fm_store_f64(o, r->from_trimmed_rms);
+    fm_store_f64(o, r->from_trimmed_max);
+    fm_store_f64(o, r->outline_max);
+    fm_store_f64(o, r->outline_rms);
+    fm_store_size(o, r->samples);
+    fm_store_size(o, r->repair_sheet);
+    fm_store_f64(o, r->time);
 }
 
-static void load_report(store_in *in, fm_sheet_report *r)
+static void load_report(fm_store_in *in, fm_sheet_report *r)
 {
-    r->vertices = load_size(in);
-    r->triangles = load_size(in);
-    r->loops = load_size(in);
-    r->holes = load_size(in);
-    r->corners = load_size(in);
-    r->trim_pieces = load_size(in);
-    r->to_surface_rms = load_f64(in);
-    r->to_surface_max = load_f64(in);
-    r->from_trimmed_rms = load_f64(in);
-    r->from_trimmed_max = load_f64(in);
-    r->outline_max = load_f64(in);
-    r->outline_rms = load_f64(in);
-    r->samples = load_size(in);
-    r->repair_sheet = load_size(in);
-    r->time = load_f64(in);
+    r->vertices = fm_load_size(in);
+    r->triangles = fm_load_size(in);
+    r->loops = fm_load_size(in);
+    r->holes = fm_load_size(in);
+    r->corners = fm_load_size(in);
+    r->trim_pieces = fm_load_size(in);
+    r->to_surface_rms = fm_load_f64(in);
+    r->to_surface_max = fm_load_f64(in);
+    r->from_trimmed_rms = fm_load_f64(in);
+    r->from_trimmed_max = fm_load_f64(in);
+    r->outline_max = fm_load_f64(in);
+    r->outline_rms = fm_load_f64(in);
+    r->samples = fm_load_size(in);
+    r->repair_sheet = fm_load_size(in);
+    r->time = fm_load_f64(in);
 }
 
 /* A mesh (vertices, triangles, tags), or its absence. */
-static void store_mesh(store_out *o, const fm_mesh *m)
+static void store_mesh(fm_store_out *o, const fm_mesh *m)
 {
-    store_u32(o, m != NULL);
+    fm_store_u32(o, m != NULL);
     if (!m)
         return;
     size_t nv = fm_mesh_nvertices(m), nt = fm_mesh_ntriangles(m);
-    store_size(o, nv);
-    store_size(o, nt);
-    store_f64s(o, fm_mesh_vertices(m), 3 * nv);
-    store_i32s(o, fm_mesh_triangles(m), 3 * nt);
-    store_i32s(o, fm_mesh_tags(m), nt);
+    fm_store_size(o, nv);
+    fm_store_size(o, nt);
+    fm_store_f64s(o, fm_mesh_vertices(m), 3 * nv);
+    fm_store_i32s(o, fm_mesh_triangles(m), 3 * nt);
+    fm_store_i32s(o, fm_mesh_tags(m), nt);
 }
 
-static fm_mesh *load_mesh(store_in *in, int *present)
+static fm_mesh *load_mesh(fm_store_in *in, int *present)
 {
-    uint32_t flag = load_u32(in);
+    uint32_t flag = fm_load_u32(in);
     *present = flag == 1;
     if (flag > 1)
         in->failed = 1;
     if (flag != 1 || in->failed)
         return NULL;
-    size_t nv = load_count(in, 24), nt = load_count(in, 16);
-    double *X = load_f64s(in, 3 * nv);
-    int32_t *T = load_i32s(in, 3 * nt), *tag = load_i32s(in, nt);
+    size_t nv = fm_load_count(in, 24), nt = fm_load_count(in, 16);
+    double *X = fm_load_f64s(in, 3 * nv);
+    int32_t *T = fm_load_i32s(in, 3 * nt), *tag = fm_load_i32s(in, nt);
     fm_mesh *m = in->failed ? NULL : fm_mesh_create();
     if (m && fm_mesh_reserve(m, nv, nt) != FM_OK) {
         fm_mesh_destroy(m);
@@ -112,33 +111,33 @@ static fm_mesh *load_mesh(store_in *in, int *present)
     return m;
 }
 
-static void store_sheet(store_out *o, const sheet_model *sm)
+static void store_sheet(fm_store_out *o, const sheet_model *sm)
 {
     store_surface(o, sm->surface);
-    store_size(o, sm->nloops);
-    store_u32(o, sm->loop_scale != NULL);
+    fm_store_size(o, sm->nloops);
+    fm_store_u32(o, sm->loop_scale != NULL);
     if (sm->loop_scale)
-        store_f64s(o, sm->loop_scale, sm->nloops);
+        fm_store_f64s(o, sm->loop_scale, sm->nloops);
     for (size_t k = 0; k < sm->nloops; k++)
         store_loop(o, sm->loops[k]);
     store_mesh(o, sm->samples);
     size_t ns = sm->samples ? fm_mesh_nvertices(sm->samples) : 0;
-    store_u32(o, sm->sample_dist != NULL);
+    fm_store_u32(o, sm->sample_dist != NULL);
     if (sm->sample_dist)
-        store_f64s(o, sm->sample_dist, ns);
+        fm_store_f64s(o, sm->sample_dist, ns);
     store_report(o, &sm->report);
 }
 
 /* Into a zeroed sm; what it holds is freed with the model on failure. */
-static void load_sheet(store_in *in, sheet_model *sm)
+static void load_sheet(fm_store_in *in, sheet_model *sm)
 {
     sm->surface = load_surface(in);
-    size_t nl = load_count(in, 100);
-    uint32_t scaled = load_u32(in);
+    size_t nl = fm_load_count(in, 100);
+    uint32_t scaled = fm_load_u32(in);
     if (scaled > 1)
         in->failed = 1;
     if (scaled == 1)
-        sm->loop_scale = nl ? load_f64s(in, nl) : calloc(1, sizeof *sm->loop_scale);
+        sm->loop_scale = nl ? fm_load_f64s(in, nl) : calloc(1, sizeof *sm->loop_scale);
     if (scaled == 1 && !sm->loop_scale)
         in->failed = 1;
     sm->loops = in->failed ? NULL : calloc(nl ? nl : 1, sizeof *sm->loops);
@@ -151,11 +150,11 @@ static void load_sheet(store_in *in, sheet_model *sm)
     int present;
     sm->samples = load_mesh(in, &present);
     size_t ns = sm->samples ? fm_mesh_nvertices(sm->samples) : 0;
-    uint32_t measured = load_u32(in);
+    uint32_t measured = fm_load_u32(in);
     if (measured > 1 || (measured && !present))
         in->failed = 1;
     if (measured == 1 && ns)
-        sm->sample_dist = load_f64s(in, ns);
+        sm->sample_dist = fm_load_f64s(in, ns);
     else if (measured == 1)
         sm->sample_dist = calloc(1, sizeof *sm->sample_dist); /* as the fit leaves it */
     if (measured == 1 && !sm->sample_dist)
@@ -163,23 +162,23 @@ static void load_sheet(store_in *in, sheet_model *sm)
     load_report(in, &sm->report);
 }
 
-static void store_model(store_out *o, const fm_model *m)
+static void store_model(fm_store_out *o, const fm_model *m)
 {
-    store_size(o, m->nsheets);
+    fm_store_size(o, m->nsheets);
     for (size_t i = 0; i < m->nsheets; i++)
         store_sheet(o, &m->sheets[i]);
-    store_size(o, m->ncuts);
+    fm_store_size(o, m->ncuts);
     for (size_t c = 0; c < m->ncuts; c++) {
         const fm_split_cut *cu = &m->cuts[c];
-        store_size(o, cu->n);
-        store_f64s(o, cu->xyz, 3 * cu->n);
-        store_i64(o, cu->sheets[0]);
-        store_i64(o, cu->sheets[1]);
-        store_size(o, cu->repair_sheet);
+        fm_store_size(o, cu->n);
+        fm_store_f64s(o, cu->xyz, 3 * cu->n);
+        fm_store_i64(o, cu->sheets[0]);
+        fm_store_i64(o, cu->sheets[1]);
+        fm_store_size(o, cu->repair_sheet);
     }
 }
 
-static fm_model *load_model(store_in *in)
+static fm_model *load_model(fm_store_in *in)
 {
     fm_model *m = calloc(1, sizeof *m);
     if (!m) {
@@ -187,7 +186,7 @@ static fm_model *load_model(store_in *in)
         return NULL;
     }
     /* a sheet takes well over 500 bytes, a cut over 30 */
-    size_t ns = load_count(in, 500);
+    size_t ns = fm_load_count(in, 500);
     m->sheets = in->failed ? NULL : calloc(ns ? ns : 1, sizeof *m->sheets);
     if (!m->sheets)
         in->failed = 1;
@@ -195,7 +194,7 @@ static fm_model *load_model(store_in *in)
         m->nsheets = ns;
     for (size_t i = 0; i < m->nsheets && !in->failed; i++)
         load_sheet(in, &m->sheets[i]);
-    size_t nc = load_count(in, 30);
+    size_t nc = fm_load_count(in, 30);
     m->cuts = in->failed ? NULL : calloc(nc ? nc : 1, sizeof *m->cuts);
     if (!m->cuts)
         in->failed = 1;
@@ -203,11 +202,11 @@ static fm_model *load_model(store_in *in)
         m->ncuts = nc;
     for (size_t c = 0; c < m->ncuts && !in->failed; c++) {
         fm_split_cut *cu = &m->cuts[c];
-        cu->n = load_count(in, 24);
-        cu->xyz = load_f64s(in, 3 * cu->n);
-        cu->sheets[0] = (long)load_i64(in);
-        cu->sheets[1] = (long)load_i64(in);
-        cu->repair_sheet = load_size(in);
+        cu->n = fm_load_count(in, 24);
+        cu->xyz = fm_load_f64s(in, 3 * cu->n);
+        cu->sheets[0] = (long)fm_load_i64(in);
+        cu->sheets[1] = (long)fm_load_i64(in);
+        cu->repair_sheet = fm_load_size(in);
         if (!cu->xyz || cu->sheets[0] < -1 || cu->sheets[1] < -1 ||
             cu->sheets[0] >= (long)m->nsheets || cu->sheets[1] >= (long)m->nsheets)
             in->failed = 1;
@@ -233,13 +232,13 @@ static fm_model *load_model(store_in *in)
 fm_status model_store_write(const fm_model *m, const unsigned char *key, const char *path,
                             fm_error *err)
 {
-    store_out o = {0};
-    store_raw(&o, MAGIC, sizeof MAGIC);
-    store_u32(&o, FM_MODEL_FORMAT_VERSION);
-    store_u32(&o, 0);
+    fm_store_out o = {0};
+    fm_store_raw(&o, MAGIC, sizeof MAGIC);
+    fm_store_u32(&o, FM_MODEL_FORMAT_VERSION);
+    fm_store_u32(&o, 0);
     unsigned char nokey[FM_SHA256_BYTES] = {0};
-    store_raw(&o, key ? key : nokey, FM_SHA256_BYTES);
-    store_u64(&o, 0); /* the payload's length, once known */
+    fm_store_raw(&o, key ? key : nokey, FM_SHA256_BYTES);
+    fm_store_u64(&o, 0); /* the payload's length, once known */
     store_model(&o, m);
     if (o.failed) {
         free(o.p);
@@ -266,34 +265,6 @@ fm_status model_store_write(const fm_model *m, const unsigned char *key, const c
     return fm_atomic_commit(af, err);
 }
 
-/* The whole file; NULL (err set) when it cannot be read. */
-static unsigned char *read_all(const char *path, size_t *n, fm_error *err)
-{
-    FILE *fp = fopen(path, "rb");
-    if (!fp) {
-        fm_error_set(err, FM_ERR_IO, path, 0, "cannot open: %s", strerror(errno));
-        return NULL;
-    }
-    struct stat sb;
-    unsigned char *buf = NULL;
-    if (fstat(fileno(fp), &sb) == 0 && sb.st_size >= 0 && (uint64_t)sb.st_size < SIZE_MAX) {
-        *n = (size_t)sb.st_size;
-        buf = malloc(*n ? *n : 1);
-        if (!buf)
-            fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
-        else if (fread(buf, 1, *n, fp) != *n) {
-            fm_error_set(err, FM_ERR_IO, path, 0, "cannot read: %s",
-                         ferror(fp) ? strerror(errno) : "shorter than it was");
-            free(buf);
-            buf = NULL;
-        }
-    } else {
-        fm_error_set(err, FM_ERR_IO, path, 0, "cannot read: %s", strerror(errno));
-    }
-    fclose(fp);
-    return buf;
-}
-
 /* The framing of buf (n bytes) checked: FM_OK when the payload can be
  * read. */
 static fm_status check_frame(const unsigned char *buf, size_t n, const unsigned char *key,
@@ -303,12 +274,12 @@ static fm_status check_frame(const unsigned char *buf, size_t n, const unsigned 
         return fm_error_set(err, FM_ERR_PARSE, path, 0, "not a faultmesh model");
     if (n < HEADER_BYTES + FM_SHA256_BYTES)
         return fm_error_set(err, FM_ERR_PARSE, path, 0, "truncated model (%zu bytes)", n);
-    store_in in = {buf, n, sizeof MAGIC, 0};
-    uint32_t version = load_u32(&in);
-    load_u32(&in);
+    fm_store_in in = {buf, n, sizeof MAGIC, 0};
+    uint32_t version = fm_load_u32(&in);
+    fm_load_u32(&in);
     const unsigned char *stored_key = buf + in.at;
     in.at += FM_SHA256_BYTES;
-    uint64_t len = load_u64(&in);
+    uint64_t len = fm_load_u64(&in);
     if (version != FM_MODEL_FORMAT_VERSION)
         return fm_error_set(err, FM_ERR_PARSE, path, 0,
                             "model format version %u, this faultmesh reads %d", version,
@@ -332,12 +303,12 @@ fm_status model_store_read(const char *path, const unsigned char *key, fm_model 
 {
     *out = NULL;
     size_t n = 0;
-    unsigned char *buf = read_all(path, &n, err);
+    unsigned char *buf = fm_read_file(path, &n, err);
     if (!buf)
         return err ? err->code : FM_ERR_IO;
     fm_status st = check_frame(buf, n, key, path, err);
     if (st == FM_OK) {
-        store_in in = {buf, n - FM_SHA256_BYTES, HEADER_BYTES, 0};
+        fm_store_in in = {buf, n - FM_SHA256_BYTES, HEADER_BYTES, 0};
         *out = load_model(&in);
         if (!*out)
             st = fm_error_set(err, FM_ERR_PARSE, path, 0,

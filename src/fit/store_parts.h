@@ -6,11 +6,11 @@
 
 #include "fm_fit.h"
 #include "fm_trim.h"
-#include "store_bytes.h"
+#include "fm_bytes.h"
 
-void store_surface(store_out *o, const fm_fit_surface *s);
-fm_fit_surface *load_surface(store_in *in);
-void store_loop(store_out *o, const fm_trim_loop *l);
-fm_trim_loop *load_loop(store_in *in);
+void store_surface(fm_store_out *o, const fm_fit_surface *s);
+fm_fit_surface *load_surface(fm_store_in *in);
+void store_loop(fm_store_out *o, const fm_trim_loop *l);
+fm_trim_loop *load_loop(fm_store_in *in);
 
 #endif

@@ -1,8 +1,12 @@
-/* The little-endian byte stream of stored models (store_bytes.h). */
-#include "store_bytes.h"
+/* The little-endian byte stream of cached files, and a file read whole
+ * (fm_bytes.h). */
+#include "fm_bytes.h"
 
+#include <errno.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 static int host_little_endian(void)
 {
@@ -12,7 +16,7 @@ static int host_little_endian(void)
     return b == 1;
 }
 
-static unsigned char *room(store_out *o, size_t n)
+static unsigned char *room(fm_store_out *o, size_t n)
 {
     if (o->failed)
         return NULL;
@@ -51,34 +55,34 @@ static uint64_t get_le(const unsigned char *s, int bytes)
     return v;
 }
 
-void store_u32(store_out *o, uint32_t v)
+void fm_store_u32(fm_store_out *o, uint32_t v)
 {
     unsigned char *d = room(o, 4);
     if (d)
         put_le(d, v, 4);
 }
 
-void store_u64(store_out *o, uint64_t v)
+void fm_store_u64(fm_store_out *o, uint64_t v)
 {
     unsigned char *d = room(o, 8);
     if (d)
         put_le(d, v, 8);
 }
 
-void store_i32(store_out *o, int32_t v) { store_u32(o, (uint32_t)v); }
-void store_i64(store_out *o, int64_t v) { store_u64(o, (uint64_t)v); }
-void store_size(store_out *o, size_t v) { store_u64(o, (uint64_t)v); }
+void fm_store_i32(fm_store_out *o, int32_t v) { fm_store_u32(o, (uint32_t)v); }
+void fm_store_i64(fm_store_out *o, int64_t v) { fm_store_u64(o, (uint64_t)v); }
+void fm_store_size(fm_store_out *o, size_t v) { fm_store_u64(o, (uint64_t)v); }
 
-void store_f64(store_out *o, double v)
+void fm_store_f64(fm_store_out *o, double v)
 {
     uint64_t bits;
     memcpy(&bits, &v, sizeof bits);
-    store_u64(o, bits);
+    fm_store_u64(o, bits);
 }
 
 /* n items of `bytes` bytes at p, each as `bytes` little-endian bytes of
  * the unsigned integer with the same bits. */
-static void store_items(store_out *o, const void *p, size_t n, size_t bytes)
+static void store_items(fm_store_out *o, const void *p, size_t n, size_t bytes)
 {
     if (!n)
         return;
@@ -107,16 +111,16 @@ static void store_items(store_out *o, const void *p, size_t n, size_t bytes)
     }
 }
 
-void store_f64s(store_out *o, const double *p, size_t n) { store_items(o, p, n, 8); }
-void store_i32s(store_out *o, const int32_t *p, size_t n) { store_items(o, p, n, 4); }
+void fm_store_f64s(fm_store_out *o, const double *p, size_t n) { store_items(o, p, n, 8); }
+void fm_store_i32s(fm_store_out *o, const int32_t *p, size_t n) { store_items(o, p, n, 4); }
 
-void store_sizes(store_out *o, const size_t *p, size_t n)
+void fm_store_sizes(fm_store_out *o, const size_t *p, size_t n)
 {
     for (size_t i = 0; i < n; i++)
-        store_size(o, p[i]);
+        fm_store_size(o, p[i]);
 }
 
-void store_raw(store_out *o, const void *p, size_t n)
+void fm_store_raw(fm_store_out *o, const void *p, size_t n)
 {
     unsigned char *d = room(o, n);
     if (d && n)
@@ -124,7 +128,7 @@ void store_raw(store_out *o, const void *p, size_t n)
 }
 
 /* The next n bytes, or NULL (and failed) when fewer are left. */
-static const unsigned char *take(store_in *in, size_t n)
+static const unsigned char *take(fm_store_in *in, size_t n)
 {
     if (in->failed || n > in->n - in->at) {
         in->failed = 1;
@@ -135,45 +139,45 @@ static const unsigned char *take(store_in *in, size_t n)
     return s;
 }
 
-uint32_t load_u32(store_in *in)
+uint32_t fm_load_u32(fm_store_in *in)
 {
     const unsigned char *s = take(in, 4);
     return s ? (uint32_t)get_le(s, 4) : 0;
 }
 
-uint64_t load_u64(store_in *in)
+uint64_t fm_load_u64(fm_store_in *in)
 {
     const unsigned char *s = take(in, 8);
     return s ? get_le(s, 8) : 0;
 }
 
-int32_t load_i32(store_in *in)
+int32_t fm_load_i32(fm_store_in *in)
 {
-    uint32_t u = load_u32(in);
+    uint32_t u = fm_load_u32(in);
     int32_t v;
     memcpy(&v, &u, sizeof v);
     return v;
 }
 
-int64_t load_i64(store_in *in)
+int64_t fm_load_i64(fm_store_in *in)
 {
-    uint64_t u = load_u64(in);
+    uint64_t u = fm_load_u64(in);
     int64_t v;
     memcpy(&v, &u, sizeof v);
     return v;
 }
 
-double load_f64(store_in *in)
+double fm_load_f64(fm_store_in *in)
 {
-    uint64_t bits = load_u64(in);
+    uint64_t bits = fm_load_u64(in);
     double v;
     memcpy(&v, &bits, sizeof v);
     return v;
 }
 
-size_t load_size(store_in *in)
+size_t fm_load_size(fm_store_in *in)
 {
-    uint64_t v = load_u64(in);
+    uint64_t v = fm_load_u64(in);
     if (v > SIZE_MAX) {
         in->failed = 1;
         return 0;
@@ -181,9 +185,9 @@ size_t load_size(store_in *in)
     return (size_t)v;
 }
 
-size_t load_count(store_in *in, size_t bytes)
+size_t fm_load_count(fm_store_in *in, size_t bytes)
 {
-    size_t v = load_size(in);
+    size_t v = fm_load_size(in);
     if (!in->failed && bytes && v > (in->n - in->at) / bytes) {
         in->failed = 1;
         return 0;
@@ -191,7 +195,7 @@ size_t load_count(store_in *in, size_t bytes)
     return in->failed ? 0 : v;
 }
 
-static void *load_items(store_in *in, size_t n, size_t bytes)
+static void *load_items(fm_store_in *in, size_t n, size_t bytes)
 {
     if (!n || in->failed)
         return NULL;
@@ -222,10 +226,10 @@ static void *load_items(store_in *in, size_t n, size_t bytes)
     return p;
 }
 
-double *load_f64s(store_in *in, size_t n) { return load_items(in, n, 8); }
-int32_t *load_i32s(store_in *in, size_t n) { return load_items(in, n, 4); }
+double *fm_load_f64s(fm_store_in *in, size_t n) { return load_items(in, n, 8); }
+int32_t *fm_load_i32s(fm_store_in *in, size_t n) { return load_items(in, n, 4); }
 
-size_t *load_sizes(store_in *in, size_t n)
+size_t *fm_load_sizes(fm_store_in *in, size_t n)
 {
     if (!n || in->failed)
         return NULL;
@@ -239,13 +243,40 @@ size_t *load_sizes(store_in *in, size_t n)
         return NULL;
     }
     for (size_t i = 0; i < n; i++)
-        p[i] = load_size(in);
+        p[i] = fm_load_size(in);
     return p;
 }
 
-void load_raw(store_in *in, void *p, size_t n)
+void fm_load_raw(fm_store_in *in, void *p, size_t n)
 {
     const unsigned char *s = take(in, n);
     if (s && n)
         memcpy(p, s, n);
+}
+
+unsigned char *fm_read_file(const char *path, size_t *n, fm_error *err)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp) {
+        fm_error_set(err, FM_ERR_IO, path, 0, "cannot open: %s", strerror(errno));
+        return NULL;
+    }
+    struct stat sb;
+    unsigned char *buf = NULL;
+    if (fstat(fileno(fp), &sb) == 0 && sb.st_size >= 0 && (uint64_t)sb.st_size < SIZE_MAX) {
+        *n = (size_t)sb.st_size;
+        buf = malloc(*n ? *n : 1);
+        if (!buf)
+            fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+        else if (fread(buf, 1, *n, fp) != *n) {
+            fm_error_set(err, FM_ERR_IO, path, 0, "cannot read: %s",
+                         ferror(fp) ? strerror(errno) : "shorter than it was");
+            free(buf);
+            buf = NULL;
+        }
+    } else {
+        fm_error_set(err, FM_ERR_IO, path, 0, "cannot read: %s", strerror(errno));
+    }
+    fclose(fp);
+    return buf;
 }
