@@ -253,7 +253,8 @@ static int cmp_i32(const void *a, const void *b)
 /* A sheet's share of the original (part: its triangles), the outline of
  * that share and a tree of it. */
 typedef struct sheet_part {
-    fm_mesh *m;
+    const fm_mesh *m; /* o itself, or copy */
+    fm_mesh *copy;
     fm_closest_tree *tree;
     uint64_t *E;
     size_t ne;
@@ -262,25 +263,30 @@ typedef struct sheet_part {
 static void part_free(sheet_part *p)
 {
     fm_closest_tree_destroy(p->tree);
-    fm_mesh_destroy(p->m);
+    fm_mesh_destroy(p->copy);
     free(p->E);
 }
 
 /* The original's triangles part[0 .. n-1] as a mesh of their own (all of
- * o's vertices, so that seams between parts are outline edges of each). */
+ * o's vertices, so that seams between parts are outline edges of each);
+ * part NULL: the whole of o, not copied. */
 static fm_status part_build(const fm_mesh *o, const int32_t *part, size_t n, sheet_part *p)
 {
     memset(p, 0, sizeof *p);
-    const double *X = fm_mesh_vertices(o);
-    const int32_t *T = fm_mesh_triangles(o);
-    size_t nv = fm_mesh_nvertices(o);
-    p->m = fm_mesh_create();
-    int ok = p->m && fm_mesh_reserve(p->m, nv, n) == FM_OK;
-    for (size_t v = 0; ok && v < nv; v++)
-        ok = fm_mesh_add_vertex(p->m, X[3 * v], X[3 * v + 1], X[3 * v + 2]) >= 0;
-    for (size_t i = 0; ok && i < n; i++)
-        ok = fm_mesh_add_triangle(p->m, T[3 * part[i]], T[3 * part[i] + 1], T[3 * part[i] + 2],
-                                  0) >= 0;
+    int ok = 1;
+    p->m = o;
+    if (part) {
+        const double *X = fm_mesh_vertices(o);
+        const int32_t *T = fm_mesh_triangles(o);
+        size_t nv = fm_mesh_nvertices(o);
+        p->m = p->copy = fm_mesh_create();
+        ok = p->copy && fm_mesh_reserve(p->copy, nv, n) == FM_OK;
+        for (size_t v = 0; ok && v < nv; v++)
+            ok = fm_mesh_add_vertex(p->copy, X[3 * v], X[3 * v + 1], X[3 * v + 2]) >= 0;
+        for (size_t i = 0; ok && i < n; i++)
+            ok = fm_mesh_add_triangle(p->copy, T[3 * part[i]], T[3 * part[i] + 1],
+                                      T[3 * part[i] + 2], 0) >= 0;
+    }
     if (ok)
         p->tree = fm_closest_tree_create_quick(p->m, NULL);
     if (!ok || !p->tree || ck_outline_edges(p->m, &p->E, &p->ne) != FM_OK) {
@@ -348,22 +354,14 @@ static fm_status moved(const ck_set *s, int32_t f, const fm_mesh *sub,
         best[v] = INFINITY;
         stamp[v] = -1;
     }
+    /* the largest distance counted so far (one sheet: a node's own) */
+    double counted = 0;
     for (int32_t k = 0; st == FM_OK && k < nsh; k++) {
         sheet_part p;
-        /* a sheet nearest to none of the original: the whole of it */
+        /* one sheet, or one nearest to none of the original: the whole of it */
         size_t n = first[k + 1] - first[k];
-        int32_t *all = NULL;
-        if (!n) {
-            all = malloc((no + 1) * sizeof *all);
-            for (size_t t = 0; all && t < no; t++)
-                all[t] = (int32_t)t;
-        }
-        if (!n && !all) {
-            st = FM_ERR_NOMEM;
-            break;
-        }
-        st = part_build(o, n ? order + first[k] : all, n ? n : no, &p);
-        free(all);
+        int whole = nsh < 2 || n == 0;
+        st = part_build(o, whole ? NULL : order + first[k], n, &p);
         for (size_t i = 0; st == FM_OK && i < nt; i++) {
             if (sheet[i] != k)
                 continue;
@@ -375,12 +373,19 @@ static fm_status moved(const ck_set *s, int32_t f, const fm_mesh *sub,
                 fm_closest_hit hit;
                 if (out[v] || !fm_closest_query(p.tree, X + 3 * v, INFINITY, &hit))
                     continue;
+                /* with one sheet, a node nearer than one counted and within
+                 * the tolerance changes no figure: its outline (measured by
+                 * brute force) is not needed */
+                if (nsh < 2 && hit.dist < counted && hit.dist <= FM_FIDELITY_TOL)
+                    continue;
                 /* within a metre, or over an outline it may extend */
                 if (hit.dist <= FM_LOSS_TOUCH ||
-                    ck_outline_distance(p.m, p.E, p.ne, hit.foot) <= FM_LOSS_TOUCH)
+                    ck_outline_distance(p.m, p.E, p.ne, hit.foot) <= FM_LOSS_TOUCH) {
                     out[v] = 1;
-                else
+                } else {
                     best[v] = fmin(best[v], hit.dist);
+                    counted = fmax(counted, best[v]);
+                }
             }
         }
         if (st == FM_OK)
