@@ -513,9 +513,6 @@ static int decide_curve(decider *d, const fm_connect_curves *cs, size_t ci, size
         d->sd[s] = fm_connect_curve_outline_distance(cs, ci, s);
         d->flap[s] = fm_connect_curve_flap(cs, ci, s);
         d->inside[s] = fm_connect_curve_inside(cs, ci, s);
-    }
-    int end[2] = {in->side[0].role != FM_CONNECT_THROUGH, in->side[1].role != FM_CONNECT_THROUGH};
-    for (int s = 0; s < 2; s++) {
         d->foot[s] = malloc(3 * d->n * sizeof(double) + 1);
         if (!d->foot[s]) {
             free(d->foot[0]);
@@ -527,6 +524,7 @@ static int decide_curve(decider *d, const fm_connect_curves *cs, size_t ci, size
             pl_outline_foot(d->ol[s], d->p + 3 * i, d->foot[s] + 3 * i, fuv);
         }
     }
+    int end[2] = {in->side[0].role != FM_CONNECT_THROUGH, in->side[1].role != FM_CONNECT_THROUGH};
     double *iv[2] = {malloc(2 * (d->n + 1) * sizeof(double)),
                      malloc(2 * (d->n + 1) * sizeof(double))};
     size_t niv[2] = {0, 0};
@@ -593,18 +591,15 @@ static int decide_curve(decider *d, const fm_connect_curves *cs, size_t ci, size
             rc = -1;
             break;
         }
-        size_t whole = r.n;
-        if (loop) {
-            /* back to its first point: the run is the whole loop */
-            double x0[4];
-            raw_x(d, 0, x0);
-            if (run_push(&r, x0, d->p)) {
-                run_free(&r);
-                rc = -1;
-                break;
-            }
-            whole = r.n;
+        /* a loop's run goes back to its first point: all of it */
+        double x0[4];
+        raw_x(d, 0, x0);
+        if (loop && run_push(&r, x0, d->p)) {
+            run_free(&r);
+            rc = -1;
+            break;
         }
+        size_t whole = r.n;
         if (d->o->cut) {
             if (clip_level(d, &r, d->o->sea_level, &below, &nb)) {
                 run_free(&r);

@@ -320,10 +320,11 @@ static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *g
             const int32_t *ly = y ? tb : ta, *lo = y ? ta : tb;
             size_t ny = y ? nb : na, no = y ? na : nb;
             int32_t fy = p->fault[y], fo = p->fault[!y];
-            size_t y0 = cv_pieces_count(pieces, fy, gone, NULL, 0);
-            size_t o0 = cv_pieces_count(pieces, fo, gone, NULL, 0);
-            if (cv_pieces_count(pieces, fy, gone, ly, ny) > y0 &&
-                cv_pieces_count(pieces, fo, gone, lo, no) <= o0)
+            /* the other's count only when the one chosen would split */
+            if (cv_pieces_count(pieces, fy, gone, ly, ny) >
+                    cv_pieces_count(pieces, fy, gone, NULL, 0) &&
+                cv_pieces_count(pieces, fo, gone, lo, no) <=
+                    cv_pieces_count(pieces, fo, gone, NULL, 0))
                 p->yielded = !y;
         }
         if (empties[p->yielded])
