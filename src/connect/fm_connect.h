@@ -311,9 +311,10 @@ typedef struct fm_connect_plan_options {
     const double *fault_size;
     const unsigned char *fault_cut;
     const unsigned char *fault_joins;
-    /* The pairs and near-duplicates found before for the same models and
-     * options (fm_connect_neighbours_get, under fm_connect_neighbours_key
-     * of them); NULL (default): found now. Borrowed for the call. */
+    /* The pairs, near-duplicates and traced curves found before for the
+     * same models and options (fm_connect_neighbours_get, under
+     * fm_connect_neighbours_key of them); NULL (default): found now.
+     * Borrowed for the call. */
     const struct fm_connect_neighbours *neighbours;
 } fm_connect_plan_options;
 
