@@ -7,7 +7,7 @@
 #
 # -w: warm instead, as a user re-running at another size: a fresh cache is
 # filled by one run at 3000 m (not timed), and every size is then run with
-# it (fits and the junction plan's neighbours read, not made).
+# it (fits, the junction plan's neighbours and traced curves read, not made).
 #
 # Prints the machine, then per size: wall and CPU time and peak RSS (GNU
 # time), triangles, and the stage times from report.json (fit, connect, mesh,

@@ -153,11 +153,31 @@ static void measure_one(void *user, size_t f)
     ck_measure_fault(w->s, f, &w->out[f]);
 }
 
+/* The originals' pieces, one fault per task (SIZE_MAX: out of memory). */
+typedef struct orig_work {
+    const fm_loss_input *in;
+    size_t *op;
+} orig_work;
+
+static void orig_one(void *user, size_t f)
+{
+    orig_work *w = user;
+    const fm_loss_input *in = w->in;
+    const fm_mesh *o = in->orig ? in->orig[f] : NULL;
+    w->op[f] = o ? ck_orig_pieces(o, in->zcut[f], in->zcut[f] - 0.1 * in->size[f]) : 0;
+}
+
 /* Pieces of each fault's output against those of its original. */
 static fm_status pieces(const ck_set *s, fm_loss_fault *F)
 {
     const fm_loss_input *in = s->in;
     size_t nf = in->nfaults;
+    /* the originals are whole input meshes: counted on every thread */
+    size_t *op = malloc((nf + 1) * sizeof *op);
+    if (!op)
+        return FM_ERR_NOMEM;
+    orig_work ow = {in, op};
+    fm_parallel_for(nf, in->threads, orig_one, &ow, NULL, NULL, 0, 0);
     for (size_t f = 0; f < nf; f++) {
         size_t n = s->tri_first[f + 1] - s->tri_first[f];
         size_t *sz = malloc((n + 1) * sizeof *sz), k = 0;
@@ -165,6 +185,7 @@ static fm_status pieces(const ck_set *s, fm_loss_fault *F)
         if (!sz || !sh) {
             free(sz);
             free(sh);
+            free(op);
             return FM_ERR_NOMEM;
         }
         for (size_t i = 0; i < n; i++) {
@@ -183,13 +204,13 @@ static fm_status pieces(const ck_set *s, fm_loss_fault *F)
         size_t expect = nsh;
         const fm_mesh *o = in->orig ? in->orig[f] : NULL;
         if (o) {
-            size_t op = ck_orig_pieces(o, in->zcut[f], in->zcut[f] - 0.1 * in->size[f]);
-            if (op == SIZE_MAX) {
+            if (op[f] == SIZE_MAX) {
                 free(sz);
+                free(op);
                 return FM_ERR_NOMEM;
             }
-            F[f].orig_pieces = op;
-            expect = op > nsh ? op : nsh;
+            F[f].orig_pieces = op[f];
+            expect = op[f] > nsh ? op[f] : nsh;
         }
         if (k > expect) {
             F[f].islands = k - expect;
@@ -199,6 +220,7 @@ static fm_status pieces(const ck_set *s, fm_loss_fault *F)
         }
         free(sz);
     }
+    free(op);
     return FM_OK;
 }
 

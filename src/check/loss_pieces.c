@@ -38,29 +38,43 @@ static int weld(const fm_mesh *o, int32_t *up)
         cv[v].v = (int32_t)v;
     }
     qsort(cv, nv, sizeof *cv, cmp_cell);
-    for (size_t i = 0; i < nv; i++)
-        for (int dx = -1; dx <= 1; dx++)
-            for (int dy = -1; dy <= 1; dy++)
-                for (int dz = -1; dz <= 1; dz++) {
-                    cell_vertex key = {{cv[i].c[0] + dx, cv[i].c[1] + dy, cv[i].c[2] + dz}, -1};
-                    size_t lo = 0, hi = nv;
-                    while (lo < hi) {
-                        size_t mid = (lo + hi) / 2;
-                        if (cmp_cell(&cv[mid], &key) < 0)
-                            lo = mid + 1;
-                        else
-                            hi = mid;
-                    }
-                    for (size_t j = lo; j < nv && cv[j].c[0] == key.c[0] && cv[j].c[1] == key.c[1] &&
-                                        cv[j].c[2] == key.c[2];
-                         j++) {
-                        const double *a = X + 3 * cv[i].v, *b = X + 3 * cv[j].v;
-                        double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                                    (a[2] - b[2]) * (a[2] - b[2]);
-                        if (d2 <= FM_LOSS_TOUCH * FM_LOSS_TOUCH)
-                            ck_unite(up, cv[i].v, cv[j].v);
-                    }
+    /* Each pair of vertices in neighbouring cells is met once, from the
+     * one whose cell column (c0, c1) comes first: its own column upwards
+     * (in order, so those after it) and the columns (0, 1), (1, -1),
+     * (1, 0), (1, 1) away, each a run of the sorted cells from c2 - 1 to
+     * c2 + 1; the other half of the 27 neighbours meets it from there.
+     * The pieces depend on the sets united, not on the order. */
+    static const int step[4][2] = {{0, 1}, {1, -1}, {1, 0}, {1, 1}};
+    for (size_t i = 0; i < nv; i++) {
+        const int64_t *c = cv[i].c;
+        const double *a = X + 3 * cv[i].v;
+        for (int s = -1; s < 4; s++) {
+            size_t j = i + 1;
+            int64_t c0 = c[0], c1 = c[1];
+            if (s >= 0) {
+                c0 += step[s][0];
+                c1 += step[s][1];
+                cell_vertex key = {{c0, c1, c[2] - 1}, -1};
+                size_t lo = i + 1, hi = nv; /* later columns sort after cv[i] */
+                while (lo < hi) {
+                    size_t mid = (lo + hi) / 2;
+                    if (cmp_cell(&cv[mid], &key) < 0)
+                        lo = mid + 1;
+                    else
+                        hi = mid;
                 }
+                j = lo;
+            }
+            for (; j < nv && cv[j].c[0] == c0 && cv[j].c[1] == c1 && cv[j].c[2] <= c[2] + 1;
+                 j++) {
+                const double *b = X + 3 * cv[j].v;
+                double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                            (a[2] - b[2]) * (a[2] - b[2]);
+                if (d2 <= FM_LOSS_TOUCH * FM_LOSS_TOUCH)
+                    ck_unite(up, cv[i].v, cv[j].v);
+            }
+        }
+    }
     free(cv);
     return 0;
 }

@@ -38,6 +38,11 @@ typedef struct cn_sheet {
 
 fm_status cn_sheet_build(const fm_model *m, size_t fault, size_t sheet, double reach,
                          cn_sheet *out, fm_error *err);
+/* Only the sheet's trimming loops, bands and outline tree (what
+ * cn_sheet_inside, cn_sheet_outline_distance, cn_sheet_ray_exit and
+ * cn_intersect_emit use), no lattice: the same as cn_sheet_build's. */
+fm_status cn_sheet_build_outline(const fm_model *m, size_t fault, size_t sheet, cn_sheet *out,
+                                 fm_error *err);
 void cn_sheet_free(cn_sheet *s);
 
 /* Every sheet of models[0 .. n-1] (NULL entries skipped), in model then
@@ -45,6 +50,12 @@ void cn_sheet_free(cn_sheet *s);
  * order, gives the error. */
 fm_status cn_sheets_build(const fm_model *const *models, size_t n, double reach, int nthreads,
                           cn_sheet **out, size_t *nout, fm_error *err);
+/* The same, but global sheet g only as far as level[g] asks: 0 not at all
+ * (left zeroed), 1 its outline (cn_sheet_build_outline), 2 whole; level
+ * NULL: all whole. */
+fm_status cn_sheets_build_some(const fm_model *const *models, size_t n, double reach,
+                               const unsigned char *level, int nthreads, cn_sheet **out,
+                               size_t *nout, fm_error *err);
 void cn_sheets_free(cn_sheet *s, size_t n);
 
 /* fm_connect_find_pairs on sheets built by cn_sheets_build at the reach
@@ -60,11 +71,47 @@ fm_connect_pairs *cn_pairs_copy(const fm_connect_pair *pair, size_t n);
 void cn_neighbours_view(const fm_connect_neighbours *nb, const fm_connect_pair **pair,
                         size_t *npairs, const fm_connect_duplicate **dup, size_t *ndup);
 size_t cn_neighbours_nfaults(const fm_connect_neighbours *nb);
+/* The runs kept for pair k, when they were traced at join distance
+ * `distance` (per-fault distances may differ from run to run under one
+ * key); NULL: none such, the pair is traced again. */
+const struct cn_runs *cn_neighbours_runs(const fm_connect_neighbours *nb, size_t k,
+                                         double distance);
+/* The runs plan p traced for pair k and the distance they were traced
+ * at; NULL for a pair it did not trace (kept runs, or not decided). */
+const struct cn_runs *cn_plan_runs(const fm_connect_plan *p, size_t k, double *distance);
 
 /* fm_connect_intersect on sheets built at the reach of opt (INFINITY when
  * opt->clip_to_reach is 0); opt not NULL, checked. */
 fm_status cn_intersect(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_options *opt,
                        fm_connect_curves **out, fm_error *err);
+
+/* fm_connect_intersect in two steps. The trace (sampling, mesh-mesh
+ * intersection, chaining, solving, cutting at the reach) gives runs: the
+ * solved points (x = uA, vA, uB, vB; p in 3D) of each curve before it is
+ * resampled. It depends on the sheets, D (reach) and sample_spacing but
+ * not on `spacing` (the plan's, which follows H), so the plan keeps the
+ * runs between runs (neighbours.c). The emit resamples the runs at
+ * `spacing` and classifies them; it needs of the sheets only what
+ * cn_sheet_build_outline makes. cn_intersect is the trace then the emit. */
+typedef struct cn_run {
+    int closed;
+    size_t n;
+    double *x, *p; /* 4 and 3 per point */
+} cn_run;
+
+typedef struct cn_runs {
+    cn_run *r;
+    size_t n, cap;
+} cn_runs;
+
+void cn_runs_free(cn_runs *rs);
+/* Appends a run of n points, copied from x and p (both NULL: left for
+ * the caller to fill); -1: out of memory. */
+int cn_runs_push(cn_runs *rs, int closed, size_t n, const double *x, const double *p);
+fm_status cn_intersect_trace(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_options *opt,
+                             cn_runs *rs, fm_error *err);
+fm_status cn_intersect_emit(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_options *opt,
+                            const cn_runs *rs, fm_connect_curves **out, fm_error *err);
 
 /* 1 when (u, v) lies inside the sampled trimming loops (even-odd). */
 int cn_sheet_inside(const cn_sheet *s, double u, double v);

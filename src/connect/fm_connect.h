@@ -311,9 +311,10 @@ typedef struct fm_connect_plan_options {
     const double *fault_size;
     const unsigned char *fault_cut;
     const unsigned char *fault_joins;
-    /* The pairs and near-duplicates found before for the same models and
-     * options (fm_connect_neighbours_get, under fm_connect_neighbours_key
-     * of them); NULL (default): found now. Borrowed for the call. */
+    /* The pairs, near-duplicates and traced curves found before for the
+     * same models and options (fm_connect_neighbours_get, under
+     * fm_connect_neighbours_key of them); NULL (default): found now.
+     * Borrowed for the call. */
     const struct fm_connect_neighbours *neighbours;
 } fm_connect_plan_options;
 
@@ -362,6 +363,8 @@ typedef struct fm_connect_plan_stats {
     size_t pairs, curves, junctions[4]; /* by fm_junction_type */
     size_t duplicates;                  /* faults given up as near-duplicates */
     size_t triple_points;               /* points where junction curves of three faults meet */
+    size_t pairs_kept, pairs_traced;    /* pairs whose curves were taken from kept runs
+                                           (fm_connect_neighbours) or traced now */
     double time_pairs, time_curves, time_total; /* seconds, wall clock */
 } fm_connect_plan_stats;
 
@@ -395,10 +398,17 @@ const fm_connect_duplicate *fm_connect_plan_duplicates(const fm_connect_plan *p,
 /* ---- Neighbours kept between runs ----
  *
  * Of a plan's work, finding the sheet pairs within D and the
- * near-duplicates is half and does not depend on the mesh size: a run at
- * another size, or again, may take them from a cache folder (the fit
- * cache's, fm_model_cache.h) instead. They are kept under a key, the
- * SHA-256 of
+ * near-duplicates, and tracing each pair's intersection curves (up to
+ * their resampling at a spacing that follows H), do not depend on the
+ * mesh size, the sea level or the per-fault sizes: a run at another size,
+ * or again, may take them from a cache folder (the fit cache's,
+ * fm_model_cache.h) instead, and then samples no sheet's lattice; what
+ * follows H (resampling, classifying, deciding, clipping at sea level,
+ * triple points, conflicts) is made anew, so the plan is the same bit for
+ * bit. A pair's curves are kept with the join distance they were traced
+ * at (the larger of its faults'); a run whose per-fault join distances
+ * give a pair another traces that pair again. They are kept under a key,
+ * the SHA-256 of
  *  - the file format and the code that finds them (a digest of the
  *    sources of core, repair, fit and connect and the compiler and flags,
  *    made by the build; and fm_model_code_id()),
@@ -420,10 +430,10 @@ void fm_connect_neighbours_key(const unsigned char (*model_keys)[FM_MODEL_KEY_BY
  * when a file is there but rejected or unreadable. */
 fm_status fm_connect_neighbours_get(const char *dir, const unsigned char key[FM_CONNECT_KEY_BYTES],
                                     size_t nfaults, fm_connect_neighbours **out, fm_error *err);
-/* Stores the pairs and near-duplicates of a plan of nfaults faults. */
+/* Stores the pairs, near-duplicates and traced curves of a plan of
+ * nfaults faults. */
 fm_status fm_connect_neighbours_put(const char *dir, const unsigned char key[FM_CONNECT_KEY_BYTES],
-                                    size_t nfaults, const fm_connect_pairs *pairs,
-                                    const fm_connect_duplicate *dup, size_t ndup, fm_error *err);
+                                    size_t nfaults, const fm_connect_plan *plan, fm_error *err);
 void fm_connect_neighbours_destroy(fm_connect_neighbours *nb);
 
 #ifdef __cplusplus

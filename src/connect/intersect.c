@@ -735,8 +735,58 @@ static int emit_run(job *j, plist *run, int closed, fm_connect_curves *cs)
     return push_curve(cs, &c);
 }
 
-/* Solves a raw chain, cuts it where it leaves the grown regions, emits. */
-static int process_chain(job *j, plist *raw, int closed, fm_connect_curves *cs)
+/* ---- Runs: the solved, cut curves before resampling ---- */
+
+void cn_runs_free(cn_runs *rs)
+{
+    if (!rs)
+        return;
+    for (size_t i = 0; i < rs->n; i++) {
+        free(rs->r[i].x);
+        free(rs->r[i].p);
+    }
+    free(rs->r);
+    memset(rs, 0, sizeof *rs);
+}
+
+int cn_runs_push(cn_runs *rs, int closed, size_t n, const double *x, const double *p)
+{
+    if (rs->n == rs->cap) {
+        size_t cap = rs->cap ? 2 * rs->cap : 4;
+        cn_run *nr = realloc(rs->r, cap * sizeof *nr);
+        if (!nr)
+            return -1;
+        rs->r = nr;
+        rs->cap = cap;
+    }
+    cn_run *r = &rs->r[rs->n];
+    r->closed = closed;
+    r->n = n;
+    r->x = malloc((4 * n + 1) * sizeof *r->x);
+    r->p = malloc((3 * n + 1) * sizeof *r->p);
+    if (!r->x || !r->p) {
+        free(r->x);
+        free(r->p);
+        return -1;
+    }
+    if (n && x && p) { /* NULL: filled by the caller */
+        memcpy(r->x, x, 4 * n * sizeof *x);
+        memcpy(r->p, p, 3 * n * sizeof *p);
+    }
+    rs->n++;
+    return 0;
+}
+
+/* A run kept as it is; emit_run makes the curve of it (a run of fewer
+ * than two points makes none, and is not kept). */
+static int keep_run(cn_runs *rs, const plist *run, int closed)
+{
+    return run->n < 2 ? 0 : cn_runs_push(rs, closed, run->n, run->x, run->p);
+}
+
+/* Solves a raw chain, cuts it where it leaves the grown regions, keeps
+ * the runs. */
+static int process_chain(job *j, plist *raw, int closed, cn_runs *rs)
 {
     size_t n = raw->n;
     double *sol = malloc(3 * n * sizeof *sol), *ex = malloc(n * sizeof *ex);
@@ -764,7 +814,7 @@ static int process_chain(job *j, plist *raw, int closed, fm_connect_curves *cs)
     int rc = 0;
     if (closed && first_out == n) {
         free(ex);
-        return emit_run(j, raw, 1, cs);
+        return keep_run(rs, raw, 1);
     }
     /* walk from a cut point (closed) or from the start (open) */
     size_t m = closed ? n + 1 : n, s0 = closed ? first_out : 0;
@@ -781,7 +831,7 @@ static int process_chain(job *j, plist *raw, int closed, fm_connect_curves *cs)
                            x, p);
                 rc |= plist_push(&run, x, p);
                 if (hin) {
-                    rc |= emit_run(j, &run, 0, cs);
+                    rc |= keep_run(rs, &run, 0);
                     run.n = 0;
                 }
             }
@@ -790,7 +840,7 @@ static int process_chain(job *j, plist *raw, int closed, fm_connect_curves *cs)
             rc |= plist_push(&run, raw->x + 4 * i, raw->p + 3 * i);
     }
     if (rc == 0 && run.n)
-        rc = emit_run(j, &run, 0, cs);
+        rc = keep_run(rs, &run, 0);
     plist_free(&run);
     free(ex);
     return rc;
@@ -805,25 +855,29 @@ static int cmp_curve(const void *a, const void *b)
     return (x->info.npoints > y->info.npoints) - (x->info.npoints < y->info.npoints);
 }
 
-fm_status cn_intersect(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_options *opt,
-                       fm_connect_curves **out, fm_error *err)
+static void job_init(job *j, const cn_sheet *sa, const cn_sheet *sb, const fm_connect_options *opt)
 {
-    *out = NULL;
+    memset(j, 0, sizeof *j);
+    j->o = *opt;
+    j->reach = j->o.reach < 0 ? j->o.distance : j->o.reach;
+    j->A = sa->surf;
+    j->B = sb->surf;
+    j->sa = sa;
+    j->sb = sb;
+}
+
+fm_status cn_intersect_trace(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_options *opt,
+                             cn_runs *rs, fm_error *err)
+{
+    memset(rs, 0, sizeof *rs);
     job j;
-    memset(&j, 0, sizeof j);
-    j.o = *opt;
-    j.reach = j.o.reach < 0 ? j.o.distance : j.o.reach;
-    j.A = sa->surf;
-    j.B = sb->surf;
-    j.sa = sa;
-    j.sb = sb;
+    job_init(&j, sa, sb, opt);
     fm_status st = FM_OK;
-    fm_connect_curves *cs = calloc(1, sizeof *cs);
     unsigned char *sel_a = malloc(sa->nsu * sa->nsv + 1), *sel_b = malloc(sb->nsu * sb->nsv + 1);
     cn_zone za = {0}, zb = {0};
     graph g = {0};
     chains ch = {0};
-    if (!cs || !sel_a || !sel_b) {
+    if (!sel_a || !sel_b) {
         st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
         goto done;
     }
@@ -848,12 +902,10 @@ fm_status cn_intersect(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_
             node_point(&za, &zb, g.key[ch.node[i]], x, p);
             bad |= plist_push(&raw, x, p);
         }
-        if (bad || process_chain(&j, &raw, ch.closed[c], cs))
+        if (bad || process_chain(&j, &raw, ch.closed[c], rs))
             st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
         plist_free(&raw);
     }
-    if (st == FM_OK && cs->n > 1)
-        qsort(cs->c, cs->n, sizeof *cs->c, cmp_curve);
 done:
     chains_free(&ch);
     graph_free(&g);
@@ -861,12 +913,50 @@ done:
     cn_zone_free(&zb);
     free(sel_a);
     free(sel_b);
-    if (st != FM_OK) {
-        fm_connect_curves_destroy(cs);
-        return st;
+    if (st != FM_OK)
+        cn_runs_free(rs);
+    return st;
+}
+
+fm_status cn_intersect_emit(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_options *opt,
+                            const cn_runs *rs, fm_connect_curves **out, fm_error *err)
+{
+    *out = NULL;
+    job j;
+    job_init(&j, sa, sb, opt);
+    fm_connect_curves *cs = calloc(1, sizeof *cs);
+    if (!cs)
+        return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+    for (size_t i = 0; i < rs->n; i++) {
+        /* emit_run may turn the run round: a copy, the kept one untouched */
+        const cn_run *r = &rs->r[i];
+        plist run = {0};
+        int bad = 0;
+        for (size_t k = 0; k < r->n; k++)
+            bad |= plist_push(&run, r->x + 4 * k, r->p + 3 * k);
+        bad = bad || emit_run(&j, &run, r->closed, cs);
+        plist_free(&run);
+        if (bad) {
+            fm_connect_curves_destroy(cs);
+            return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "connect: out of memory");
+        }
     }
+    if (cs->n > 1)
+        qsort(cs->c, cs->n, sizeof *cs->c, cmp_curve);
     *out = cs;
     return FM_OK;
+}
+
+fm_status cn_intersect(const cn_sheet *sa, const cn_sheet *sb, const fm_connect_options *opt,
+                       fm_connect_curves **out, fm_error *err)
+{
+    *out = NULL;
+    cn_runs rs;
+    fm_status st = cn_intersect_trace(sa, sb, opt, &rs, err);
+    if (st == FM_OK)
+        st = cn_intersect_emit(sa, sb, opt, &rs, out, err);
+    cn_runs_free(&rs);
+    return st;
 }
 
 fm_status fm_connect_intersect(const fm_model *a, size_t sheet_a, const fm_model *b,

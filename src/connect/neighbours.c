@@ -1,12 +1,18 @@
 /* The neighbours of a plan kept between runs (fm_connect.h): the sheet
- * pairs and near-duplicates, which depend on the models, D and the
- * near-duplicate rule but not on H, stored by a key over all of those.
+ * pairs and near-duplicates, and every decided pair's intersection runs
+ * as traced (connect_internal.h, cn_intersect_trace), which depend on the
+ * models, D and the near-duplicate rule but not on H, stored by a key
+ * over all of those.
  *
  * File layout (every number little-endian): "FMNB" and the format
  * version (u32); the key (32 bytes); the number of faults, pairs and
  * near-duplicates (u64 each); each pair's indices (u64) and values (f64,
- * their bits), each near-duplicate's likewise; and the SHA-256 of all that
- * precedes it, so that a damaged or truncated file is rejected. */
+ * their bits), each near-duplicate's likewise; then per pair, in order,
+ * whether its runs are kept (u64 0 or 1) and if so the join distance they
+ * were traced at (f64), their number (u64) and each run's closed flag and
+ * point count (u64) and points (x then p, 7 f64 each); and the SHA-256 of
+ * all that precedes it, so that a damaged or truncated file is
+ * rejected. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,7 +26,7 @@
 #include "fm_sha256.h"
 
 #define NB_MAGIC "FMNB"
-#define NB_VERSION 1u
+#define NB_VERSION 2u
 
 struct fm_connect_neighbours {
     size_t nfaults;
@@ -28,12 +34,20 @@ struct fm_connect_neighbours {
     size_t npairs;
     fm_connect_duplicate *dup;
     size_t ndup;
+    cn_runs *runs;            /* per pair */
+    double *run_distance;     /* per pair */
+    unsigned char *has_runs;  /* per pair */
 };
 
 void fm_connect_neighbours_destroy(fm_connect_neighbours *nb)
 {
     if (!nb)
         return;
+    for (size_t k = 0; nb->runs && k < nb->npairs; k++)
+        cn_runs_free(&nb->runs[k]);
+    free(nb->runs);
+    free(nb->run_distance);
+    free(nb->has_runs);
     free(nb->pair);
     free(nb->dup);
     free(nb);
@@ -49,6 +63,15 @@ void cn_neighbours_view(const fm_connect_neighbours *nb, const fm_connect_pair *
 }
 
 size_t cn_neighbours_nfaults(const fm_connect_neighbours *nb) { return nb->nfaults; }
+
+const cn_runs *cn_neighbours_runs(const fm_connect_neighbours *nb, size_t k, double distance)
+{
+    /* the bits, as the key compares D */
+    if (k >= nb->npairs || !nb->has_runs[k] ||
+        memcmp(&nb->run_distance[k], &distance, sizeof distance) != 0)
+        return NULL;
+    return &nb->runs[k];
+}
 
 /* ---- key ---- */
 
@@ -93,9 +116,11 @@ static char *nb_path(const char *dir, const unsigned char key[FM_CONNECT_KEY_BYT
 }
 
 fm_status fm_connect_neighbours_put(const char *dir, const unsigned char key[FM_CONNECT_KEY_BYTES],
-                                    size_t nfaults, const fm_connect_pairs *pairs,
-                                    const fm_connect_duplicate *dup, size_t ndup, fm_error *err)
+                                    size_t nfaults, const fm_connect_plan *plan, fm_error *err)
 {
+    const fm_connect_pairs *pairs = fm_connect_plan_pairs(plan);
+    size_t ndup;
+    const fm_connect_duplicate *dup = fm_connect_plan_duplicates(plan, &ndup);
     fm_store_out b = {0};
     fm_store_raw(&b, NB_MAGIC, 4);
     fm_store_u32(&b, NB_VERSION);
@@ -130,6 +155,24 @@ fm_status fm_connect_neighbours_put(const char *dir, const unsigned char key[FM_
         fm_store_f64(&b, d->cover);
         fm_store_u64(&b, (uint64_t)d->decided);
     }
+    for (size_t k = 0; k < np; k++) {
+        double dist = 0;
+        const cn_runs *rs = cn_plan_runs(plan, k, &dist);
+        fm_store_u64(&b, rs != NULL);
+        if (!rs)
+            continue;
+        fm_store_f64(&b, dist);
+        fm_store_u64(&b, rs->n);
+        for (size_t i = 0; i < rs->n; i++) {
+            const cn_run *q = &rs->r[i];
+            fm_store_u64(&b, (uint64_t)q->closed);
+            fm_store_u64(&b, q->n);
+            for (size_t e = 0; e < 4 * q->n; e++)
+                fm_store_f64(&b, q->x[e]);
+            for (size_t e = 0; e < 3 * q->n; e++)
+                fm_store_f64(&b, q->p[e]);
+        }
+    }
     unsigned char sum[FM_SHA256_BYTES];
     if (!b.failed) {
         fm_sha256_of(b.p, b.n, sum);
@@ -160,6 +203,44 @@ fm_status fm_connect_neighbours_put(const char *dir, const unsigned char key[FM_
 static fm_status rejected(const char *path, fm_error *err, const char *why)
 {
     return fm_error_set(err, FM_ERR_PARSE, path, 0, "connect cache: %s", why);
+}
+
+/* Every pair's runs, after the near-duplicates; 1 when they do not fit
+ * the file (or memory ran out: then too the file goes unused). */
+static int parse_runs(fm_store_in *r, fm_connect_neighbours *nb)
+{
+    size_t np = nb->npairs;
+    nb->runs = calloc(np + 1, sizeof *nb->runs);
+    nb->run_distance = calloc(np + 1, sizeof *nb->run_distance);
+    nb->has_runs = calloc(np + 1, 1);
+    if (!nb->runs || !nb->run_distance || !nb->has_runs)
+        return 1;
+    for (size_t k = 0; k < np; k++) {
+        uint64_t has = fm_load_u64(r);
+        if (r->failed || has > 1)
+            return 1;
+        if (!has)
+            continue;
+        nb->has_runs[k] = 1;
+        nb->run_distance[k] = fm_load_f64(r);
+        uint64_t nr = fm_load_u64(r);
+        /* each run takes at least 2 numbers */
+        if (r->failed || nr > (r->n - r->at) / 16)
+            return 1;
+        for (uint64_t i = 0; i < nr; i++) {
+            uint64_t closed = fm_load_u64(r), n = fm_load_u64(r);
+            if (r->failed || closed > 1 || n > (r->n - r->at) / 56)
+                return 1;
+            if (cn_runs_push(&nb->runs[k], (int)closed, n, NULL, NULL))
+                return 1;
+            cn_run *q = &nb->runs[k].r[nb->runs[k].n - 1];
+            for (size_t e = 0; e < 4 * n; e++)
+                q->x[e] = fm_load_f64(r);
+            for (size_t e = 0; e < 3 * n; e++)
+                q->p[e] = fm_load_f64(r);
+        }
+    }
+    return r->failed;
 }
 
 /* The neighbours in bytes p[0 .. n-1], read back as stored under key. */
@@ -226,6 +307,7 @@ static fm_status parse(const char *path, const unsigned char *p, size_t n,
         d->decided = (int)fm_load_u64(&r);
         bad |= d->dropped >= nf || d->kept >= nf;
     }
+    bad = bad || r.failed || parse_runs(&r, nb);
     if (r.failed || bad || r.at != r.n) {
         fm_connect_neighbours_destroy(nb);
         return rejected(path, err, "fault indices or length do not fit");

@@ -54,6 +54,11 @@ struct fm_connect_plan {
     fm_connect_duplicate *dup;
     size_t ndup;
     fm_connect_pairs *pairs;   /* what it was made from, to be kept (neighbours.c) */
+    cn_runs *runs;             /* per pair: the runs traced by this plan (neighbours.c) */
+    double *run_distance;      /* per pair: the join distance they were traced at */
+    unsigned char *traced;     /* per pair: 1 when runs[k] was traced now, 2 when the pair was
+                                  decided from kept runs, 0 when not decided */
+    size_t nruns;
     fm_connect_plan_stats stats;
 };
 
@@ -69,6 +74,11 @@ void fm_connect_plan_destroy(fm_connect_plan *p)
         }
     }
     free(p->curve);
+    for (size_t k = 0; p->runs && k < p->nruns; k++)
+        cn_runs_free(&p->runs[k]);
+    free(p->runs);
+    free(p->run_distance);
+    free(p->traced);
     fm_connect_pairs_destroy(p->pairs);
     free(p->junction);
     free(p->nodes);
@@ -121,6 +131,10 @@ int fm_connect_plan_dropped(const fm_connect_plan *p, size_t fault,
 typedef struct pair_work {
     const fm_connect_pairs *pairs;
     const fm_connect_plan_options *opt;
+    const fm_connect_neighbours *kept; /* runs kept by an earlier plan; NULL: none */
+    cn_runs *runs;                     /* per pair: traced now */
+    double *run_distance;
+    unsigned char *traced;
     const unsigned char *dropped;
     const pl_sheet *sheet;      /* per global sheet */
     const size_t *base;         /* per fault: its first global sheet */
@@ -157,32 +171,57 @@ static void push_unjoined(pair_work *w, size_t k, const fm_connect_pair *p, cons
     r->n = r->cap = 1;
 }
 
+/* What becomes of pair p: PAIR_DROPPED or PAIR_NO_JOIN (unjoined, for
+ * that reason), PAIR_FAR (found only because other faults join farther:
+ * not a near pair, left out), or PAIR_DECIDED with its options *po. */
+enum { PAIR_DECIDED, PAIR_DROPPED, PAIR_NO_JOIN, PAIR_FAR };
+
+static int pair_fate(const fm_connect_plan_options *o, const unsigned char *dropped,
+                     const fm_connect_pair *p, fm_connect_plan_options *po)
+{
+    size_t a = p->fault_a, b = p->fault_b;
+    if (dropped[a] || dropped[b])
+        return PAIR_DROPPED;
+    if (o->fault_joins && (!o->fault_joins[a] || !o->fault_joins[b]))
+        return PAIR_NO_JOIN;
+    *po = *o;
+    if (o->fault_distance)
+        po->distance = fmax(o->fault_distance[a], o->fault_distance[b]);
+    if (o->fault_size)
+        po->size = fmin(o->fault_size[a], o->fault_size[b]);
+    if (o->fault_cut)
+        po->cut = o->fault_cut[a] || o->fault_cut[b];
+    return p->distance > po->distance ? PAIR_FAR : PAIR_DECIDED;
+}
+
 static void do_pair(void *user, size_t k)
 {
     pair_work *w = user;
     const fm_connect_pair *p = fm_connect_pairs_get(w->pairs, k);
-    if (w->dropped[p->fault_a] || w->dropped[p->fault_b]) {
+    fm_connect_plan_options po;
+    switch (pair_fate(w->opt, w->dropped, p, &po)) {
+    case PAIR_DROPPED:
         push_unjoined(w, k, p, "one of the pair was given up as a near-duplicate");
         return;
-    }
-    const fm_connect_plan_options *o = w->opt;
-    size_t a = p->fault_a, b = p->fault_b;
-    if (o->fault_joins && (!o->fault_joins[a] || !o->fault_joins[b])) {
+    case PAIR_NO_JOIN:
         push_unjoined(w, k, p, "one of the pair is set not to join other faults");
         return;
+    case PAIR_FAR:
+        return;
+    default:
+        break;
     }
-    fm_connect_plan_options po = *o;
-    if (o->fault_distance)
-        po.distance = fmax(o->fault_distance[a], o->fault_distance[b]);
-    if (o->fault_size)
-        po.size = fmin(o->fault_size[a], o->fault_size[b]);
-    if (o->fault_cut)
-        po.cut = o->fault_cut[a] || o->fault_cut[b];
-    if (p->distance > po.distance)
-        return; /* found only because other faults join farther: not a near pair */
+    size_t a = p->fault_a, b = p->fault_b;
+    const cn_runs *kept = w->kept ? cn_neighbours_runs(w->kept, k, po.distance) : NULL;
     w->st[k] = pl_decide_pair(&w->sheet[w->base[a] + p->sheet_a], a, p->sheet_a,
-                              &w->sheet[w->base[b] + p->sheet_b], b, p->sheet_b, &po, &w->res[k],
-                              &w->err[k]);
+                              &w->sheet[w->base[b] + p->sheet_b], b, p->sheet_b, &po, kept,
+                              &w->runs[k], &w->res[k], &w->err[k]);
+    if (kept)
+        w->traced[k] = 2;
+    else if (w->st[k] == FM_OK) {
+        w->traced[k] = 1;
+        w->run_distance[k] = po.distance;
+    }
     /* a pair within the join distance whose surfaces, even extended, never
      * meet is listed too, so that every near pair has its line in the report */
     if (w->st[k] == FM_OK && w->res[k].n == 0)
@@ -400,6 +439,16 @@ static fm_status kept_neighbours(const fm_connect_neighbours *nb, const fm_model
     return FM_OK;
 }
 
+/* The faults the near-duplicates give up. */
+static void mark_dropped(fm_connect_plan *p)
+{
+    for (size_t k = 0; k < p->ndup; k++)
+        if (p->dup[k].decided) {
+            p->dropped[p->dup[k].dropped] = 1;
+            p->stats.duplicates++;
+        }
+}
+
 fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
                                 const fm_connect_plan_options *opt, fm_connect_plan **out,
                                 fm_error *err)
@@ -440,13 +489,42 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
     cn_sheet *sh = NULL;
     size_t ns = 0;
     fm_connect_pairs *pairs = NULL;
-    fm_status st = cn_sheets_build(models, n, co.reach, o.nthreads, &sh, &ns, err);
-    double ts = fm_clock_seconds();
-    if (st == FM_OK && o.neighbours)
-        st = kept_neighbours(o.neighbours, models, n, &pairs, p, err);
-    else if (st == FM_OK && (st = cn_find_pairs(sh, ns, &co, &pairs, err)) == FM_OK) {
-        cn_pairs_set_time_sample(pairs, ts - t0);
-        st = fm_connect_find_duplicates(models, n, pairs, &o.duplicates, &p->dup, &p->ndup, err);
+    fm_status st = FM_OK;
+    if (o.neighbours) {
+        /* Pairs kept: a sheet is sampled whole only for a pair whose runs
+         * must be traced again, else only its outline is made (the runs'
+         * emit needs no more), and not at all when no pair needs it. */
+        unsigned char *level = calloc(base[n] + 1, 1);
+        if (!level)
+            st = fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+        else
+            st = kept_neighbours(o.neighbours, models, n, &pairs, p, err);
+        if (st == FM_OK) {
+            mark_dropped(p);
+            for (size_t k = 0; k < fm_connect_pairs_count(pairs); k++) {
+                const fm_connect_pair *pp = fm_connect_pairs_get(pairs, k);
+                fm_connect_plan_options po;
+                int fate = pair_fate(&o, p->dropped, pp, &po);
+                if (fate != PAIR_DECIDED)
+                    continue;
+                int need = cn_neighbours_runs(o.neighbours, k, po.distance) ? 1 : 2;
+                size_t ga = base[pp->fault_a] + pp->sheet_a, gb = base[pp->fault_b] + pp->sheet_b;
+                level[ga] = (unsigned char)(level[ga] > need ? level[ga] : need);
+                level[gb] = (unsigned char)(level[gb] > need ? level[gb] : need);
+            }
+            st = cn_sheets_build_some(models, n, co.reach, level, o.nthreads, &sh, &ns, err);
+        }
+        free(level);
+    } else {
+        st = cn_sheets_build(models, n, co.reach, o.nthreads, &sh, &ns, err);
+        double ts = fm_clock_seconds();
+        if (st == FM_OK && (st = cn_find_pairs(sh, ns, &co, &pairs, err)) == FM_OK) {
+            cn_pairs_set_time_sample(pairs, ts - t0);
+            st = fm_connect_find_duplicates(models, n, pairs, &o.duplicates, &p->dup, &p->ndup,
+                                            err);
+        }
+        if (st == FM_OK)
+            mark_dropped(p);
     }
     if (st != FM_OK) {
         fm_connect_pairs_destroy(pairs);
@@ -455,11 +533,6 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
         fm_connect_plan_destroy(p);
         return st;
     }
-    for (size_t k = 0; k < p->ndup; k++)
-        if (p->dup[k].decided) {
-            p->dropped[p->dup[k].dropped] = 1;
-            p->stats.duplicates++;
-        }
     double t1 = fm_clock_seconds();
     size_t np = fm_connect_pairs_count(pairs);
     pl_sheet *psh = calloc(ns + 1, sizeof *psh);
@@ -469,13 +542,21 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
     memset(&w, 0, sizeof w);
     w.pairs = pairs;
     w.opt = &o;
+    w.kept = o.neighbours;
+    w.runs = calloc(np + 1, sizeof *w.runs);
+    w.run_distance = calloc(np + 1, sizeof *w.run_distance);
+    w.traced = calloc(np + 1, 1);
     w.dropped = p->dropped;
     w.sheet = psh;
     w.base = base;
     w.res = calloc(np + 1, sizeof *w.res);
     w.st = calloc(np + 1, sizeof *w.st);
     w.err = calloc(np + 1, sizeof *w.err);
-    if (!psh || !ref || !slot || !w.res || !w.st || !w.err) {
+    if (!psh || !ref || !slot || !w.res || !w.st || !w.err || !w.runs || !w.run_distance ||
+        !w.traced) {
+        free(w.runs);
+        free(w.run_distance);
+        free(w.traced);
         free(psh);
         free(ref);
         free(slot);
@@ -552,11 +633,20 @@ fm_status fm_connect_plan_build(const fm_model *const *models, size_t n,
     free(w.st);
     free(w.err);
     p->pairs = pairs;
+    /* the runs traced now, for fm_connect_neighbours_put */
+    p->runs = w.runs;
+    p->run_distance = w.run_distance;
+    p->traced = w.traced;
+    p->nruns = np;
     if (st != FM_OK) {
         fm_connect_plan_destroy(p);
         return st;
     }
     p->stats.pairs = np;
+    for (size_t k = 0; k < np; k++) {
+        p->stats.pairs_traced += p->traced[k] == 1;
+        p->stats.pairs_kept += p->traced[k] == 2;
+    }
     p->stats.curves = p->ncurve;
     for (size_t i = 0; i < p->njunction; i++)
         p->stats.junctions[p->junction[i].type]++;
@@ -573,4 +663,12 @@ const fm_connect_duplicate *fm_connect_plan_duplicates(const fm_connect_plan *p,
 {
     *n = p->ndup;
     return p->dup;
+}
+
+const cn_runs *cn_plan_runs(const fm_connect_plan *p, size_t k, double *distance)
+{
+    if (k >= p->nruns || p->traced[k] != 1)
+        return NULL;
+    *distance = p->run_distance[k];
+    return &p->runs[k];
 }

@@ -694,7 +694,8 @@ done:
 
 fm_status pl_decide_pair(const pl_sheet *a, size_t fault_a, size_t sheet_a, const pl_sheet *b,
                          size_t fault_b, size_t sheet_b, const fm_connect_plan_options *opt,
-                         pl_pair_result *out, fm_error *err)
+                         const cn_runs *kept, cn_runs *traced, pl_pair_result *out,
+                         fm_error *err)
 {
     memset(out, 0, sizeof *out);
     fm_connect_options co;
@@ -704,7 +705,13 @@ fm_status pl_decide_pair(const pl_sheet *a, size_t fault_a, size_t sheet_a, cons
     /* raw points a few per mesh edge, so that cuts land within H/4 */
     co.spacing = fmin(co.spacing, 0.25 * opt->size);
     fm_connect_curves *cs = NULL;
-    fm_status st = cn_intersect(a->s, b->s, &co, &cs, err);
+    fm_status st = FM_OK;
+    if (!kept) {
+        st = cn_intersect_trace(a->s, b->s, &co, traced, err);
+        kept = traced;
+    }
+    if (st == FM_OK)
+        st = cn_intersect_emit(a->s, b->s, &co, kept, &cs, err);
     if (st != FM_OK)
         return st;
     if (fm_connect_curves_count(cs) > 0) {

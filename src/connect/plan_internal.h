@@ -96,9 +96,13 @@ typedef struct pl_sheet {
     fm_error err;
 } pl_sheet;
 
-/* Intersects the pair's sheets and decides every curve (plan_decide.c). */
+/* Intersects the pair's sheets and decides every curve (plan_decide.c):
+ * from the runs kept by an earlier plan when kept is not NULL (the sheets
+ * then need only their outlines), else traced now into *traced (the
+ * caller frees it; it is what a later plan may keep). */
 fm_status pl_decide_pair(const pl_sheet *a, size_t fault_a, size_t sheet_a, const pl_sheet *b,
                          size_t fault_b, size_t sheet_b, const fm_connect_plan_options *opt,
-                         pl_pair_result *out, fm_error *err);
+                         const cn_runs *kept, cn_runs *traced, pl_pair_result *out,
+                         fm_error *err);
 
 #endif

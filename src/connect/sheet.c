@@ -244,8 +244,8 @@ static double dist3(const double *a, const double *b)
     return sqrt(dx * dx + dy * dy + dz * dz);
 }
 
-fm_status cn_sheet_build(const fm_model *m, size_t fault, size_t sheet, double reach,
-                         cn_sheet *s, fm_error *err)
+fm_status cn_sheet_build_outline(const fm_model *m, size_t fault, size_t sheet, cn_sheet *s,
+                                 fm_error *err)
 {
     memset(s, 0, sizeof *s);
     s->surf = fm_model_surface(m, sheet);
@@ -266,10 +266,17 @@ fm_status cn_sheet_build(const fm_model *m, size_t fault, size_t sheet, double r
     s->v0 = dom[2];
     s->hs = (dom[1] - dom[0]) / (double)s->nsu;
     fm_status st = sample_loops(s, m, sheet, err);
-    if (st != FM_OK) {
+    if (st != FM_OK)
         cn_sheet_free(s);
+    return st;
+}
+
+fm_status cn_sheet_build(const fm_model *m, size_t fault, size_t sheet, double reach,
+                         cn_sheet *s, fm_error *err)
+{
+    fm_status st = cn_sheet_build_outline(m, fault, sheet, s, err);
+    if (st != FM_OK)
         return st;
-    }
     size_t nu = s->nsu + 1, nn = nu * (s->nsv + 1), nc = s->nsu * s->nsv;
     s->xyz = malloc(3 * nn * sizeof *s->xyz);
     s->sd = malloc(nn * sizeof *s->sd);
@@ -391,6 +398,7 @@ typedef struct sample_work {
     const fm_model *const *models;
     const size_t (*ref)[2];
     double reach;
+    const unsigned char *level;
     cn_sheet *sh;
     fm_status *st;
     fm_error *err;
@@ -400,11 +408,22 @@ static void sample_task(void *user, size_t k)
 {
     sample_work *w = user;
     size_t f = w->ref[k][0], s = w->ref[k][1];
-    w->st[k] = cn_sheet_build(w->models[f], f, s, w->reach, &w->sh[k], &w->err[k]);
+    int level = w->level ? w->level[k] : 2;
+    if (level == 2)
+        w->st[k] = cn_sheet_build(w->models[f], f, s, w->reach, &w->sh[k], &w->err[k]);
+    else if (level == 1)
+        w->st[k] = cn_sheet_build_outline(w->models[f], f, s, &w->sh[k], &w->err[k]);
 }
 
 fm_status cn_sheets_build(const fm_model *const *models, size_t n, double reach, int nthreads,
                           cn_sheet **out, size_t *nout, fm_error *err)
+{
+    return cn_sheets_build_some(models, n, reach, NULL, nthreads, out, nout, err);
+}
+
+fm_status cn_sheets_build_some(const fm_model *const *models, size_t n, double reach,
+                               const unsigned char *level, int nthreads, cn_sheet **out,
+                               size_t *nout, fm_error *err)
 {
     *out = NULL;
     *nout = 0;
@@ -428,7 +447,7 @@ fm_status cn_sheets_build(const fm_model *const *models, size_t n, double reach,
             ref[k][0] = i;
             ref[k][1] = s;
         }
-    sample_work w = {models, (const size_t(*)[2])ref, reach, sh, sst, serr};
+    sample_work w = {models, (const size_t(*)[2])ref, reach, level, sh, sst, serr};
     cn_parallel_for(ns, nthreads, sample_task, &w);
     /* the first sheet in order that failed decides the error, as on one thread */
     fm_status st = FM_OK;

@@ -1,6 +1,7 @@
 /* SHA-256 as FIPS 180-4 specifies it (sections 4.1.2, 4.2.2, 5.1.1, 5.3.3,
  * 6.2); see fm_sha256.h for why. */
 #include "fm_sha256.h"
+#include "sha256_blocks.h"
 
 #include <string.h>
 
@@ -55,6 +56,12 @@ static void compress(uint32_t h[8], const unsigned char *p)
     h[7] += k;
 }
 
+void fm_sha256_portable_blocks(uint32_t h[8], const unsigned char *p, size_t nblocks)
+{
+    for (; nblocks; nblocks--, p += 64)
+        compress(h, p);
+}
+
 void fm_sha256_init(fm_sha256 *c)
 {
     static const uint32_t H0[8] = {0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
@@ -76,8 +83,16 @@ void fm_sha256_update(fm_sha256 *c, const void *data, size_t n)
         n -= take;
         if (c->fill < 64)
             return;
-        compress(c->h, c->block);
+        if (fm_sha256_x86_available())
+            fm_sha256_x86_blocks(c->h, c->block, 1);
+        else
+            compress(c->h, c->block);
         c->fill = 0;
+    }
+    if (n >= 64 && fm_sha256_x86_available()) {
+        fm_sha256_x86_blocks(c->h, p, n / 64);
+        p += n / 64 * 64;
+        n %= 64;
     }
     for (; n >= 64; p += 64, n -= 64)
         compress(c->h, p);

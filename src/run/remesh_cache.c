@@ -110,6 +110,9 @@ void cache_json(fm_json *j, const remesh_cli *cli, const run_state *rs)
     static const char *const nb[] = {"not looked up", "read", "found and stored",
                                      "found again over a rejected file", "found, not stored"};
     fm_json_kv_string(j, "connect_neighbours", nb[rs->neighbours]);
+    /* of the pairs decided, those whose intersection curves were read */
+    fm_json_kv_int(j, "connect_curves_read", (int64_t)rs->curves_kept);
+    fm_json_kv_int(j, "connect_curves_traced", (int64_t)rs->curves_traced);
     fm_json_end_object(j);
 }
 
@@ -125,6 +128,7 @@ void cache_print(const remesh_cli *cli, const run_state *rs, FILE *fp)
     if (c.unstored)
         fprintf(fp, "; %zu models could not be stored", c.unstored);
     if (rs->neighbours == NEIGHBOURS_HIT)
-        fprintf(fp, "; junction neighbours read");
+        fprintf(fp, "; junction neighbours read, curves of %zu pairs read, %zu traced",
+                rs->curves_kept, rs->curves_traced);
     fputc('\n', fp);
 }

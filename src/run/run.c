@@ -143,12 +143,13 @@ static fm_connect_plan *make_plan(const remesh_cli *cli, file_job *jobs, size_t 
     po.neighbours = kept;
     fm_status st = fm_connect_plan_build(models, n, &po, &plan, &err);
     fm_connect_neighbours_destroy(kept);
+    if (st == FM_OK) {
+        rs->curves_kept = fm_connect_plan_get_stats(plan)->pairs_kept;
+        rs->curves_traced = fm_connect_plan_get_stats(plan)->pairs_traced;
+    }
     if (st == FM_OK && keyed && !kept) {
-        size_t nd;
-        const fm_connect_duplicate *d = fm_connect_plan_duplicates(plan, &nd);
         fm_error cerr;
-        if (fm_connect_neighbours_put(cli->cache, nkey, n, fm_connect_plan_pairs(plan), d, nd,
-                                      &cerr) != FM_OK)
+        if (fm_connect_neighbours_put(cli->cache, nkey, n, plan, &cerr) != FM_OK)
             rs->neighbours = NEIGHBOURS_UNSTORED;
     }
     per_fault_free(&pf);

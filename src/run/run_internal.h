@@ -212,6 +212,8 @@ typedef struct run_state {
     fm_loss *loss;          /* the connect measures of the final set; NULL if not taken */
     output_log *outputs;    /* what was written; filled while writing */
     neighbours_use neighbours; /* the plan's pairs and near-duplicates and the cache */
+    size_t curves_kept, curves_traced; /* the plan's pairs decided from curves kept in the
+                                          cache, or traced now (fm_connect_plan_stats) */
 } run_state;
 
 /* One input file's faults, fitted and then meshed by workers; merged

@@ -7,9 +7,56 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* v right-aligned in `width` columns, wider when it needs more: printf's
+ * %*ld, without its cost on the millions of lines of a whole-set
+ * model.igs. */
+static size_t put_long(char *out, long v, int width)
+{
+    char d[24];
+    int n = 0;
+    unsigned long u = v < 0 ? 0UL - (unsigned long)v : (unsigned long)v;
+    do {
+        d[n++] = (char)('0' + u % 10);
+        u /= 10;
+    } while (u);
+    if (v < 0)
+        d[n++] = '-';
+    size_t k = 0;
+    for (int i = n; i < width; i++)
+        out[k++] = ' ';
+    while (n)
+        out[k++] = d[--n];
+    return k;
+}
+
+/* The first `len` characters of data left-aligned in `width` columns (as
+ * %-*s when len is data's length), then the letter and the sequence
+ * number in 7 columns, and the line's end. */
+static void put_record(FILE *fp, const char *data, size_t len, size_t width, const long *de,
+                       char letter, long seq)
+{
+    char line[128 + 64];
+    size_t k = 0;
+    if (len > 128)
+        len = 128; /* not reached: lines hold at most 72 */
+    memcpy(line, data, len);
+    k = len;
+    while (k < width)
+        line[k++] = ' ';
+    if (de)
+        k += put_long(line + k, *de, 8);
+    line[k++] = letter;
+    k += put_long(line + k, seq, 7);
+    line[k++] = '\n';
+    fwrite(line, 1, k, fp);
+}
+
 void iges_put_line(FILE *fp, const char *data, char letter, long seq)
 {
-    fprintf(fp, "%-72.72s%c%7ld\n", data, letter, seq);
+    size_t len = 0;
+    while (len < 72 && data[len])
+        len++;
+    put_record(fp, data, len, 72, NULL, letter, seq);
 }
 
 void iges_lines_init(iges_lines *l, FILE *fp, char letter, long first_seq)
@@ -27,7 +74,7 @@ static void flush(iges_lines *l)
     if (l->fp) {
         l->buf[l->len] = '\0';
         if (l->letter == 'P')
-            fprintf(l->fp, "%-64s%8ld%c%7ld\n", l->buf, l->de, 'P', l->seq);
+            put_record(l->fp, l->buf, l->len, 64, &l->de, 'P', l->seq);
         else
             iges_put_line(l->fp, l->buf, l->letter, l->seq);
     }

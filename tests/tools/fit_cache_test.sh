@@ -72,8 +72,8 @@ expect_rc 0 "demo --size 2000, cached" "$exe" demo --quiet --cache "$c" --size 2
 [ "$(cache_of "$tmp/size2")" = "$nfaults 0 0 True" ] && ok || bad "--size 2000: $(cache_of "$tmp/size2")"
 diff -r -x report.json "$tmp/ref2" "$tmp/size2" >/dev/null && ok || bad "--size 2000: outputs differ"
 
-# 3b. The junction plan's neighbours (sheet pairs, near-duplicates) are
-#     kept beside the models: found and stored once, read by every later
+# 3b. The junction plan's neighbours (sheet pairs, near-duplicates) and
+#     their intersection curves are kept beside the models: found and stored once, read by every later
 #     run on the same models and join distance, at any size; another join
 #     distance finds them again; a damaged file is rejected and found
 #     again, with the same outputs.
@@ -83,6 +83,21 @@ for d in warm size2; do
     [ "$(nb_of "$tmp/$d")" = read ] && ok || bad "$d neighbours: $(nb_of "$tmp/$d")"
 done
 [ "$(nb_of "$tmp/ref")" = "not looked up" ] && ok || bad "--no-cache neighbours: $(nb_of "$tmp/ref")"
+#     The pairs' intersection curves are kept with them, as traced (before
+#     they are resampled at a spacing that follows the size): read at any
+#     size, none traced again; a size whose spacing differs (700 m: 175 m
+#     against 250 m) meshes as a run without the cache does.
+curves_of() { json "$1/report.json" "'%d %d' % (r['fit_cache']['connect_curves_read'], r['fit_cache']['connect_curves_traced'])"; }
+read cr ct <<<"$(curves_of "$tmp/cold")"
+[ "$cr" = 0 ] && [ "$ct" -gt 0 ] && ok || bad "cold curves: $cr read, $ct traced"
+for d in warm size2; do
+    [ "$(curves_of "$tmp/$d")" = "$ct 0" ] && ok || bad "$d curves: $(curves_of "$tmp/$d"), not $ct 0"
+done
+expect_rc 0 "demo --size 700, no cache" "$exe" demo --quiet --no-cache --size 700 -o "$tmp/ref7"
+expect_rc 0 "demo --size 700, cached" "$exe" demo --quiet --cache "$c" --size 700 -o "$tmp/size7"
+[ "$(curves_of "$tmp/size7")" = "$ct 0" ] && ok || bad "--size 700 curves: $(curves_of "$tmp/size7")"
+diff -r -x report.json "$tmp/ref7" "$tmp/size7" >/dev/null && ok ||
+    bad "--size 700: outputs differ: $(diff -rq -x report.json "$tmp/ref7" "$tmp/size7" | head -3)"
 expect_rc 0 "demo --join 800, no cache" "$exe" demo --quiet --no-cache --join 800 -o "$tmp/refj"
 expect_rc 0 "demo --join 800" "$exe" demo --quiet --cache "$c" --join 800 -o "$tmp/join"
 [ "$(nb_of "$tmp/join")" = "found and stored" ] && ok || bad "--join 800 neighbours: $(nb_of "$tmp/join")"

@@ -1,11 +1,13 @@
 /* fm_sha256 (src/core/sha256.c): the FIPS 180-4 / NIST example messages,
  * one million 'a', the lengths around the padding boundaries (digests
  * from Python's hashlib), and the same digest however the message is
- * split between updates. */
+ * split between updates; and the SHA-NI block function, where the
+ * machine has it, state for state the portable one's on random blocks. */
 #include <stdint.h>
 
 #include "fm_sha256.h"
 #include "fm_test.h"
+#include "sha256_blocks.h"
 
 static void check_hex(const void *msg, size_t n, const char *want)
 {
@@ -74,5 +76,28 @@ static void test_split_updates(void)
     }
 }
 
+static void test_x86_blocks(void)
+{
+    if (!fm_sha256_x86_available())
+        return; /* the portable rounds ran every case above */
+    enum { NB = 97 };
+    static unsigned char msg[64 * NB];
+    uint64_t x = 88172645463325252u; /* xorshift: fixed, varied bytes */
+    for (size_t i = 0; i < sizeof msg; i++) {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        msg[i] = (unsigned char)x;
+    }
+    for (size_t nb = 1; nb <= NB; nb += 16) {
+        uint32_t a[8], b[8];
+        for (int k = 0; k < 8; k++)
+            a[k] = b[k] = (uint32_t)(x >> (4 * k)) * 2654435761u;
+        fm_sha256_portable_blocks(a, msg, nb);
+        fm_sha256_x86_blocks(b, msg, nb);
+        CHECK(memcmp(a, b, sizeof a) == 0);
+    }
+}
+
 FM_TEST_MAIN(FM_CASE(test_nist_examples), FM_CASE(test_padding_boundaries),
-             FM_CASE(test_split_updates))
+             FM_CASE(test_split_updates), FM_CASE(test_x86_blocks))
