@@ -136,7 +136,7 @@ add_test(NAME help
 add_test(NAME fit_cache
   COMMAND bash ${FM_TOOLS}/fit_cache_test.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/fit_cache)
-set_tests_properties(fit_cache PROPERTIES TIMEOUT 600)
+set_tests_properties(fit_cache PROPERTIES TIMEOUT 1500)
 add_test(NAME remesh_progress
   COMMAND bash ${FM_TOOLS}/remesh_progress_check.sh $<TARGET_FILE:faultmesh_cli>
           ${CMAKE_CURRENT_BINARY_DIR}/tmp/remesh_progress)
