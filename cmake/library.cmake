@@ -9,6 +9,9 @@ set(FM_PUBLIC_HEADERS
   ${PROJECT_SOURCE_DIR}/include/faultmesh/fm_export.h
   ${PROJECT_SOURCE_DIR}/include/faultmesh/fm_status.h
   ${PROJECT_SOURCE_DIR}/include/faultmesh/fm_run.h
+  ${PROJECT_SOURCE_DIR}/include/faultmesh/fm_commands.h
+  ${PROJECT_SOURCE_DIR}/include/faultmesh/fm_synthetic.h
+  ${PROJECT_SOURCE_DIR}/include/faultmesh/fm_process.h
   ${PROJECT_BINARY_DIR}/include/faultmesh/fm_version.h)
 
 set(fm_objects)

@@ -52,7 +52,7 @@ extern "C" {
 typedef struct fm_run fm_run;               /**< options and inputs */
 typedef struct fm_run_result fm_run_result; /**< what a run came to */
 /** The options as one struct of the stages' option structs: the build
- * tree's fuller interface (src/run/fm_run_options.h, what the CLI fills),
+ * tree's fuller interface (src/run/fm_run_options.h, what the tests fill),
  * not installed because its layout follows the stages'. Installed
  * programs pass NULL to fm_run_create and use the setters. */
 typedef struct fm_run_options fm_run_options;
@@ -181,6 +181,79 @@ FM_API fm_status fm_run_set_string(fm_run *run, fm_run_option opt, const char *v
 /** The bounds of a numeric option; FM_ERR_INVALID for a string or unknown
  * one. */
 FM_API fm_status fm_run_option_bounds(fm_run_option opt, double *lo, double *hi);
+
+/** A handler of options in the command line's words (fm_run_take_option's
+ * contract): argv[*i] and its values taken, *i left on the last word
+ * taken: 1; 0: not an option it knows; -1: a bad value (err says why). */
+typedef int (*fm_option_fn)(void *user, int argc, const char *const *argv, int *i,
+                            fm_error *err);
+
+/** The run option argv[*i] names, in the words of the command line and of
+ * faultmesh(1) ("--size" "1000", "-j" "2", "--no-connect", "--top"
+ * "extend" "500", the repair options), with its value(s): 1, *i left on
+ * the last word taken; 0 when argv[*i] is no run option (nothing taken);
+ * -1 for a bad or missing value, err saying why in the words the command
+ * has always used ("--size needs a positive number, got 'x'"). A front
+ * end gives its own options (the output folder, how much it says) first
+ * and the rest to this. */
+FM_API int fm_run_take_option(fm_run *run, int argc, const char *const *argv, int *i,
+                              fm_error *err);
+/** One option by its settings-file key and value as text ("size",
+ * "1000"; "no_connect", NULL; '_' or '-' alike): what
+ * fm_run_take_option takes as "--size" "1000". FM_ERR_INVALID (and why)
+ * for an unknown key, a bad value, or a value given to a flag. */
+FM_API fm_status fm_run_set_option(fm_run *run, const char *key, const char *value,
+                                   fm_error *err);
+
+/** Reads a settings file (TOML, docs/guide.md): its top-level keys are
+ * applied as the options they name (as fm_run_take_option takes them;
+ * keys it does not know go to other, which may be NULL: the front end's
+ * own, such as output), its [[fault]] sections become the run's
+ * per-fault rules (they replace those of a file read before), and the
+ * inputs it lists are kept (fm_run_settings_input). Paths in it are
+ * taken from its folder. Options set after it override it. What is wrong
+ * in the file: err "FILE:LINE: why" with err->line > 0; a value an option
+ * refused: the option's message, then a line "FILE:LINE: bad value for 'KEY'"
+ * (err->line 0); a file that cannot be read: "FILE: why". */
+FM_API fm_status fm_run_read_settings(fm_run *run, const char *path, fm_option_fn other,
+                                      void *user, fm_error *err);
+/** The inputs (files or folders) the settings file lists, as paths from
+ * the current folder; borrowed while the run lives. */
+FM_API size_t fm_run_settings_ninputs(const fm_run *run);
+FM_API const char *fm_run_settings_input(const fm_run *run, size_t i);
+/** The settings file read, as given; NULL: none. */
+FM_API const char *fm_run_settings_path(const fm_run *run);
+
+/** Settles the options that depend on each other, before a front end
+ * goes on: FM_OPT_MSH_TAGS tandem makes MSH 2.2 (FM_ERR_INVALID when
+ * another version was set), FM_OPT_QUADS keeps the formats that hold
+ * rectangles out of the default FM_OUT_ALL (FM_ERR_INVALID when one of
+ * the triangle-only formats was asked for). */
+FM_API fm_status fm_run_check_options(fm_run *run, fm_error *err);
+/** The value of an int option as it stands; FM_ERR_INVALID for another
+ * option. */
+FM_API fm_status fm_run_get_int(const fm_run *run, fm_run_option opt, int64_t *v);
+
+/** The .ts (or .TS) files paths name, as fm_run_add_path takes them:
+ * files as given, folders searched recursively, each folder's entries in
+ * byte order (hidden ones left out), a folder reached again (a symbolic
+ * link looping back) skipped with a FM_LOG_WARN record to log (may be
+ * NULL). Their number, the list in *out (fm_run_list_free), or -1 and err
+ * saying why (a path that is not there, a folder that cannot be read,
+ * memory). */
+FM_API long fm_run_list_inputs(const char *const *paths, size_t npaths, fm_log_fn log,
+                               void *user, char ***out, fm_error *err);
+FM_API void fm_run_list_free(char **list, long n); /**< NULL ignored */
+
+/** Refuses (FM_ERR_INVALID, and why) an output folder that would put the
+ * inputs at risk: a file, the folder an input file lies in (an output of
+ * the same name would replace it), or an input folder or one inside it
+ * (the outputs would be read as inputs next time). args: the paths as
+ * given, files: the files they name (fm_run_list_inputs). Creates
+ * nothing. */
+FM_API fm_status fm_run_check_output_dir(const char *outdir, const char *const *args,
+                                         size_t nargs, const char *const *files, size_t nfiles,
+                                         fm_error *err);
 
 /** An input (copied): a TSurf file, or a folder, whose .ts files are taken
  * recursively, each folder's entries in byte order (hidden ones left

@@ -43,6 +43,11 @@ class Progress(ctypes.Structure):
 
 LOG_FN = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_int, ctypes.c_char_p)
 PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.POINTER(Progress))
+c_int_p = ctypes.POINTER(ctypes.c_int)
+# fm_option_fn: (user, argc, argv, &i, err) -> 1 taken, 0 not known, -1 bad value
+OPTION_FN = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_int,
+                             ctypes.POINTER(ctypes.c_char_p), ctypes.POINTER(ctypes.c_int),
+                             ctypes.c_void_p)
 
 _p = ctypes.c_void_p
 _err = ctypes.POINTER(Error)
@@ -82,6 +87,48 @@ PROTOTYPES = {
     "fm_run_result_unwritten": (_size, [_p]),
     # malloc'ed text: a plain pointer, so that fm_free gets it back
     "fm_run_result_summary": (_p, [_p]),
+    # options in the command line's words, settings files, inputs
+    "fm_run_take_option": (ctypes.c_int, [_p, ctypes.c_int, ctypes.POINTER(_str), c_int_p, _err]),
+    "fm_run_set_option": (_status, [_p, _str, _str, _err]),
+    "fm_run_read_settings": (_status, [_p, _str, OPTION_FN, _p, _err]),
+    "fm_run_settings_ninputs": (_size, [_p]),
+    "fm_run_settings_input": (_str, [_p, _size]),
+    "fm_run_settings_path": (_str, [_p]),
+    "fm_run_check_options": (_status, [_p, _err]),
+    "fm_run_get_int": (_status, [_p, ctypes.c_int, ctypes.POINTER(ctypes.c_int64)]),
+    "fm_run_list_inputs": (ctypes.c_long, [ctypes.POINTER(_str), _size, LOG_FN, _p,
+                                           ctypes.POINTER(ctypes.POINTER(_str)), _err]),
+    "fm_run_list_free": (None, [ctypes.POINTER(_str), ctypes.c_long]),
+    "fm_run_check_output_dir": (_status, [_str, ctypes.POINTER(_str), _size,
+                                          ctypes.POINTER(_str), _size, _err]),
+    # faultmesh info and fit (FILE * streams: a plain pointer)
+    "fm_info_create": (_p, []),
+    "fm_info_destroy": (None, [_p]),
+    "fm_info_take_option": (ctypes.c_int, [_p, ctypes.c_int, ctypes.POINTER(_str), c_int_p, _err]),
+    "fm_info_set_log": (None, [_p, LOG_FN, _p]),
+    "fm_info_write": (_size, [_p, ctypes.POINTER(_str), _size, _p]),
+    "fm_fit_job_create": (_p, []),
+    "fm_fit_job_destroy": (None, [_p]),
+    "fm_fit_job_take_option": (ctypes.c_int, [_p, ctypes.c_int, ctypes.POINTER(_str), c_int_p,
+                                              _err]),
+    "fm_fit_job_set_log": (None, [_p, LOG_FN, _p]),
+    "fm_fit_job_write": (_status, [_p, _str, ctypes.POINTER(_str), _size, _p,
+                                   ctypes.POINTER(_size), _err]),
+    # the synthetic fault system
+    "fm_synth_spec_create": (_p, []),
+    "fm_synth_spec_destroy": (None, [_p]),
+    "fm_synth_spec_take_option": (ctypes.c_int, [_p, ctypes.c_int, ctypes.POINTER(_str), c_int_p,
+                                                 _err]),
+    "fm_synth_generate": (_status, [_p, ctypes.POINTER(_p), _err]),
+    "fm_synth_destroy": (None, [_p]),
+    "fm_synth_nfaults": (_size, [_p]),
+    "fm_synth_fault_name": (_str, [_p, _size]),
+    "fm_synth_fault_description": (_str, [_p, _size]),
+    "fm_synth_write": (_status, [_p, _str, _err]),
+    # once per process
+    "fm_remove_pending_files": (None, []),
+    "fm_make_dirs": (_status, [_str, _err]),
+    "fm_report_cleanup": (None, []),
 }
 
 

@@ -1,4 +1,7 @@
-/* faultmesh command-line tool: shared pieces of the subcommands.
+/* faultmesh command-line tool: shared pieces of the subcommands. The
+ * commands' work is the library's (include/faultmesh, its public API
+ * only); here are the words, the help texts, the messages and the exit
+ * codes.
  *
  * Exit codes (documented in the README and docs/guide.md): 0 all inputs processed, 1 some
  * inputs failed (reported, the others still processed), 2 bad usage. */
@@ -6,8 +9,9 @@
 #define FM_CLI_H
 
 #include <stddef.h>
+#include <stdio.h>
 
-#include "fm_repair.h"
+#include <faultmesh/faultmesh.h>
 
 #define FM_EXIT_OK 0
 #define FM_EXIT_FAILURES 1
@@ -20,40 +24,36 @@ int fm_cmd_remesh(int argc, char **argv);
 int fm_cmd_demo(int argc, char **argv);
 
 /* SIGINT, SIGTERM and SIGHUP remove the temporary files of the writes in
- * progress (fm_atomic.h) before they end the process. */
+ * progress (fm_process.h) before they end the process. */
 void fm_cli_catch_signals(void);
 
-/* Consumes argv[*i] (and its value, advancing *i) if it is a repair
- * option: returns 1 if consumed, 0 if not a repair option, -1 on a bad
- * value (already reported). */
-int fm_cli_repair_option(int argc, char **argv, int *i, fm_repair_options *opt);
-extern const char *fm_cli_repair_help;
+/* cli_common.c: the library's records as the commands have always said
+ * them: FM_LOG_DETAIL (a fault's line) on stdout, the rest on stderr
+ * after "faultmesh: ". */
+void fm_cli_say(void *user, fm_log_level level, const char *message);
+/* err's message said as above (err->line > 0, a settings file's
+ * "FILE:LINE: why", without the prefix); returns code. */
+int fm_cli_fail(const fm_error *err, int code);
+/* Says that opt needs a value; -1. */
+int fm_cli_missing(const char *opt);
+/* A library option taker's answer said: -1 after saying why, else rc. */
+int fm_cli_taken(int rc, const fm_error *err);
+/* The library's taker of options as the commands call it on argv. */
+#define FM_CLI_ARGV(argv) ((const char *const *)(argv))
+extern const char *const fm_cli_repair_help;
+extern const char *const fm_cli_sim_help;
 
-/* Paths of the .ts files named by args: files as given, folders searched
- * recursively, each folder's entries in byte order so runs are
- * reproducible. Returns the number of paths (in *out, to be freed with
- * fm_input_list_free), or -1 after printing why (a missing path). */
+/* The .ts files args name (fm_run_list_inputs): their number (the list in
+ * *out, fm_run_list_free) or -1 after saying why. */
 long fm_input_list(char *const *args, size_t nargs, char ***out);
-void fm_input_list_free(char **list, long n);
-/* Refuses (-1, after printing why) an output folder that would put the
- * inputs at risk: the folder an input file lies in (an output of the same
- * name would replace it), or an input folder or one inside it (the
- * outputs would be read as inputs next time). Nothing is created. */
-int fm_output_guard(const char *outdir, char *const *args, size_t nargs, char *const *files,
-                    long nfiles);
 /* The inputs of a command that writes into outdir: fm_input_list, then
- * refused (-1, after printing why, "faultmesh CMD: ...") when there is no
- * .ts file among them or fm_output_guard refuses outdir. */
+ * refused (-1, after saying why, "faultmesh CMD: ...") when there is no
+ * .ts file among them or fm_run_check_output_dir refuses outdir. */
 long fm_input_list_for(const char *cmd, const char *outdir, char *const *args, size_t nargs,
                        char ***out);
 
-/* Parses a non-negative number option value; prints and returns -1 on
- * error. */
-int fm_parse_double(const char *opt, const char *s, double *out);
-int fm_parse_positive(const char *opt, const char *s, double *out);
-/* Says that opt needs a value; -1. */
-int fm_cli_missing(const char *opt);
-int fm_parse_size(const char *opt, const char *s, size_t *out);
+/* remesh_help.c */
+void remesh_usage(FILE *fp);
 
 /* args.c: a command's arguments (argv[0] its name) in the plain form the
  * commands parse, from GNU conventions (--name=value, -j2, -oDIR, bundled

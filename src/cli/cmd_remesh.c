@@ -1,26 +1,62 @@
 /* `faultmesh remesh`: every fault of the inputs read, repaired, fitted and
  * meshed at size H, checked, and written as one fault set (VTU, MSH, STL,
  * OBJ, Exodus II, one TSurf per fault) with report.json. `faultmesh demo` runs it on
- * the synthetic fault system. */
+ * the synthetic fault system. The run and its options are the library's
+ * (fm_run.h); the command's own are the output folder, --config and how
+ * much it says. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
-#include "fm_atomic.h"
-#include "fm_synth.h"
 #include "progress.h"
-#include "remesh_cli.h"
 
-/* The run's records, as the command has always printed them: the line of
- * each fault (-v) on stdout, everything else on stderr. */
-static void say(void *user, fm_log_level level, const char *message)
+typedef struct remesh_cli {
+    fm_run *run;     /* everything the run is told */
+    const char *dir; /* -o DIR */
+    int quiet;
+    int verbose;     /* a line per fault */
+} remesh_cli;
+
+/* The command's own options, on the command line and in the settings
+ * file (fm_run_read_settings hands them over): fm_option_fn's contract. */
+static int own_option(void *user, int argc, const char *const *argv, int *i, fm_error *err)
 {
-    (void)user;
-    if (level == FM_LOG_DETAIL)
-        printf("%s\n", message);
-    else
-        fprintf(stderr, "faultmesh: %s\n", message);
+    remesh_cli *cli = user;
+    const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    int output = !strcmp(a, "-o") || !strcmp(a, "--output");
+    if (output || !strcmp(a, "--config")) {
+        if (!val) {
+            err->code = FM_ERR_INVALID;
+            snprintf(err->message, sizeof err->message, "%s needs a value", a);
+            return -1;
+        }
+        if (output)
+            cli->dir = val;
+        /* --config: read before the other options (load_config) */
+        (*i)++;
+    } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+        cli->quiet = 1;
+        cli->verbose = 0;
+    } else if (!strcmp(a, "--verbose") || !strcmp(a, "-v")) {
+        cli->verbose = 1;
+        cli->quiet = 0;
+    } else {
+        return 0;
+    }
+    return 1;
+}
+
+/* argv[*i]: the command's option or the run's; 1 taken, 0 neither, -1
+ * after saying why. */
+static int option(remesh_cli *cli, int argc, char **argv, int *i)
+{
+    fm_error err;
+    fm_error_clear(&err);
+    int rc = own_option(cli, argc, FM_CLI_ARGV(argv), i, &err);
+    if (rc == 0)
+        rc = fm_run_take_option(cli->run, argc, FM_CLI_ARGV(argv), i, &err);
+    return fm_cli_taken(rc, &err);
 }
 
 /* The run's progress on the bar (progress.c). */
@@ -44,60 +80,48 @@ static int shown(void *user, const fm_progress *p)
     return 0;
 }
 
-/* A run of the options, said as the command says it. NULL after saying
- * why: memory ran out, or (*usage set) the files its options name cannot
- * be read. */
-static fm_run *run_create(remesh_cli *cli, char *const *near, size_t nnear, int *usage)
+/* The options settled and the files they name read, said as the command
+ * says it: FM_EXIT_OK, or FM_EXIT_USAGE after saying why. */
+static int settle(remesh_cli *cli, char *const *near, size_t nnear)
 {
-    *usage = 0;
-    fm_run *run = settings_rules(cli) ? NULL : fm_run_create(&cli->o);
-    if (!run) {
-        fprintf(stderr, "faultmesh: out of memory\n");
-        return NULL;
-    }
-    fm_run_set_log(run, cli->quiet ? FM_LOG_WARN : cli->verbose ? FM_LOG_DETAIL : FM_LOG_INFO,
-                   say, NULL);
     fm_error err;
     fm_error_clear(&err);
-    if (fm_run_prepare(run, (const char *const *)near, nnear, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", err.message);
-        fm_run_destroy(run);
-        *usage = 1;
-        return NULL;
-    }
-    return run;
+    fm_run_set_log(cli->run,
+                   cli->quiet ? FM_LOG_WARN : cli->verbose ? FM_LOG_DETAIL : FM_LOG_INFO,
+                   fm_cli_say, NULL);
+    if (fm_run_prepare(cli->run, FM_CLI_ARGV(near), nnear, &err) != FM_OK)
+        return fm_cli_fail(&err, FM_EXIT_USAGE);
+    return FM_EXIT_OK;
 }
 
-static int run_files(const remesh_cli *cli, fm_run *run, char **files, long nfiles)
+static int run_files(const remesh_cli *cli, char **files, long nfiles)
 {
     fm_error err;
     fm_error_clear(&err);
-    if (fm_mkdir_p(cli->dir, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", err.message);
-        return FM_EXIT_FAILURES;
-    }
+    if (fm_make_dirs(cli->dir, &err) != FM_OK)
+        return fm_cli_fail(&err, FM_EXIT_FAILURES);
     for (long i = 0; i < nfiles; i++)
-        if (fm_run_add_path(run, files[i], &err) != FM_OK) {
-            fprintf(stderr, "faultmesh: %s\n", err.message);
-            return FM_EXIT_FAILURES;
-        }
+        if (fm_run_add_path(cli->run, files[i], &err) != FM_OK)
+            return fm_cli_fail(&err, FM_EXIT_FAILURES);
     progress *bar = progress_create(stderr, cli->quiet     ? PROGRESS_QUIET
                                             : cli->verbose ? PROGRESS_VERBOSE
                                                            : PROGRESS_NORMAL,
                                     0);
-    fm_run_set_progress(run, shown, bar);
+    fm_run_set_progress(cli->run, shown, bar);
     fm_run_result *res = NULL;
     int rc = FM_EXIT_FAILURES;
-    if (fm_run_execute(run, &res, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", err.message);
+    int64_t formats = FM_OUT_ALL;
+    fm_run_get_int(cli->run, FM_OPT_FORMATS, &formats);
+    if (fm_run_execute(cli->run, &res, &err) != FM_OK) {
+        fm_cli_fail(&err, 0);
     } else {
         /* every file tried; each one not written is said as it fails */
-        fm_run_result_write(res, cli->dir, cli->o.formats, &err);
+        fm_run_result_write(res, cli->dir, (unsigned)formats, &err);
         if (!cli->quiet) {
             char *summary = fm_run_result_summary(res);
             if (summary)
                 fputs(summary, stdout);
-            free(summary);
+            fm_free(summary);
         }
         rc = fm_run_result_nfailed(res) || fm_run_result_unwritten(res) ? FM_EXIT_FAILURES
                                                                         : FM_EXIT_OK;
@@ -107,10 +131,17 @@ static int run_files(const remesh_cli *cli, fm_run *run, char **files, long nfil
     return rc;
 }
 
-static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **cinputs,
-                       size_t ncinputs)
+/* The options settled, or FM_EXIT_USAGE after saying why. */
+static int checked(remesh_cli *cli)
 {
-    remesh_cli cli = *cli_in;
+    fm_error err;
+    fm_error_clear(&err);
+    return fm_run_check_options(cli->run, &err) ? fm_cli_fail(&err, FM_EXIT_USAGE) : FM_EXIT_OK;
+}
+
+static int remesh_main(remesh_cli *cli, int argc, char **argv)
+{
+    size_t ncinputs = fm_run_settings_ninputs(cli->run);
     char **paths = calloc((size_t)argc + ncinputs, sizeof *paths);
     size_t npaths = 0;
     if (!paths)
@@ -122,7 +153,7 @@ static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **c
             free(paths);
             return FM_EXIT_OK;
         }
-        int c = mesh_option(argc, argv, &i, &cli);
+        int c = option(cli, argc, argv, &i);
         if (c < 0 || (c == 0 && a[0] == '-' && a[1])) {
             /* a bad value was said where it was read */
             if (c == 0)
@@ -136,98 +167,77 @@ static int remesh_main(remesh_cli *cli_in, int argc, char **argv, const char **c
     }
     /* inputs on the command line replace the settings file's */
     for (size_t k = 0; npaths == 0 && k < ncinputs; k++)
-        paths[k] = (char *)cinputs[k];
+        paths[k] = (char *)fm_run_settings_input(cli->run, k);
     if (npaths == 0)
         npaths = ncinputs;
-    if (settle_msh(&cli) || settle_elements(&cli)) {
-        free(paths);
-        return FM_EXIT_USAGE;
-    }
-    if (!cli.dir || npaths == 0) {
+    int rc = checked(cli);
+    if (rc == FM_EXIT_OK && (!cli->dir || npaths == 0)) {
         fprintf(stderr, "faultmesh: remesh needs %s (see faultmesh remesh --help)\n",
-                !cli.dir ? "-o DIR, the output folder" : "an input FILE or DIR");
-        free(paths);
-        return FM_EXIT_USAGE;
+                !cli->dir ? "-o DIR, the output folder" : "an input FILE or DIR");
+        rc = FM_EXIT_USAGE;
     }
-    int usage;
-    fm_run *run = run_create(&cli, paths, npaths, &usage);
-    if (!run) {
-        settings_rules_free(&cli);
-        free(paths);
-        return usage ? FM_EXIT_USAGE : FM_EXIT_FAILURES;
-    }
+    if (rc == FM_EXIT_OK)
+        rc = settle(cli, paths, npaths);
     char **files = NULL;
-    long nfiles = fm_input_list_for("remesh", cli.dir, paths, npaths, &files);
+    long nfiles = rc ? -1 : fm_input_list_for("remesh", cli->dir, paths, npaths, &files);
     free(paths);
-    int rc = FM_EXIT_USAGE;
-    if (nfiles >= 0) {
-        rc = run_files(&cli, run, files, nfiles);
-        fm_input_list_free(files, nfiles);
-    }
-    fm_run_destroy(run);
-    settings_rules_free(&cli);
+    if (rc || nfiles < 0)
+        return rc ? rc : FM_EXIT_USAGE;
+    rc = run_files(cli, files, nfiles);
+    fm_run_list_free(files, nfiles);
     return rc;
 }
 
 /* --config FILE, wherever it stands on the command line, is read first:
- * the options given beside it override it. 0 (*cfg NULL when there is
- * none), or -1 after saying why. */
-static int load_config(int argc, char **argv, remesh_cli *cli, fm_settings **cfg,
-                       const char ***inputs, size_t *ninputs)
+ * the options given beside it override it. 0, or -1 after saying why. */
+static int load_config(int argc, char **argv, remesh_cli *cli)
 {
-    *cfg = NULL;
-    *inputs = NULL;
-    *ninputs = 0;
+    int read = 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--config"))
             continue;
-        if (*cfg || i + 1 >= argc) {
+        if (read || i + 1 >= argc) {
             fprintf(stderr, "faultmesh: --config takes one settings file\n");
             return -1;
         }
         fm_error err;
-        if (!(*cfg = fm_settings_read(argv[i + 1], &err))) {
-            /* what is wrong in the file reads FILE:LINE: why, as a compiler says it */
-            fprintf(stderr, "%s%s\n", err.line > 0 ? "" : "faultmesh: ", err.message);
-            return -1;
-        }
-        if (remesh_config(cli, *cfg, inputs, ninputs))
-            return -1;
+        fm_error_clear(&err);
+        if (fm_run_read_settings(cli->run, argv[i + 1], own_option, cli, &err) != FM_OK)
+            return fm_cli_fail(&err, -1);
+        read = 1;
         i++;
     }
     return 0;
 }
 
+/* A run of the defaults (NULL after saying why). */
+static fm_run *run_create(void)
+{
+    fm_run *run = fm_run_create(NULL);
+    if (!run)
+        fprintf(stderr, "faultmesh: out of memory\n");
+    return run;
+}
+
 int fm_cmd_remesh(int argc, char **argv)
 {
-    remesh_cli cli;
-    cli_defaults(&cli);
-    fm_settings *cfg = NULL;
-    const char **cinputs = NULL;
-    size_t ncinputs = 0;
-    if (load_config(argc, argv, &cli, &cfg, &cinputs, &ncinputs)) {
-        free(cinputs);
-        fm_settings_free(cfg);
-        return FM_EXIT_USAGE;
-    }
-    int rc = remesh_main(&cli, argc, argv, cinputs, ncinputs);
-    free(cinputs);
-    fm_settings_free(cfg);
+    remesh_cli cli = {run_create(), NULL, 0, 0};
+    if (!cli.run)
+        return FM_EXIT_FAILURES;
+    int rc = load_config(argc, argv, &cli) ? FM_EXIT_USAGE : remesh_main(&cli, argc, argv);
+    fm_run_destroy(cli.run);
     return rc;
 }
 
 /* The synthetic fault system written into in, then remeshed. */
-static int demo_run(const remesh_cli *cli, fm_run *run, char *in)
+static int demo_run(const remesh_cli *cli, char *in)
 {
-    fm_synth_options so;
-    fm_synth_options_default(&so);
     fm_synth *s = NULL;
     fm_error err;
     fm_error_clear(&err);
-    if (fm_synth_create(&so, &s, &err) != FM_OK || fm_synth_write(s, in, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", err.message);
+    if (fm_synth_generate(NULL, &s, &err) != FM_OK || fm_synth_write(s, in, &err) != FM_OK) {
         fm_synth_destroy(s);
-        return FM_EXIT_FAILURES;
+        return fm_cli_fail(&err, FM_EXIT_FAILURES);
     }
     fm_synth_destroy(s);
     char *args[1] = {in};
@@ -235,14 +245,13 @@ static int demo_run(const remesh_cli *cli, fm_run *run, char *in)
     long nfiles = fm_input_list(args, 1, &files);
     if (nfiles < 0)
         return FM_EXIT_FAILURES;
-    int rc = run_files(cli, run, files, nfiles);
-    fm_input_list_free(files, nfiles);
+    int rc = run_files(cli, files, nfiles);
+    fm_run_list_free(files, nfiles);
     return rc;
 }
 
-static int demo_main(remesh_cli *cli_in, int argc, char **argv)
+static int demo_main(remesh_cli *cli, int argc, char **argv)
 {
-    remesh_cli cli = *cli_in;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
@@ -252,7 +261,7 @@ static int demo_main(remesh_cli *cli_in, int argc, char **argv)
             remesh_usage(stdout);
             return FM_EXIT_OK;
         }
-        int c = mesh_option(argc, argv, &i, &cli);
+        int c = option(cli, argc, argv, &i);
         if (c <= 0) {
             /* a bad value was said where it was read */
             if (c == 0)
@@ -262,53 +271,46 @@ static int demo_main(remesh_cli *cli_in, int argc, char **argv)
             return FM_EXIT_USAGE;
         }
     }
-    if (settle_msh(&cli) || settle_elements(&cli))
+    if (checked(cli))
         return FM_EXIT_USAGE;
-    if (!cli.dir) {
+    if (!cli->dir) {
         fprintf(stderr, "faultmesh: demo needs -o DIR, the output folder (see faultmesh demo "
                         "--help)\n");
         return FM_EXIT_USAGE;
     }
-    int usage;
-    fm_run *run = run_create(&cli, NULL, 0, &usage);
-    if (!run) {
-        settings_rules_free(&cli);
-        return usage ? FM_EXIT_USAGE : FM_EXIT_FAILURES;
-    }
-    size_t n = strlen(cli.dir) + 16;
+    int rc = settle(cli, NULL, 0);
+    if (rc)
+        return rc;
+    size_t n = strlen(cli->dir) + 16;
     char *in = malloc(n);
-    int rc = FM_EXIT_FAILURES;
+    rc = FM_EXIT_FAILURES;
     if (in) {
-        snprintf(in, n, "%s/input", cli.dir);
-        rc = demo_run(&cli, run, in);
+        snprintf(in, n, "%s/input", cli->dir);
+        rc = demo_run(cli, in);
     }
     free(in);
-    fm_run_destroy(run);
-    settings_rules_free(&cli);
     return rc;
 }
 
 int fm_cmd_demo(int argc, char **argv)
 {
-    remesh_cli cli;
-    cli_defaults(&cli);
+    remesh_cli cli = {run_create(), NULL, 0, 0};
+    if (!cli.run)
+        return FM_EXIT_FAILURES;
     /* The synthetic faults are 20 to 60 km long: 1 km triangles show
-     * their shapes and mesh in a second. Local metres, no real CRS. */
-    cli.o.crs = "local metres (synthetic)";
-    /* No real CRS to convert from: EQSim in the mesh's metres unless
+     * their shapes and mesh in a second. Local metres, no real CRS. No
+     * real CRS to convert from either: EQSim in the mesh's metres unless
      * --crs and --eqsim-coords spherical say otherwise. */
-    cli.o.eqsim = FM_EQSIM_RECTANGULAR;
-    fm_settings *cfg = NULL;
-    const char **cinputs = NULL;
-    size_t ncinputs = 0;
+    fm_run_set_string(cli.run, FM_OPT_CRS, "local metres (synthetic)", NULL);
+    fm_run_set_int(cli.run, FM_OPT_EQSIM_COORDS, FM_RUN_EQSIM_RECTANGULAR, NULL);
     int rc = FM_EXIT_USAGE;
-    if (load_config(argc, argv, &cli, &cfg, &cinputs, &ncinputs) == 0) {
-        if (ncinputs)
-            fprintf(stderr, "faultmesh demo: %s: the demo makes its own inputs\n", cfg->path);
+    if (load_config(argc, argv, &cli) == 0) {
+        if (fm_run_settings_ninputs(cli.run))
+            fprintf(stderr, "faultmesh demo: %s: the demo makes its own inputs\n",
+                    fm_run_settings_path(cli.run));
         else
             rc = demo_main(&cli, argc, argv);
     }
-    free(cinputs);
-    fm_settings_free(cfg);
+    fm_run_destroy(cli.run);
     return rc;
 }

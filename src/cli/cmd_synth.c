@@ -1,9 +1,9 @@
-/* `faultmesh synth`: write the synthetic fault system as TSurf files. */
+/* `faultmesh synth`: write the synthetic fault system as TSurf files (the
+ * library's fm_synthetic.h). */
 #include <stdio.h>
 #include <string.h>
 
 #include "cli.h"
-#include "fm_synth.h"
 
 static void synth_usage(FILE *fp)
 {
@@ -17,37 +17,25 @@ static void synth_usage(FILE *fp)
                 "  -h, --help         this text\n");
 }
 
-int fm_cmd_synth(int argc, char **argv)
+/* The options into spec and *dir: FM_EXIT_OK, -1 after --help, or
+ * FM_EXIT_USAGE after saying why. */
+static int parse(fm_synth_spec *spec, int argc, char **argv, const char **dir)
 {
-    fm_synth_options opt;
-    fm_synth_options_default(&opt);
-    const char *dir = NULL;
     for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+        const char *a = argv[i];
+        fm_error err;
+        fm_error_clear(&err);
+        int taken;
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
             synth_usage(stdout);
-            return FM_EXIT_OK;
+            return -1;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (!val) {
-                fm_cli_missing(a);
+            if (i + 1 >= argc)
+                return fm_cli_missing(a), FM_EXIT_USAGE;
+            *dir = argv[++i];
+        } else if ((taken = fm_synth_spec_take_option(spec, argc, FM_CLI_ARGV(argv), &i, &err))) {
+            if (fm_cli_taken(taken, &err) < 0)
                 return FM_EXIT_USAGE;
-            }
-            dir = val;
-            i++;
-        } else if (!strcmp(a, "--spacing")) {
-            if (fm_parse_double(a, val, &opt.spacing))
-                return FM_EXIT_USAGE;
-            if (opt.spacing < 20.0 || opt.spacing > 20000.0) {
-                fprintf(stderr, "faultmesh: --spacing needs 20 to 20000 (m), got '%s'\n", val);
-                return FM_EXIT_USAGE;
-            }
-            i++;
-        } else if (!strcmp(a, "--seed")) {
-            size_t seed;
-            if (fm_parse_size(a, val, &seed))
-                return FM_EXIT_USAGE;
-            opt.seed = (unsigned)seed;
-            i++;
         } else {
             fprintf(stderr, "faultmesh: synth: unexpected argument '%s' (see faultmesh synth "
                             "--help)\n",
@@ -55,21 +43,28 @@ int fm_cmd_synth(int argc, char **argv)
             return FM_EXIT_USAGE;
         }
     }
-    if (!dir) {
+    if (!*dir) {
         synth_usage(stderr);
         return FM_EXIT_USAGE;
     }
+    return FM_EXIT_OK;
+}
+
+int fm_cmd_synth(int argc, char **argv)
+{
+    fm_synth_spec *spec = fm_synth_spec_create();
+    const char *dir = NULL;
+    int rc = spec ? parse(spec, argc, argv, &dir) : FM_EXIT_FAILURES;
     fm_synth *s = NULL;
     fm_error err;
     fm_error_clear(&err);
-    if (fm_synth_create(&opt, &s, &err) != FM_OK || fm_synth_write(s, dir, &err) != FM_OK) {
-        fprintf(stderr, "faultmesh: %s\n", err.message);
-        fm_synth_destroy(s);
-        return FM_EXIT_FAILURES;
-    }
-    for (size_t i = 0; i < fm_synth_nfaults(s); i++)
+    if (rc == 0 && (fm_synth_generate(spec, &s, &err) != FM_OK ||
+                    fm_synth_write(s, dir, &err) != FM_OK))
+        rc = fm_cli_fail(&err, FM_EXIT_FAILURES);
+    for (size_t i = 0; rc == 0 && i < fm_synth_nfaults(s); i++)
         printf("%s/%s.ts  %s\n", dir, fm_synth_fault_name(s, i),
                fm_synth_fault_description(s, i));
     fm_synth_destroy(s);
-    return FM_EXIT_OK;
+    fm_synth_spec_destroy(spec);
+    return rc < 0 ? FM_EXIT_OK : rc;
 }

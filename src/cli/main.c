@@ -3,8 +3,6 @@
 #include <string.h>
 
 #include "cli.h"
-#include "fm_core.h"
-#include "fm_report.h"
 
 static const struct {
     const char *name;

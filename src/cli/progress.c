@@ -7,7 +7,13 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "fm_clock.h"
+/* The wall clock, monotonic: a stage's time and its ETA. */
+static double clock_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 #define BAR_WIDTH 28
 /* Redrawing more often only costs a terminal time. */
@@ -126,7 +132,7 @@ static void *tick(void *arg)
         pthread_cond_timedwait(&p->wake, &p->mu, &ts);
         /* stages with a count redraw as they step */
         if (!p->stop && p->count == 0)
-            draw(p, fm_clock_seconds());
+            draw(p, clock_seconds());
     }
     pthread_mutex_unlock(&p->mu);
     return NULL;
@@ -145,7 +151,7 @@ void progress_begin(progress *p, const char *stage, size_t count, const char *un
     p->weight = weight;
     p->done_weight = 0;
     p->quarter = 0;
-    p->t0 = p->t_begin = fm_clock_seconds();
+    p->t0 = p->t_begin = clock_seconds();
     if (p->level != PROGRESS_QUIET) {
         if (p->tty)
             draw(p, p->t0);
@@ -167,7 +173,7 @@ void progress_step(progress *p, double weight)
     p->done++;
     p->done_weight += weight;
     if (p->level != PROGRESS_QUIET) {
-        double now = fm_clock_seconds();
+        double now = clock_seconds();
         if (p->tty) {
             if (now - p->last_draw >= REDRAW_S || p->done == p->count)
                 draw(p, now);
@@ -183,7 +189,7 @@ void progress_set(progress *p, size_t done, size_t count, const char *unit)
     if (!p)
         return;
     pthread_mutex_lock(&p->mu);
-    double now = fm_clock_seconds();
+    double now = clock_seconds();
     int known = p->count == 0 && count > 0;
     if (known) {
         /* the ETA runs from when the count is known */
@@ -215,7 +221,7 @@ double progress_end(progress *p)
         p->ticking = 0;
     }
     pthread_mutex_lock(&p->mu);
-    double now = fm_clock_seconds(), el = now - p->t_begin;
+    double now = clock_seconds(), el = now - p->t_begin;
     if (p->level != PROGRESS_QUIET) {
         if (p->tty) {
             fprintf(p->fp, "\r%-16s done in %.1f s", p->stage, el);

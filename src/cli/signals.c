@@ -7,12 +7,11 @@
 #include <stddef.h>
 
 #include "cli.h"
-#include "fm_atomic.h"
 
 static void on_signal(int sig)
 {
     /* only async-signal-safe calls here: the writes go on in other threads */
-    fm_atomic_remove_pending();
+    fm_remove_pending_files();
     /* SA_RESETHAND restored the default action; the signal, blocked while
      * this runs, is delivered again on return and ends the process */
     raise(sig);

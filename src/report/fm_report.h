@@ -22,6 +22,7 @@
 #include "fm_check.h"
 #include "fm_core.h"
 #include "fm_mesh.h"
+#include "fm_process.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -81,11 +82,7 @@ fm_status fm_report_add_fact(fm_report *r, const char *label, const char *value,
 /* Draws the pictures and writes the page atomically to path. */
 fm_status fm_report_write_html(fm_report *r, const char *path, fm_error *err);
 
-/* Frees what cairo and fontconfig keep for the life of the process
- * (their font caches), which leak checkers would report: call once
- * before exit, after every report is written, when no thread uses cairo
- * any more. */
-void fm_report_cleanup(void);
+/* fm_report_cleanup: fm_process.h (installed). */
 
 #ifdef __cplusplus
 }

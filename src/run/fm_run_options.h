@@ -1,9 +1,10 @@
 /* faultmesh run, the build tree's fuller interface: the options as one
  * struct of the stages' own option structs (every knob the CLI and its
  * settings file can turn), per-fault rules, and the result's mesh as an
- * fm_mesh. The CLI and the tests use it; it is not installed, since its
- * layout follows the stages' structs (installed programs use the setters
- * of fm_run.h, whose keys never change). */
+ * fm_mesh. The run module and the tests use it (the CLI uses the
+ * installed API only); it is not installed, since its layout follows the
+ * stages' structs (installed programs use the setters of fm_run.h, whose
+ * keys never change). */
 #ifndef FM_RUN_OPTIONS_H
 #define FM_RUN_OPTIONS_H
 
@@ -93,15 +94,7 @@ void fm_fault_settings_lookup(const fm_fault_rule *rules, size_t nrules, const c
 /* The run's options as they stand. */
 const fm_run_options *fm_run_get_options(const fm_run *run);
 
-/* The .ts (or .TS) files paths name: files as given, folders searched
- * recursively, each folder's entries in byte order (hidden ones left
- * out), a folder reached again (a symbolic link looping back) skipped
- * with a FM_LOG_WARN record to log (may be NULL). Their number, the list
- * in *out (fm_run_list_free), or -1 and err saying why (a path that is
- * not there, a folder that cannot be read, memory). */
-long fm_run_list_inputs(const char *const *paths, size_t npaths, fm_log_fn log, void *user,
-                        char ***out, fm_error *err);
-void fm_run_list_free(char **list, long n);
+/* fm_run_list_inputs, fm_run_list_free: fm_run.h. */
 
 /* Every fault's mesh in one (tag: the fault's index in the set written,
  * not the result's fault index: fm_run_result_copy_mesh gives that);

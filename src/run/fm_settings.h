@@ -1,13 +1,13 @@
 /* faultmesh run: a project's settings file (TOML, the subset a settings
- * file needs), read for the CLI's --config and for any program that
- * wants the same files.
+ * file needs), read by fm_run_read_settings (the CLI's --config) and by
+ * any program that wants the same files.
  *
  *   key = "string" | number | true | false | ["string", ...]
  *   [[fault]]            a per-fault section (array of tables)
  *   # comment
  *
- * Top-level keys are kept as read (the CLI turns them into its options,
- * so they are checked as the options are); [[fault]] sections carry
+ * Top-level keys are kept as read (fm_run_read_settings applies them as
+ * options, so they are checked as the options are); [[fault]] sections carry
  * `match` (a shell pattern or a list of them, on the fault name) and the
  * per-fault settings, checked when read and handed to a run as its rules
  * (fm_settings_rules). Every error names the file and line. Part of the

@@ -521,6 +521,7 @@ void fm_run_result_destroy(fm_run_result *res)
     sim_cli_free(&res->cli.sim);
     run_ctl_destroy(res->ctl);
     run_strings_unref(res->strings);
+    run_config_unref(res->config);
     free(res->dir);
     free(res);
 }

@@ -80,6 +80,7 @@ void fm_run_destroy(fm_run *run)
     if (!run)
         return;
     run_strings_unref(run->strings);
+    run_config_unref(run->config);
     sim_cli_free(&run->sim);
     for (size_t i = 0; i < run->npaths; i++) {
         free(run->paths[i]);
@@ -301,6 +302,7 @@ fm_status fm_run_execute(fm_run *run, fm_run_result **out, fm_error *err)
     ctl->progress_user = run->ctl->progress_user;
     res->ctl = ctl;
     res->strings = run_strings_ref(run->strings);
+    res->config = run_config_ref(run->config);
     settings_of(run, &res->cli);
     res->cli.ctl = run->ctl;
     /* the simulator data go with the result */

@@ -413,6 +413,22 @@ typedef struct run_strings {
 run_strings *run_strings_ref(run_strings *s); /* NULL stays NULL */
 void run_strings_unref(run_strings *s);
 
+/* A settings file a run read (run_config.c): its [[fault]] sections as
+ * the run's rules, and the inputs it lists; kept while the run or one of
+ * its results points into it. */
+typedef struct run_config {
+    atomic_int refs;
+    struct fm_settings *file;
+    fm_fault_rule *rules;
+    const char **inputs; /* strings of file */
+    size_t ninputs;
+} run_config;
+run_config *run_config_ref(run_config *c); /* NULL stays NULL */
+/* The FM_OUT_* bits of a comma-separated list of names ("vtu,msh"); 0,
+ * or -1 and err naming a bad one. */
+int run_formats_parse(const char *list, unsigned *out, fm_error *err);
+void run_config_unref(run_config *c);
+
 /* run_api.c, run_set.c: a run (fm_run.h) */
 struct fm_run {
     fm_run_options opt;
@@ -423,6 +439,8 @@ struct fm_run {
     sim_cli sim;  /* the simulator data fm_run_prepare read */
     int prepared;
     run_strings *strings; /* what the setters copied; NULL: none */
+    run_config *config;   /* fm_run_read_settings; NULL: none */
+    int msh_given;        /* the MSH version was set (fm_run_check_options) */
 };
 /* Options changed: what fm_run_prepare read is read again. */
 void run_unprepare(fm_run *run);
@@ -435,6 +453,7 @@ void run_list_free(char **list, long n);
 /* run.c, run_api.c: a run's result (fm_run.h) */
 struct fm_run_result {
     run_strings *strings; /* the setters' strings its settings point into */
+    run_config *config;   /* the settings file its rules point into */
     remesh_cli cli;       /* the run's settings; its sim data and cache are the result's */
     run_state rs;
     output_log outputs;

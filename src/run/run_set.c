@@ -205,7 +205,7 @@ fm_status fm_run_set_int(fm_run *run, fm_run_option opt, int64_t v, fm_error *er
     case FM_OPT_MAX_TRIANGLES: o->max_triangles = (size_t)v; break;
     case FM_OPT_THREADS: o->jobs = (int)v; break;
     case FM_OPT_CACHE: o->no_cache = !v; break;
-    case FM_OPT_MSH_VERSION: o->msh = (fm_msh_version)v; break;
+    case FM_OPT_MSH_VERSION: o->msh = (fm_msh_version)v, run->msh_given = 1; break;
     case FM_OPT_MSH_TAGS: o->msh_tags = (fm_msh_tags)v; break;
     case FM_OPT_FORMATS: o->formats = (unsigned)v; break;
     case FM_OPT_REPORT_HTML: o->html = (int)v; break;

@@ -13,12 +13,13 @@
 
 #include "fm_core.h"
 #include "fm_mesh.h"
+#include "fm_synthetic.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-typedef struct fm_synth fm_synth;
+/* fm_synth and what the installed API does with it: fm_synthetic.h. */
 
 typedef struct fm_synth_options {
     double spacing;    /* nominal triangle size in metres; default 500 */
@@ -29,17 +30,6 @@ void fm_synth_options_default(fm_synth_options *opt);
 
 /* Builds the fault system in memory (deterministic for given options). */
 fm_status fm_synth_create(const fm_synth_options *opt, fm_synth **out, fm_error *err);
-void fm_synth_destroy(fm_synth *s);
-
-size_t fm_synth_nfaults(const fm_synth *s);
-const char *fm_synth_fault_name(const fm_synth *s, size_t i);
-/* One line on what this fault exercises ("gap of 300 m to ...", ...). */
-const char *fm_synth_fault_description(const fm_synth *s, size_t i);
-
-/* Writes one <name>.ts per fault and faults.json (the analytic
- * descriptions and the expected relations: gaps, overshoots, holes, seams)
- * into dir, atomically per file. */
-fm_status fm_synth_write(const fm_synth *s, const char *dir, fm_error *err);
 
 /* Distance in metres from p to the true (noise-free, untrimmed within its
  * parameter rectangle) surface of fault i. */

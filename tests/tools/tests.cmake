@@ -374,6 +374,13 @@ if(FM_SYSTEM_PYTHON)
   set_tests_properties(cfm_quads_500m_2000 PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 1800)
 endif()
 
+# The CLI is a thin front end of the installed library (issue 21): only
+# include/faultmesh headers and its own, the library target and no private
+# include folder (the compiler enforces it too: the target sees no other
+# header), and its .c files under 1,800 lines.
+add_test(NAME cli_public_api
+  COMMAND bash ${FM_TOOLS}/cli_public_api_test.sh ${PROJECT_SOURCE_DIR} 1800)
+
 # The installed library (issue 21): libfaultmesh.so exports only the FM_API
 # functions of include/faultmesh (and the Python package declares each);
 # `cmake --install` into a temporary prefix, then the C example built
