@@ -63,6 +63,19 @@ void remesh_usage(FILE *fp)
             "                        connect, exclude, rake, slip_rate by name pattern\n"
             "                        (options beside it override it; see docs/guide.md)\n"
             "  --no-report-html      skip DIR/report.html\n"
+            "  --elastic-check       the elastic interaction check: element pairs of two\n"
+            "                        faults that load each other about as much as\n"
+            "                        themselves (half-space dislocations), in report.json\n"
+            "                        and report.html (docs/guide.md)\n"
+            "  --elastic-fraction F  flag pairs above F of the smaller self-stiffness\n"
+            "                        (default 0.5)\n"
+            "  --elastic-radius R    pairs within R element sizes (default 3)\n"
+            "  --shear-modulus PA    of the check and matrices (default 3e10)\n"
+            "  --poisson-ratio NU    of the check and matrices (default 0.25)\n"
+            "  --stiffness-matrix FILE\n"
+            "                        write the full interaction matrices (Pa/m) of a set of\n"
+            "                        at most 10000 elements as a NumPy .npy file\n"
+            "                        (docs/formats.md)\n"
             "  --cache DIR           keep each fault's fitted model in DIR and read it back\n"
             "                        in later runs (another size, a few faults changed, a\n"
             "                        new release): only what changed is fitted again, with\n"
@@ -200,6 +213,29 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     } else if (!strcmp(a, "--no-connect")) {
         cli->o.connect = 0;
         return 1;
+    } else if (!strcmp(a, "--elastic-check")) {
+        cli->o.elastic = 1;
+        return 1;
+    } else if (!strcmp(a, "--elastic-fraction")) {
+        if (fm_parse_positive(a, val, &cli->o.elastic_fraction))
+            return -1;
+    } else if (!strcmp(a, "--elastic-radius")) {
+        if (fm_parse_positive(a, val, &cli->o.elastic_radius))
+            return -1;
+    } else if (!strcmp(a, "--shear-modulus")) {
+        if (fm_parse_positive(a, val, &cli->o.elastic_mu))
+            return -1;
+    } else if (!strcmp(a, "--poisson-ratio")) {
+        if (fm_parse_positive(a, val, &cli->o.elastic_nu))
+            return -1;
+        if (cli->o.elastic_nu >= 0.5) {
+            fprintf(stderr, "faultmesh: --poisson-ratio must be under 0.5\n");
+            return -1;
+        }
+    } else if (!strcmp(a, "--stiffness-matrix")) {
+        if (!val || !val[0])
+            return fm_cli_missing(a);
+        cli->o.stiffness_path = val;
     } else if (!strcmp(a, "--no-report-html")) {
         cli->o.html = 0;
         return 1;
@@ -304,7 +340,7 @@ static int is_on_by_default(const char *key)
 static int path_key(const char *key)
 {
     return !strcmp(key, "output") || !strcmp(key, "slip") || !strcmp(key, "metadata") ||
-           !strcmp(key, "cache");
+           !strcmp(key, "cache") || !strcmp(key, "stiffness_matrix");
 }
 
 int remesh_config(remesh_cli *cli, fm_settings *c, const char ***inputs, size_t *ninputs)
