@@ -162,10 +162,10 @@ static void mutual_chunk(void *user, size_t k)
                             o->singular++;
                             continue;
                         }
-                        double ref = fmin(self_scale(w->self[i]), self_scale(w->self[j]));
-                        if (!(ref > 0))
+                        double ki = self_scale(w->self[i]), kj = self_scale(w->self[j]);
+                        if (!(ki > 0 && kj > 0))
                             continue;
-                        double ratio = fmax(fabs(tij[2]), fabs(tji[2])) / ref;
+                        double ratio = sqrt(fabs(tij[2] * tji[2]) / (ki * kj));
                         o->max_ratio = fmax(o->max_ratio, ratio);
                         if (ratio <= w->opt->fraction)
                             continue;

@@ -156,8 +156,15 @@ const fm_loss_pair *fm_loss_pair_at(const fm_loss *l, size_t k);
  * (i, j) of different faults whose centroids lie within radius x the
  * larger element size of each other are evaluated (on a grid, so the
  * cost grows with the elements, not their square), and flagged when
- * max(|K_ij|, |K_ji|) > fraction x min(|K_ii|, |K_jj|): there the two
- * faults act as one fault counted twice.
+ * their coupling c_ij = sqrt(|K_ij K_ji| / (K_ii K_jj)) exceeds fraction:
+ * there the two faults act as one fault counted twice. c_ij is |K_ij| /
+ * |K_ii| for elements of one size; for elements of different sizes it is
+ * what stays symmetric: reciprocity makes A_i K_ij = A_j K_ji, and c_ij is
+ * the off-diagonal of the area-weighted (energy) stiffness matrix over
+ * the root of its diagonal, whose 2 x 2 block of the pair loses its
+ * determinant as c_ij nears 1 (a small element beside a large one would
+ * otherwise read the large one's traction against its own, smaller,
+ * self-stiffness).
  *
  * Vertices above the free surface (z > 0: a top kept above sea level)
  * are moved down onto it, which is where a half-space simulator puts
@@ -195,7 +202,7 @@ typedef struct fm_elastic_input {
 typedef struct fm_elastic_pair {
     size_t i, j;           /* triangles of the set */
     double k_ij, k_ji;     /* Pa/m */
-    double ratio;          /* max(|k_ij|, |k_ji|) / min(|K_ii|, |K_jj|) */
+    double ratio;          /* coupling sqrt(|k_ij k_ji| / (K_ii K_jj)) */
     double distance;       /* between the two elements, m (0: they touch) */
 } fm_elastic_pair;
 

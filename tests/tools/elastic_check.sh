@@ -2,8 +2,10 @@
 # The elastic interaction check through `faultmesh remesh --elastic-check`
 # (issue 19): a planted near-overlap (two vertical faults 75 m apart over
 # 6 km, nothing joining them) is flagged, as one group of that fault pair
-# with no junction; a clean T-junction is not; the matrices of the T
-# (--stiffness-matrix) read back by numpy: every element's self-stiffness
+# with no junction of its own (or the unjoined one connect records); a
+# clean T-junction is not, nor is anything of the demo system; the
+# matrices of the T (--stiffness-matrix) read back by numpy: every
+# element's self-stiffness
 # restoring and equal to the check's, and the rake matrix reciprocal as
 # Betti's theorem has it for elements far apart (K_ij A_i = K_ji A_j).
 # usage: elastic_check.sh FAULTMESH TMPDIR PYTHON
@@ -41,6 +43,8 @@ for case in overlap tee; do
       -o "$tmp/$case.out" "$tmp/$case" >"$tmp/$case.log" 2>&1 ||
       { echo "FAIL: faultmesh remesh ($case)"; cat "$tmp/$case.log"; exit 1; }
 done
+"$exe" demo --quiet --no-cache --elastic-check --formats vtu -o "$tmp/demo.out" >"$tmp/demo.log" 2>&1 ||
+    { echo "FAIL: faultmesh demo"; cat "$tmp/demo.log"; exit 1; }
 "$py" - "$tmp" <<'PY' || fail=1
 import json, sys
 d = sys.argv[1]
@@ -77,6 +81,10 @@ e = tee['elastic']
 check(e['pairs_evaluated'] > 0 and e['groups'] == [] and e['pairs_flagged'] == 0,
       'tee: %d pairs evaluated, none flagged (largest ratio %.3f)' % (e['pairs_evaluated'], e['max_ratio']))
 check(e['self_wrong_sign'] == 0, 'tee: every self-stiffness restoring')
+demo = json.load(open(d + '/demo.out/report.json'))['elastic']
+check(demo['pairs_evaluated'] > 0 and demo['pairs_flagged'] == 0 and demo['self_wrong_sign'] == 0,
+      'demo: %d pairs evaluated, none flagged (largest coupling %.3f), every self-stiffness '
+      'restoring' % (demo['pairs_evaluated'], demo['max_ratio']))
 # the matrices: numpy reads them as they are
 import numpy as np
 K = np.load(d + '/tee.npy')
@@ -86,8 +94,8 @@ check(n == e['elements'], 'matrices: %d elements, as the check' % n)
 R = K[:, :, 2]
 diag = np.diag(R)
 check(np.all(diag < 0), 'matrices: every self-stiffness negative')
-check(np.isclose(diag.max(), e['self_stiffness_max_pa_per_m'], rtol=1e-12, atol=0) and
-      np.isclose(diag.min(), e['self_stiffness_min_pa_per_m'], rtol=1e-12, atol=0),
+check(np.isclose(diag.max(), e['self_stiffness_max_pa_per_m'], rtol=1e-9, atol=0) and
+      np.isclose(diag.min(), e['self_stiffness_min_pa_per_m'], rtol=1e-9, atol=0),
       'matrices: diagonal range as report.json')
 check(np.all(np.isfinite(K)), 'matrices: finite')
 # element areas and centroids from mesh.obj, in the same order
@@ -105,12 +113,16 @@ if len(T) == n:
     A = 0.5 * np.linalg.norm(np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]), axis=1)
     C = P.mean(axis=1)
     D = np.linalg.norm(C[:, None, :] - C[None, :, :], axis=2)
-    far = D > 5000
+    # centroid tractions are reciprocal only where the field varies little
+    # over an element: 3 km apart; pairs that interact at all
+    far = D > 3000
     W = R * A[:, None]
     rel = np.abs(W - W.T)[far] / np.maximum(np.abs(W) + np.abs(W.T), 1e-30)[far]
-    big = (np.abs(W) + np.abs(W.T))[far] > 1e-3 * np.abs(W).max()
-    check(np.median(rel[big]) < 0.1, 'matrices: reciprocal far apart (median relative '
-          'asymmetry %.3f over %d pairs)' % (np.median(rel[big]), big.sum()))
+    big = (np.abs(W) + np.abs(W.T))[far] > 1e-4 * np.abs(W).max()
+    med, p90 = np.median(rel[big]), np.percentile(rel[big], 90)
+    check(big.sum() > 1000 and med < 0.02 and p90 < 0.05,
+          'matrices: reciprocal 3 km apart (relative asymmetry median %.4f, 90%% %.4f over %d '
+          'pairs)' % (med, p90, big.sum()))
 sys.exit(fail)
 PY
 [ "$fail" = 0 ] && rm -rf "$tmp"
