@@ -224,7 +224,9 @@ typedef struct fm_elastic_summary {
     size_t above_surface;  /* left out: no vertex below the free surface */
     size_t degenerate;     /* left out: zero area */
     size_t self_wrong_sign; /* K_ii >= 0 (or not finite) */
-    size_t pairs_evaluated, pairs_singular, pairs_flagged;
+    size_t pairs_within;   /* pairs of different faults within the radius */
+    size_t pairs_evaluated, pairs_singular, pairs_flagged; /* evaluated: of those, the
+                                 ones close enough to reach the fraction (elastic.c) */
     double self_min, self_max; /* K_ii range over the elements, Pa/m */
     double max_ratio;      /* over every pair evaluated */
 } fm_elastic_summary;

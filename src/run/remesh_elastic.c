@@ -180,6 +180,7 @@ void json_elastic(fm_json *j, const remesh_cli *cli, const run_state *rs)
         fm_json_end_object(j);
     }
     fm_json_end_array(j);
+    fm_json_kv_int(j, "pairs_within_radius", (int64_t)s->pairs_within);
     fm_json_kv_int(j, "pairs_evaluated", (int64_t)s->pairs_evaluated);
     fm_json_kv_int(j, "pairs_singular", (int64_t)s->pairs_singular);
     fm_json_kv_int(j, "pairs_flagged", (int64_t)s->pairs_flagged);

@@ -251,5 +251,37 @@ static void test_image_cutoff(void)
     set_free(&s);
 }
 
-FM_TEST_MAIN(FM_CASE(test_image_cutoff), FM_CASE(test_near_overlap), FM_CASE(test_far_apart), FM_CASE(test_t_junction),
+/* The screen of elastic.c: with every pair evaluated (a fraction under
+ * its 0.25), faults facing each other 0.3 and 0.5 element sizes apart
+ * couple under 0.25 (and the closest faults of the test above, 75 m, far
+ * over): what is not evaluated could not have been flagged. Deep, where
+ * the full space is exact enough and quick. */
+static void test_screen(void)
+{
+    double offsets[2] = {300, 500};
+    for (int k = 0; k < 2; k++) {
+        wall_top = -20000;
+        set s = parallel(offsets[k]);
+        wall_top = -1000;
+        fm_elastic_input in = {s.m, 2, s.strike, s.dip, s.rake, NULL, 0};
+        fm_elastic_options o;
+        fm_elastic_options_default(&o);
+        o.fraction = 0.01;
+        o.threads = 2;
+        fm_elastic *e = NULL;
+        fm_error err;
+        fm_error_clear(&err);
+        CHECK(fm_check_elastic(&in, &o, &e, &err) == FM_OK);
+        const fm_elastic_summary *sum = fm_elastic_get_summary(e);
+        printf("%.0f m apart, every pair: %zu evaluated, largest coupling %.3f\n", offsets[k],
+               sum->pairs_evaluated, sum->max_ratio);
+        CHECK_EQ(sum->pairs_evaluated, sum->pairs_within);
+        CHECK(sum->pairs_evaluated > 100);
+        CHECK(sum->max_ratio < 0.25);
+        fm_elastic_destroy(e);
+        set_free(&s);
+    }
+}
+
+FM_TEST_MAIN(FM_CASE(test_image_cutoff), FM_CASE(test_screen), FM_CASE(test_near_overlap), FM_CASE(test_far_apart), FM_CASE(test_t_junction),
              FM_CASE(test_matrices))
