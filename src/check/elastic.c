@@ -43,6 +43,7 @@ void fm_elastic_options_default(fm_elastic_options *o)
     o->nu = 0.25;
     o->radius = 3;
     o->fraction = 0.5;
+    o->full_space = 0;
     o->threads = 1;
 }
 
@@ -107,7 +108,7 @@ static void self_chunk(void *user, size_t k)
     for (size_t i = k * CHUNK; i < end; i++) {
         double t[4];
         w->self[i] = w->el[i].state == EL_OK &&
-                             el_traction(&w->el[i], &w->el[i], w->opt->mu, w->opt->nu, t) == 0
+                             el_traction(&w->el[i], &w->el[i], w->opt, t) == 0
                          ? t[2]
                          : NAN;
     }
@@ -174,8 +175,8 @@ static void mutual_chunk(void *user, size_t k)
                             continue;
                         double tij[4], tji[4];
                         o->evaluated++;
-                        if (el_traction(&el[j], &el[i], w->opt->mu, w->opt->nu, tij) ||
-                            el_traction(&el[i], &el[j], w->opt->mu, w->opt->nu, tji)) {
+                        if (el_traction(&el[j], &el[i], w->opt, tij) ||
+                            el_traction(&el[i], &el[j], w->opt, tji)) {
                             o->singular++;
                             continue;
                         }

@@ -39,7 +39,8 @@ int el_elem_make(const fm_mesh *m, size_t t, double strike, double dip, double r
  * (Pa/m): out[0] along rcv's strike, [1] up its dip, [2] along its rake,
  * [3] normal (positive: tension). 0, or -1 where the field is singular
  * (rcv's centroid on an edge of src) or the dislocation refused. */
-int el_traction(const el_elem *src, const el_elem *rcv, double mu, double nu, double out[4]);
+int el_traction(const el_elem *src, const el_elem *rcv, const fm_elastic_options *o,
+                double out[4]);
 /* The same always in the half space (for the test of the above). */
 int el_traction_hs(const el_elem *src, const el_elem *rcv, double mu, double nu, double out[4]);
 

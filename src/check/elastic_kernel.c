@@ -112,10 +112,11 @@ static int traction(const el_elem *src, const el_elem *rcv, double mu, double nu
     return 0;
 }
 
-int el_traction(const el_elem *src, const el_elem *rcv, double mu, double nu, double out[4])
+int el_traction(const el_elem *src, const el_elem *rcv, const fm_elastic_options *o,
+                double out[4])
 {
-    int half = src->top - rcv->c[2] < EL_IMAGE_SIZES * src->h;
-    return traction(src, rcv, mu, nu, half, out);
+    int half = !o->full_space && src->top - rcv->c[2] < EL_IMAGE_SIZES * src->h;
+    return traction(src, rcv, o->mu, o->nu, half, out);
 }
 
 int el_traction_hs(const el_elem *src, const el_elem *rcv, double mu, double nu, double out[4])

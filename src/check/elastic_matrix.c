@@ -32,7 +32,7 @@ static void row(void *user, size_t k)
         /* NaN: an element left out (above the surface, degenerate), or a
          * receiver on the edge of the source, where the field has no value */
         if (r->el[i].state != EL_OK || r->el[j].state != EL_OK ||
-            el_traction(&r->el[j], &r->el[i], r->opt->mu, r->opt->nu, o))
+            el_traction(&r->el[j], &r->el[i], r->opt, o))
             o[0] = o[1] = o[2] = o[3] = NAN;
 }
 

@@ -174,6 +174,9 @@ typedef struct fm_elastic_options {
     double nu;        /* Poisson's ratio (default 0.25) */
     double radius;    /* search radius in element sizes (default 3) */
     double fraction;  /* flag ratio (default 0.5) */
+    int full_space;   /* 1: the full-space field everywhere, no free surface: a quick
+                         look (K of elements at the surface then off by up to a quarter;
+                         default 0: half space) */
     int threads;      /* results do not depend on it */
 } fm_elastic_options;
 

@@ -70,6 +70,10 @@ void remesh_usage(FILE *fp)
             "  --elastic-fraction F  flag pairs above F of the smaller self-stiffness\n"
             "                        (default 0.5)\n"
             "  --elastic-radius R    pairs within R element sizes (default 3)\n"
+            "  --elastic-medium half|full\n"
+            "                        half space (default; free surface at sea level) or\n"
+            "                        full space, a quick look: no free surface, elements\n"
+            "                        at the surface off by up to a quarter, much faster\n"
             "  --shear-modulus PA    of the check and matrices (default 3e10)\n"
             "  --poisson-ratio NU    of the check and matrices (default 0.25)\n"
             "  --stiffness-matrix FILE\n"
@@ -222,6 +226,14 @@ int mesh_option(int argc, char **argv, int *i, remesh_cli *cli)
     } else if (!strcmp(a, "--elastic-radius")) {
         if (fm_parse_positive(a, val, &cli->o.elastic_radius))
             return -1;
+    } else if (!strcmp(a, "--elastic-medium")) {
+        if (!val)
+            return fm_cli_missing(a);
+        if (strcmp(val, "half") && strcmp(val, "full")) {
+            fprintf(stderr, "faultmesh: --elastic-medium takes half or full, not '%s'\n", val);
+            return -1;
+        }
+        cli->o.elastic_full_space = !strcmp(val, "full");
     } else if (!strcmp(a, "--shear-modulus")) {
         if (fm_parse_positive(a, val, &cli->o.elastic_mu))
             return -1;

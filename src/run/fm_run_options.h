@@ -82,6 +82,7 @@ struct fm_run_options {
      * none) */
     int elastic;
     double elastic_mu, elastic_nu, elastic_radius, elastic_fraction;
+    int elastic_full_space; /* the full space instead of the half space (a quick look) */
     const char *stiffness_path;
     /* per-fault settings, and where they come from (for messages and the
      * report; NULL: none) */

@@ -146,7 +146,7 @@ void json_elastic(fm_json *j, const remesh_cli *cli, const run_state *rs)
         return;
     fm_json_key(j, "elastic");
     fm_json_begin_object(j);
-    fm_json_kv_string(j, "medium", "half-space");
+    fm_json_kv_string(j, "medium", cli->elastic.full_space ? "full-space" : "half-space");
     fm_json_kv_number(j, "shear_modulus_pa", cli->elastic.mu);
     fm_json_kv_number(j, "poisson_ratio", cli->elastic.nu);
     fm_json_kv_number(j, "radius_element_sizes", cli->elastic.radius);

@@ -268,6 +268,7 @@ static void settings_of(const fm_run *run, remesh_cli *cli)
     cli->elastic.nu = o->elastic_nu;
     cli->elastic.radius = o->elastic_radius;
     cli->elastic.fraction = o->elastic_fraction;
+    cli->elastic.full_space = o->elastic_full_space;
     cli->elastic.threads = cli->jobs;
 }
 

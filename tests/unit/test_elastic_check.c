@@ -236,7 +236,9 @@ static void test_image_cutoff(void)
             if (el[j].top - el[i].c[2] < EL_IMAGE_SIZES * el[j].h)
                 continue;
             double a[4], b[4];
-            CHECK_EQ(el_traction(&el[j], &el[i], 3e10, 0.25, a), 0);
+            fm_elastic_options o;
+            fm_elastic_options_default(&o);
+            CHECK_EQ(el_traction(&el[j], &el[i], &o, a), 0);
             CHECK_EQ(el_traction_hs(&el[j], &el[i], 3e10, 0.25, b), 0);
             for (int c = 0; c < 4; c++)
                 worst = fmax(worst, fabs(a[c] - b[c]) / fabs(self[2]));
