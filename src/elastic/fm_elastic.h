@@ -16,12 +16,16 @@
  * Displacements are in the units of the slip; strains are tensor strains
  * (exy = (dux/dy + duy/dx)/2), order xx yy zz xy xz yz.
  *
- * Points on a vertex or an edge of the triangle (where the field is
- * singular) give NaN, as the reference does; every other point, including
- * points on the triangle's plane and on the extensions of its edges, and
- * triangles touching the free surface, gives a finite value: the
- * artefact-free configuration choice of Nikkhoo & Walter is what this
- * module is for. */
+ * Points on a vertex or an edge of the triangle (within 1e-12 of its
+ * longest edge; the field is singular there) give NaN, as the reference
+ * does; every other point, including points on the triangle's plane and on
+ * the extensions of its edges, and triangles touching the free surface,
+ * gives a finite value: being free of the artefacts of the classical
+ * angular-dislocation formulas there is what this module is for. Exactly
+ * on the triangle, where u jumps, the value is the +n side's.
+ *
+ * The full space is closed-form; the half space adds Mindlin's image terms
+ * by quadrature (docs/elastic.md), so it costs more near the surface. */
 #ifndef FM_ELASTIC_H
 #define FM_ELASTIC_H
 
