@@ -19,7 +19,10 @@
  * surface's, and it is centred on that surface. Each fault is tiled both
  * ways (where the plane's levels are worth trying) and with the row
  * count closest to size and up to two fewer and more; the tiling whose
- * area and flatness are closest to the triangles' is kept. Where a fault
+ * area and flatness are closest to the triangles' is kept, each also with
+ * its edge tiles cut into a quadtree of rectangles down to a quarter of
+ * the size that follows a slanted outline or junction (dropping those
+ * standing past it, adding those over a bare wedge). Where a fault
  * reaches a junction only as a strip its rows miss, a tile of half the
  * size on the junction covers it.
  *

@@ -578,27 +578,34 @@ static int tile_fault_best(tiler *tl, tile_walk *w, int32_t f, const size_t *tri
             bad = tile_fault(tl, f, tris, n) || tile_fit_planes(t, w, first);
             if (bad || t->n == first)
                 continue;
-            double c = atri > 0 ? tiling_cost(t, w, first, atri) : 0;
-            /* better by a thousandth, not by rounding */
-            if (!(c < best - 1e-3))
-                continue;
-            best = c;
-            memcpy(bup, tl->up, sizeof bup);
-            size_t m = t->n - first;
-            if (m > cap) {
-                fm_tile *k2 = realloc(keep, m * sizeof *k2);
-                if (k2)
-                    keep = k2;
-                double(*b2)[4] = realloc(kb, m * sizeof *b2);
-                if (b2)
-                    kb = b2;
-                bad = !k2 || !b2;
-                cap = bad ? cap : m;
-            }
-            if (!bad) {
-                memcpy(keep, t->tile + first, m * sizeof *keep);
-                memcpy(kb, t->band + first, m * sizeof *kb);
-                nb = m;
+            /* as made, then with its edge tiles refined (tile_refine_edges),
+             * which follows the outline closer but leaves the thin gaps
+             * between rows that the widths made up for bare */
+            for (int r = 0; r < 2 && !bad && !(best < 0.01); r++) {
+                if (r && (bad = tile_refine_edges(t, w, first)) != 0)
+                    break;
+                double c = atri > 0 ? tiling_cost(t, w, first, atri) : 0;
+                /* better by a thousandth, not by rounding */
+                if (!(c < best - 1e-3))
+                    continue;
+                best = c;
+                memcpy(bup, tl->up, sizeof bup);
+                size_t m = t->n - first;
+                if (m > cap) {
+                    fm_tile *k2 = realloc(keep, m * sizeof *k2);
+                    if (k2)
+                        keep = k2;
+                    double(*b2)[4] = realloc(kb, m * sizeof *b2);
+                    if (b2)
+                        kb = b2;
+                    bad = !k2 || !b2;
+                    cap = bad ? cap : m;
+                }
+                if (!bad) {
+                    memcpy(keep, t->tile + first, m * sizeof *keep);
+                    memcpy(kb, t->band + first, m * sizeof *kb);
+                    nb = m;
+                }
             }
         }
     tl->extra_rows = 0;

@@ -63,6 +63,13 @@ void tile_region(tile_walk *w, const fm_tile *tl, double zlo, double zhi);
  * stay above an eighth of the size; -1 when memory runs out
  * (tile_plane.c). */
 int tile_fit_planes(fm_tiles *t, tile_walk *w, size_t first);
+/* Fault's tiles from first on that stand past its outline or a junction,
+ * or leave a wedge of their row's surface bare, cut into a quadtree of
+ * rectangles on their planes of about a quarter of the size, over the
+ * tile those with surface under their centre, past it those over surface
+ * of its row that no other tile of the fault covers; -1 when memory runs
+ * out (tile_edges.c). */
+int tile_refine_edges(fm_tiles *t, tile_walk *w, size_t first);
 /* How far the surface w found for tl lies from tl's plane where it lies
  * under tl (tile_region first). */
 double tile_flatness(const tile_walk *w, const fm_tile *tl);

@@ -287,10 +287,14 @@ static double flat_of(tile_walk *w, fm_tile *tl, double *off)
     return tile_flatness(w, tl);
 }
 
-/* A tile made for row ztop..zbot, its columns open at its ends as open
- * says, fitted; its flatness. */
-static double fitted(tile_walk *w, fm_tile *tl, double ztop, double zbot, double dw, int open)
+/* A tile made for row band b (ztop, zbot, dw, its columns open at its ends as
+ * b[3] says), fitted; its flatness. Where the fit turned the strike round,
+ * b's open ends are turned with it, for the halves and the edges
+ * (tile_refine_edges) that read them later. */
+static double fitted(tile_walk *w, fm_tile *tl, double b[4])
 {
+    double ztop = b[0], zbot = b[1], dw = b[2];
+    int open = (int)b[3];
     fm_tile before = *tl;
     w->open = open;
     tile_region(w, tl, zbot, ztop);
@@ -305,6 +309,8 @@ static double fitted(tile_walk *w, fm_tile *tl, double ztop, double zbot, double
         *tl = before;
         flat = flat_of(w, tl, &off);
     }
+    if (tl->strike[0] * before.strike[0] + tl->strike[1] * before.strike[1] < 0)
+        b[3] = (double)((open & 1) << 1 | (open & 2) >> 1);
     return flat;
 }
 
@@ -347,8 +353,7 @@ int tile_fit_planes(fm_tiles *t, tile_walk *w, size_t first)
     for (size_t i = first; i < t->n; i++) {
         if (!t->band) /* after a failed push */
             return -1;
-        double flat = fitted(w, &t->tile[i], t->band[i][0], t->band[i][1], t->band[i][2],
-                             (int)t->band[i][3]);
+        double flat = fitted(w, &t->tile[i], t->band[i]);
         /* A tile much wider than the size (a surface flatter in its row
          * than the fault's mean dip there says) is halved down dip until it
          * is not; then one the surface departs from too far is split until
@@ -357,8 +362,8 @@ int tile_fit_planes(fm_tiles *t, tile_walk *w, size_t first)
             fm_tile h[2];
             double hb[2][4];
             halves(w, &t->tile[i], t->band[i], 1, h, hb);
-            fitted(w, &h[1], hb[1][0], hb[1][1], hb[1][2], (int)hb[1][3]);
-            flat = fitted(w, &h[0], hb[0][0], hb[0][1], hb[0][2], (int)hb[0][3]);
+            fitted(w, &h[1], hb[1]);
+            flat = fitted(w, &h[0], hb[0]);
             t->tile[i] = h[0];
             memcpy(t->band[i], hb[0], sizeof hb[0]);
             if (tile_push(t, &h[1], hb[1][0], hb[1][1], hb[1][2], (int)hb[1][3]))
@@ -375,8 +380,8 @@ int tile_fit_planes(fm_tiles *t, tile_walk *w, size_t first)
                 fm_tile h[2];
                 double hb[2][4];
                 halves(w, tl, t->band[i], dip, h, hb);
-                double f0 = fitted(w, &h[0], hb[0][0], hb[0][1], hb[0][2], (int)hb[0][3]);
-                double f1 = fitted(w, &h[1], hb[1][0], hb[1][1], hb[1][2], (int)hb[1][3]);
+                double f0 = fitted(w, &h[0], hb[0]);
+                double f1 = fitted(w, &h[1], hb[1]);
                 if (fmax(f0, f1) < bf) {
                     bf = fmax(f0, f1);
                     bf0 = f0;
