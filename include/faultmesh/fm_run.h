@@ -112,7 +112,15 @@ typedef enum fm_run_option {
     FM_OPT_KINEMATICS = 603,   /**< string: one more sections file (at most
                                   FM_RUN_MAX_KINEMATICS); NULL: none again */
     FM_OPT_KINEMATICS_DISTANCE = 604, /**< double > 0, m */
-    FM_OPT_KINEMATICS_FALLBACK = 605  /**< double >= 0, mm/yr */
+    FM_OPT_KINEMATICS_FALLBACK = 605, /**< double >= 0, mm/yr */
+    FM_OPT_ELASTIC = 700,          /**< int 0/1: the elastic interaction check (default 0) */
+    FM_OPT_ELASTIC_FRACTION = 701, /**< double > 0: pairs coupled above it flagged (0.5) */
+    FM_OPT_ELASTIC_RADIUS = 702,   /**< double > 0: pairs within it, element sizes (3) */
+    FM_OPT_ELASTIC_MEDIUM = 703,   /**< int: FM_RUN_ELASTIC_* (half space) */
+    FM_OPT_SHEAR_MODULUS = 704,    /**< double > 0, Pa (3e10) */
+    FM_OPT_POISSON_RATIO = 705,    /**< double in (0, 0.5) (0.25) */
+    FM_OPT_STIFFNESS_MATRIX = 706  /**< string: .npy file of the interaction
+                                      matrices (Pa/m); NULL: none */
 } fm_run_option;
 
 /** Values of the int options above. They are the stages' own values (the
@@ -131,7 +139,9 @@ enum {
     FM_RUN_MSH_TAGS_SEISSOL = 2,
     FM_RUN_MSH_TAGS_PYLITH = 3,
     FM_RUN_EQSIM_SPHERICAL = 0,   /**< FM_OPT_EQSIM_COORDS: lat/lon (WGS 84) */
-    FM_RUN_EQSIM_RECTANGULAR = 1  /**< the mesh's own x, y */
+    FM_RUN_EQSIM_RECTANGULAR = 1, /**< the mesh's own x, y */
+    FM_RUN_ELASTIC_HALF = 0,      /**< FM_OPT_ELASTIC_MEDIUM: half space, free surface at sea level */
+    FM_RUN_ELASTIC_FULL = 1       /**< full space: a quick look */
 };
 
 typedef enum fm_log_level {

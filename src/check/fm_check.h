@@ -142,6 +142,124 @@ const fm_loss_fault *fm_loss_fault_at(const fm_loss *l, size_t f);
 size_t fm_loss_npairs(const fm_loss *l);
 const fm_loss_pair *fm_loss_pair_at(const fm_loss *l, size_t k);
 
+/* The elastic interaction check (docs/guide.md, "Elastic check"): how
+ * strongly the elements of different faults load each other, by the
+ * field of a triangular dislocation (src/elastic) in a half space.
+ *
+ * Every element slips in its rake direction (Aki and Richards: hanging
+ * wall relative to footwall, measured from strike in the fault plane,
+ * with strike and dip from its upward normal); the traction on element i
+ * is sampled at its centroid, on its plane, with the normal pointing into
+ * its hanging wall. K_ij (Pa/m) is the shear traction on i along i's rake
+ * per unit slip of j along j's rake. K_ii must be negative (slip lowers
+ * the stress that drives it); an element where it is not is named. Pairs
+ * (i, j) of different faults whose centroids lie within radius x the
+ * larger element size of each other are evaluated (on a grid, so the
+ * cost grows with the elements, not their square), and flagged when
+ * their coupling c_ij = sqrt(|K_ij K_ji| / (K_ii K_jj)) exceeds fraction:
+ * there the two faults act as one fault counted twice. c_ij is |K_ij| /
+ * |K_ii| for elements of one size; for elements of different sizes it is
+ * what stays symmetric: reciprocity makes A_i K_ij = A_j K_ji, and c_ij is
+ * the off-diagonal of the area-weighted (energy) stiffness matrix over
+ * the root of its diagonal, whose 2 x 2 block of the pair loses its
+ * determinant as c_ij nears 1 (a small element beside a large one would
+ * otherwise read the large one's traction against its own, smaller,
+ * self-stiffness).
+ *
+ * Vertices above the free surface (z > 0: a top kept above sea level)
+ * are moved down onto it, which is where a half-space simulator puts
+ * them too; an element with no vertex below it is left out (counted). */
+typedef struct fm_elastic_options {
+    double mu;        /* shear modulus, Pa (default 3e10) */
+    double nu;        /* Poisson's ratio (default 0.25) */
+    double radius;    /* search radius in element sizes (default 3) */
+    double fraction;  /* flag ratio (default 0.5) */
+    int full_space;   /* 1: the full-space field everywhere, no free surface: a quick
+                         look (K of elements at the surface then off by up to a quarter;
+                         default 0: half space) */
+    int threads;      /* results do not depend on it */
+} fm_elastic_options;
+
+void fm_elastic_options_default(fm_elastic_options *o);
+
+/* A junction of the run, to group flagged pairs by: its two faults (tags
+ * of the set) and points along its curve (none for a junction without
+ * one). A pair goes to the junction of its two faults whose curve passes
+ * nearest the pair (the first such junction when none has a curve), or
+ * to no junction (0) when its faults have none. */
+typedef struct fm_elastic_junction {
+    int32_t fault[2];
+    const double *points; /* 3 per point */
+    size_t npoints;
+} fm_elastic_junction;
+
+typedef struct fm_elastic_input {
+    const fm_mesh *set;    /* every fault: triangle tag = fault, 0 .. nfaults-1 */
+    size_t nfaults;
+    const double *strike, *dip, *rake; /* per triangle, degrees */
+    const fm_elastic_junction *junctions; /* numbered from 1 in the output */
+    size_t njunctions;
+} fm_elastic_input;
+
+/* A flagged pair, i on fault a < fault b of j. */
+typedef struct fm_elastic_pair {
+    size_t i, j;           /* triangles of the set */
+    double k_ij, k_ji;     /* Pa/m */
+    double ratio;          /* coupling sqrt(|k_ij k_ji| / (K_ii K_jj)) */
+    double distance;       /* between the two elements, m (0: they touch) */
+} fm_elastic_pair;
+
+#define FM_ELASTIC_EXAMPLES 5
+
+/* Flagged pairs of one fault pair at one junction. */
+typedef struct fm_elastic_group {
+    int32_t a, b;          /* faults, a < b */
+    size_t junction;       /* 1 .. njunctions; 0: the two faults have no junction */
+    size_t pairs;
+    double max_ratio, min_distance, max_k; /* max_k: largest |K_ij|, Pa/m */
+    size_t example[FM_ELASTIC_EXAMPLES]; /* pairs (indices into the flagged pairs) of
+                                            the largest ratio */
+    size_t nexamples;
+} fm_elastic_group;
+
+typedef struct fm_elastic_summary {
+    size_t elements;       /* evaluated */
+    size_t above_surface;  /* left out: no vertex below the free surface */
+    size_t degenerate;     /* left out: zero area */
+    size_t self_wrong_sign; /* K_ii >= 0 (or not finite) */
+    size_t pairs_within;   /* pairs of different faults within the radius */
+    size_t pairs_evaluated, pairs_singular, pairs_flagged; /* evaluated: of those, the
+                                 ones close enough to reach the fraction (elastic.c) */
+    double self_min, self_max; /* K_ii range over the elements, Pa/m */
+    double max_ratio;      /* over every pair evaluated */
+} fm_elastic_summary;
+
+typedef struct fm_elastic fm_elastic;
+
+fm_status fm_check_elastic(const fm_elastic_input *in, const fm_elastic_options *opt,
+                           fm_elastic **out, fm_error *err);
+void fm_elastic_destroy(fm_elastic *e);
+const fm_elastic_summary *fm_elastic_get_summary(const fm_elastic *e);
+/* K_ii per triangle of the set (NaN where left out). */
+const double *fm_elastic_self(const fm_elastic *e);
+/* Triangles whose K_ii has the wrong sign, in order. */
+const size_t *fm_elastic_wrong_sign(const fm_elastic *e, size_t *n);
+/* Flagged pairs sorted by (fault a, fault b, junction, i, j). */
+const fm_elastic_pair *fm_elastic_pairs(const fm_elastic *e, size_t *n);
+/* Groups sorted by (a, b, junction). */
+const fm_elastic_group *fm_elastic_groups(const fm_elastic *e, size_t *n);
+
+/* The full interaction matrices of a small set, for a user's own
+ * simulator, written as a NumPy .npy file (docs/formats.md): float64
+ * little-endian, shape (N, N, 4), [i, j, c] the traction on element i
+ * per unit rake slip of element j, c = 0 along i's strike, 1 up i's dip
+ * (rake 90), 2 along i's rake, 3 normal (positive: tension), Pa/m.
+ * Refused above FM_STIFFNESS_MAX_N elements (the file holds 32 N^2
+ * bytes). Rows are computed on opt->threads threads, written in order. */
+#define FM_STIFFNESS_MAX_N 10000
+fm_status fm_elastic_write_matrices(const fm_elastic_input *in, const fm_elastic_options *opt,
+                                    const char *path, fm_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -19,9 +19,8 @@
 /* Options that take no value; every other option of the form --name
  * takes one (the commands check which they know). */
 static const char *const flags[] = {
-    "--help",        "--json",           "--keep-crossings", "--keep-fragments",
-    "--no-connect",  "--no-report-html", "--no-split",       "--quiet",
-    "--verbose",     "--version",
+    "--elastic-check", "--help", "--json", "--keep-crossings", "--keep-fragments",
+    "--no-connect", "--no-report-html", "--no-split", "--quiet", "--verbose", "--version",
 };
 
 static int is_flag(const char *name, size_t n)

@@ -76,6 +76,23 @@ typedef struct fm_report_junction {
 
 fm_status fm_report_add_junction(fm_report *r, const fm_report_junction *j, fm_error *err);
 
+/* The elastic check (fm_check.h), when it ran: its flag ratio, the
+ * elements whose self-stiffness has the wrong sign, and its groups of
+ * flagged pairs (one fault pair at one junction each). */
+typedef struct fm_report_elastic_group {
+    const char *fault[2];
+    size_t junction;           /* as the junction table numbers it; 0: the faults have none */
+    size_t pairs;
+    double max_ratio;          /* mutual to the smaller self-stiffness */
+    double min_distance;       /* m */
+    const size_t *examples;    /* element numbers (from 1), two per pair */
+    size_t nexamples;          /* pairs, at most 5 */
+} fm_report_elastic_group;
+
+void fm_report_set_elastic(fm_report *r, double fraction, size_t wrong_sign);
+fm_status fm_report_add_elastic_group(fm_report *r, const fm_report_elastic_group *g,
+                                      fm_error *err);
+
 /* A line of the summary table (label, value), in the order added. */
 fm_status fm_report_add_fact(fm_report *r, const char *label, const char *value, fm_error *err);
 

@@ -203,6 +203,7 @@ void rp_problems(FILE *fp, const fm_report *r)
         fputs("</tbody></table></div>\n", fp);
     }
     unjoined_reasons(fp, r);
+    rp_elastic(fp, r);
 }
 
 /* What else there is to know of a fault: why it is not meshed, its

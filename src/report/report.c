@@ -74,6 +74,11 @@ void fm_report_destroy(fm_report *r)
         free(r->j[i].reason);
     }
     free(r->j);
+    for (size_t i = 0; i < r->neg; i++) {
+        free(r->eg[i].fault[0]);
+        free(r->eg[i].fault[1]);
+    }
+    free(r->eg);
     for (size_t i = 0; i < r->nfact; i++)
         free(r->fact[i]);
     free(r->fact);
@@ -168,6 +173,38 @@ fm_status fm_report_add_junction(fm_report *r, const fm_report_junction *in, fm_
     j->length = in->length;
     j->min_angle = in->min_angle;
     r->nj++;
+    return FM_OK;
+}
+
+void fm_report_set_elastic(fm_report *r, double fraction, size_t wrong_sign)
+{
+    r->elastic = 1;
+    r->elastic_fraction = fraction;
+    r->elastic_wrong = wrong_sign;
+}
+
+fm_status fm_report_add_elastic_group(fm_report *r, const fm_report_elastic_group *in,
+                                      fm_error *err)
+{
+    if (grow(&r->eg, &r->capeg, r->neg, sizeof *r->eg))
+        return fm_error_set(err, FM_ERR_NOMEM, "report.html", 0, "out of memory");
+    rp_elastic_group *g = &r->eg[r->neg];
+    memset(g, 0, sizeof *g);
+    int bad = 0;
+    g->fault[0] = dup_or_null(in->fault[0] ? in->fault[0] : "", &bad);
+    g->fault[1] = dup_or_null(in->fault[1] ? in->fault[1] : "", &bad);
+    if (bad) {
+        free(g->fault[0]);
+        free(g->fault[1]);
+        return fm_error_set(err, FM_ERR_NOMEM, "report.html", 0, "out of memory");
+    }
+    g->junction = in->junction;
+    g->pairs = in->pairs;
+    g->max_ratio = in->max_ratio;
+    g->min_distance = in->min_distance;
+    g->nexamples = in->nexamples < 5 ? in->nexamples : 5;
+    memcpy(g->examples, in->examples, 2 * g->nexamples * sizeof *g->examples);
+    r->neg++;
     return FM_OK;
 }
 

@@ -49,6 +49,14 @@ typedef struct rp_junction {
     double gap, overshoot, length, min_angle;
 } rp_junction;
 
+typedef struct rp_elastic_group {
+    char *fault[2];
+    size_t junction, pairs;
+    double max_ratio, min_distance;
+    size_t examples[10];
+    size_t nexamples;
+} rp_elastic_group;
+
 struct fm_report {
     const fm_mesh *set;
     char *title, *crs;
@@ -59,6 +67,11 @@ struct fm_report {
     size_t nj, capj;
     char **fact; /* label, value, label, value, ... */
     size_t nfact, capfact;
+    int elastic;                 /* the elastic check ran */
+    double elastic_fraction;
+    size_t elastic_wrong;
+    rp_elastic_group *eg;
+    size_t neg, capeg;
 };
 
 /* A PNG file in memory. */
@@ -180,6 +193,8 @@ void rp_badge(FILE *fp, const rp_fault *f);
 /* Its tables (html_tables.c): contents, problems, faults, junctions. */
 void rp_toc(FILE *fp, const fm_report *r);
 void rp_problems(FILE *fp, const fm_report *r);
+/* html_elastic.c: the elastic check's flagged groups, in the problems. */
+void rp_elastic(FILE *fp, const fm_report *r);
 void rp_fault_table(FILE *fp, const fm_report *r);
 void rp_junction_table(FILE *fp, const fm_report *r);
 

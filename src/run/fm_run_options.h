@@ -77,6 +77,14 @@ struct fm_run_options {
     const char *cache_dir;    /* the fit cache; NULL: $XDG_CACHE_HOME/faultmesh or
                                  ~/.cache/faultmesh */
     int no_cache;             /* fit every fault, keep no models */
+    /* the elastic interaction check (fm_check.h, docs/guide.md): off by
+     * default; its constants (Pa, -), search radius (element sizes) and
+     * flag ratio; and a file for the full matrices of a small set (NULL:
+     * none) */
+    int elastic;
+    double elastic_mu, elastic_nu, elastic_radius, elastic_fraction;
+    int elastic_full_space; /* the full space instead of the half space (a quick look) */
+    const char *stiffness_path;
     /* per-fault settings, and where they come from (for messages and the
      * report; NULL: none) */
     const fm_fault_rule *fault_rules;

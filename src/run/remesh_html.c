@@ -200,6 +200,32 @@ static fm_status add_facts(fm_report *rep, const remesh_cli *cli, const run_stat
     return st;
 }
 
+/* The elastic check's groups, numbered as report.json has them. */
+static fm_status add_elastic(fm_report *rep, const remesh_cli *cli, const run_state *rs,
+                             fm_error *err)
+{
+    if (!cli->elastic_check || !rs->elastic)
+        return FM_OK;
+    size_t nw, ng, np;
+    fm_elastic_wrong_sign(rs->elastic, &nw);
+    fm_report_set_elastic(rep, cli->elastic.fraction, nw);
+    const fm_elastic_group *g = fm_elastic_groups(rs->elastic, &ng);
+    const fm_elastic_pair *p = fm_elastic_pairs(rs->elastic, &np);
+    fm_status st = FM_OK;
+    for (size_t k = 0; st == FM_OK && k < ng; k++) {
+        size_t ex[2 * FM_ELASTIC_EXAMPLES];
+        for (size_t e = 0; e < g[k].nexamples; e++) {
+            ex[2 * e] = p[g[k].example[e]].i + 1;
+            ex[2 * e + 1] = p[g[k].example[e]].j + 1;
+        }
+        fm_report_elastic_group rg = {{rs->names[g[k].a], rs->names[g[k].b]}, g[k].junction,
+                                      g[k].pairs, g[k].max_ratio, g[k].min_distance, ex,
+                                      g[k].nexamples};
+        st = fm_report_add_elastic_group(rep, &rg, err);
+    }
+    return st;
+}
+
 fm_status write_report_html(const remesh_cli *cli, const run_state *rs, fm_error *err)
 {
     fm_report_info info = {"faultmesh report", rs->crs, cli->mesh.size};
@@ -211,6 +237,8 @@ fm_status write_report_html(const remesh_cli *cli, const run_state *rs, fm_error
         st = add_junctions(rep, rs, err);
     if (st == FM_OK)
         st = add_facts(rep, cli, rs, err);
+    if (st == FM_OK)
+        st = add_elastic(rep, cli, rs, err);
     size_t n = strlen(cli->dir) + 32;
     char *path = st == FM_OK ? malloc(n) : NULL;
     if (st == FM_OK && !path)

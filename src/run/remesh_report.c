@@ -475,6 +475,7 @@ void print_summary(const remesh_cli *cli, const run_state *rs, FILE *fp)
         fprintf(fp, "  %-14s smallest angle %.1f deg (%s)\n", "worst quality", t.angle_min,
                 t.angle_min_fault);
     print_loss(rs, fp);
+    print_elastic(rs, fp);
     if (t.worst_dist_fault)
         fprintf(fp, "  %-14s node %.0f m from the original (%s)\n", "worst fidelity",
                 t.worst_dist, t.worst_dist_fault);
@@ -539,6 +540,7 @@ fm_status write_report(const remesh_cli *cli, const run_state *rs, const sim_att
     run_totals t;
     run_totals_of(rs, &t);
     json_connect(&j, cli, rs, &t);
+    json_elastic(&j, cli, rs);
     if (sa)
         sim_json_summary(&j, &cli->sim, sa, (const char *const *)rs->names);
     if (sa && sa->tiles)

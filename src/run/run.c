@@ -378,6 +378,7 @@ fm_status run_execute(fm_run_result *res, const char *const *files,
     measure_loss(cli, rs);
     if (compact_set(rs))
         run_log(cli->ctl, FM_LOG_WARN, "out of memory: the outputs keep points of no triangle");
+    check_elastic(cli, rs);
     run_progress_end(cli->ctl);
     res->t4 = fm_clock_seconds();
     rs->time[0] = t1 - t0;
@@ -428,6 +429,19 @@ fm_status fm_run_result_write(fm_run_result *res, const char *dir, unsigned form
     run_progress_begin(cli->ctl, "write", 0, NULL, 0);
     /* noted only on this thread: report.html's does not look at it */
     fm_status first = write_set(cli, rs, &sa);
+    /* --stiffness-matrix: a file of the user's naming, anywhere */
+    if (cli->stiffness_path) {
+        fm_error serr;
+        fm_error_clear(&serr);
+        fm_status sst = write_stiffness(cli, rs, &serr);
+        outputs_note(outputs, cli->stiffness_path, SIZE_MAX, OUTPUT_REPORT,
+                     sst == FM_OK ? NULL : &serr);
+        if (first == FM_OK && sst != FM_OK) {
+            first = sst;
+            if (err)
+                *err = serr;
+        }
+    }
     if (html_async)
         pthread_join(html_thread, NULL);
     if (html)
@@ -499,6 +513,7 @@ void run_state_free(run_state *rs)
     fm_carve_result_destroy(rs->carve);
     fm_carve_result_destroy(rs->sheet_carve);
     fm_loss_destroy(rs->loss);
+    free_elastic(rs);
     free(rs->sheet_unit_fault);
     free(rs->sheet_unit_first);
     free(rs->names);

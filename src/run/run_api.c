@@ -25,6 +25,12 @@ void fm_run_options_default(fm_run_options *o)
     o->max_triangles = FM_RUN_DEFAULT_MAX_TRIANGLES;
     o->keep = FM_CONNECT_KEEP_SMALLER;
     o->eqsim = FM_EQSIM_SPHERICAL;
+    fm_elastic_options eo;
+    fm_elastic_options_default(&eo);
+    o->elastic_mu = eo.mu;
+    o->elastic_nu = eo.nu;
+    o->elastic_radius = eo.radius;
+    o->elastic_fraction = eo.fraction;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     o->jobs = ncpu > 0 ? (int)(ncpu < 64 ? ncpu : 64) : 1;
 }
@@ -256,6 +262,15 @@ static void settings_of(const fm_run *run, remesh_cli *cli)
     cli->quads = o->quads;
     cli->cache_dir = o->cache_dir;
     cli->no_cache = o->no_cache;
+    cli->elastic_check = o->elastic;
+    cli->stiffness_path = o->stiffness_path;
+    fm_elastic_options_default(&cli->elastic);
+    cli->elastic.mu = o->elastic_mu;
+    cli->elastic.nu = o->elastic_nu;
+    cli->elastic.radius = o->elastic_radius;
+    cli->elastic.fraction = o->elastic_fraction;
+    cli->elastic.full_space = o->elastic_full_space;
+    cli->elastic.threads = cli->jobs;
 }
 
 /* From here on the result's callbacks are its own (the run may go first). */

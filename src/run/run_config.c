@@ -75,7 +75,7 @@ static int is_on_by_default(const char *key)
 static int path_key(const char *key)
 {
     return !strcmp(key, "output") || !strcmp(key, "slip") || !strcmp(key, "metadata") ||
-           !strcmp(key, "cache");
+           !strcmp(key, "cache") || !strcmp(key, "stiffness_matrix");
 }
 
 /* "--key" (or "--no-key"), underscores as dashes. */
@@ -281,6 +281,8 @@ fm_status fm_run_get_int(const fm_run *run, fm_run_option opt, int64_t *v)
     case FM_OPT_REPORT_HTML: *v = o->html; break;
     case FM_OPT_QUADS: *v = o->quads; break;
     case FM_OPT_EQSIM_COORDS: *v = o->eqsim; break;
+    case FM_OPT_ELASTIC: *v = o->elastic; break;
+    case FM_OPT_ELASTIC_MEDIUM: *v = o->elastic_full_space ? FM_RUN_ELASTIC_FULL : FM_RUN_ELASTIC_HALF; break;
     default: return FM_ERR_INVALID;
     }
     return FM_OK;

@@ -85,6 +85,9 @@ typedef struct remesh_cli {
     int no_cache;          /* --no-cache */
     char *cache;           /* the fit cache of the run (settle_cache); NULL: none */
     char *cache_note;      /* why there is none, when one was wanted; NULL: none */
+    int elastic_check;     /* --elastic-check */
+    fm_elastic_options elastic;
+    const char *stiffness_path; /* --stiffness-matrix FILE; NULL: none */
 } remesh_cli;
 
 /* The outputs (fm_run.h's FM_OUT_*). */
@@ -214,6 +217,12 @@ typedef struct run_state {
     neighbours_use neighbours; /* the plan's pairs and near-duplicates and the cache */
     size_t curves_kept, curves_traced; /* the plan's pairs decided from curves kept in the
                                           cache, or traced now (fm_connect_plan_stats) */
+    /* the elastic check (remesh_elastic.c): its findings, and the element
+     * frames it took (strike, dip, rake per triangle of set), which the
+     * stiffness matrices use too; NULL when not made */
+    fm_elastic *elastic;
+    sim_attrs *elastic_attrs;
+    char *elastic_error;     /* why the check could not be made; NULL: none */
 } run_state;
 
 /* One input file's faults, fitted and then meshed by workers; merged
@@ -397,6 +406,16 @@ void loss_totals_of(const run_state *rs, loss_totals *t);
 void json_loss_fault(fm_json *j, const run_state *rs, const fault_result *r);
 void json_loss(fm_json *j, const run_state *rs);
 void print_loss(const run_state *rs, FILE *fp);
+
+/* remesh_elastic.c: the elastic check of rs->set (--elastic-check; or
+ * only the element frames, for --stiffness-matrix), its "elastic" object
+ * of report.json, its lines of the summary, its groups for report.html,
+ * and the matrices file. */
+void check_elastic(const remesh_cli *cli, run_state *rs);
+void json_elastic(fm_json *j, const remesh_cli *cli, const run_state *rs);
+void print_elastic(const run_state *rs, FILE *fp);
+fm_status write_stiffness(const remesh_cli *cli, const run_state *rs, fm_error *err);
+void free_elastic(run_state *rs);
 
 /* remesh_html.c */
 /* DIR/report.html: called while the originals are still there (before

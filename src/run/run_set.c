@@ -137,6 +137,13 @@ static const opt_info infos[] = {
     {FM_OPT_KINEMATICS, T_STRING, 0, 0, "kinematics"},
     {FM_OPT_KINEMATICS_DISTANCE, T_DOUBLE, 1e-9, HUGE_VAL, "kinematics_distance"},
     {FM_OPT_KINEMATICS_FALLBACK, T_DOUBLE, 0, HUGE_VAL, "kinematics_fallback"},
+    {FM_OPT_ELASTIC, T_INT, 0, 1, "elastic_check"},
+    {FM_OPT_ELASTIC_FRACTION, T_DOUBLE, 1e-9, HUGE_VAL, "elastic_fraction"},
+    {FM_OPT_ELASTIC_RADIUS, T_DOUBLE, 1e-9, HUGE_VAL, "elastic_radius"},
+    {FM_OPT_ELASTIC_MEDIUM, T_INT, FM_RUN_ELASTIC_HALF, FM_RUN_ELASTIC_FULL, "elastic_medium"},
+    {FM_OPT_SHEAR_MODULUS, T_DOUBLE, 1e-9, HUGE_VAL, "shear_modulus"},
+    {FM_OPT_POISSON_RATIO, T_DOUBLE, 1e-9, 0.4999999999, "poisson_ratio"},
+    {FM_OPT_STIFFNESS_MATRIX, T_STRING, 0, 0, "stiffness_matrix"},
 };
 
 static const opt_info *info_of(fm_run_option opt)
@@ -211,6 +218,8 @@ fm_status fm_run_set_int(fm_run *run, fm_run_option opt, int64_t v, fm_error *er
     case FM_OPT_REPORT_HTML: o->html = (int)v; break;
     case FM_OPT_QUADS: o->quads = (int)v; break;
     case FM_OPT_EQSIM_COORDS: o->eqsim = (fm_eqsim_coords)v; break;
+    case FM_OPT_ELASTIC: o->elastic = (int)v; break;
+    case FM_OPT_ELASTIC_MEDIUM: o->elastic_full_space = v == FM_RUN_ELASTIC_FULL; break;
     default: break;
     }
     run_unprepare(run);
@@ -232,6 +241,10 @@ fm_status fm_run_set_double(fm_run *run, fm_run_option opt, double v, fm_error *
     case FM_OPT_JOIN_DISTANCE: o->join = v; break;
     case FM_OPT_KINEMATICS_DISTANCE: o->kin_distance = v; break;
     case FM_OPT_KINEMATICS_FALLBACK: o->kin_fallback_rate = v; break;
+    case FM_OPT_ELASTIC_FRACTION: o->elastic_fraction = v; break;
+    case FM_OPT_ELASTIC_RADIUS: o->elastic_radius = v; break;
+    case FM_OPT_SHEAR_MODULUS: o->elastic_mu = v; break;
+    case FM_OPT_POISSON_RATIO: o->elastic_nu = v; break;
     default: break;
     }
     run_unprepare(run);
@@ -257,6 +270,7 @@ fm_status fm_run_set_string(fm_run *run, fm_run_option opt, const char *v, fm_er
     case FM_OPT_CACHE_DIR: o->cache_dir = c; break;
     case FM_OPT_SLIP: o->slip_path = c; break;
     case FM_OPT_METADATA: o->metadata_path = c; break;
+    case FM_OPT_STIFFNESS_MATRIX: o->stiffness_path = c; break;
     case FM_OPT_KINEMATICS:
         if (c)
             o->kin_paths[o->nkin++] = c;

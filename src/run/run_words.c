@@ -222,6 +222,56 @@ static int eqsim_coords(void *t, fm_opt_arg *a, fm_error *err)
     return 0;
 }
 
+/* the elastic interaction check (remesh_elastic.c) */
+static int elastic_check(void *t, fm_opt_arg *a, fm_error *err)
+{
+    (void)a, (void)err;
+    opts(t)->elastic = 1;
+    return 0;
+}
+
+static int elastic_fraction(void *t, fm_opt_arg *a, fm_error *err)
+{
+    return fm_opt_positive(a->name, a->val, &opts(t)->elastic_fraction, err);
+}
+
+static int elastic_radius(void *t, fm_opt_arg *a, fm_error *err)
+{
+    return fm_opt_positive(a->name, a->val, &opts(t)->elastic_radius, err);
+}
+
+static int elastic_medium(void *t, fm_opt_arg *a, fm_error *err)
+{
+    if (a->val && (!strcmp(a->val, "half") || !strcmp(a->val, "full"))) {
+        opts(t)->elastic_full_space = !strcmp(a->val, "full");
+        return 0;
+    }
+    return takes(a, "half or full", err);
+}
+
+static int shear_modulus(void *t, fm_opt_arg *a, fm_error *err)
+{
+    return fm_opt_positive(a->name, a->val, &opts(t)->elastic_mu, err);
+}
+
+static int poisson_ratio(void *t, fm_opt_arg *a, fm_error *err)
+{
+    if (fm_opt_positive(a->name, a->val, &opts(t)->elastic_nu, err))
+        return -1;
+    if (opts(t)->elastic_nu >= 0.5) {
+        fm_error_set(err, FM_ERR_INVALID, NULL, 0, "%s must be under 0.5", a->name);
+        return -1;
+    }
+    return 0;
+}
+
+static int stiffness_matrix(void *t, fm_opt_arg *a, fm_error *err)
+{
+    if (!a->val || !a->val[0])
+        return fm_opt_missing(a->name, err);
+    return set_string(t, FM_OPT_STIFFNESS_MATRIX, a->val, err);
+}
+
 /* Every option of a run in the command line's words; the repair options
  * follow (fm_repair_take_option). */
 static const fm_opt_spec table[] = {
@@ -248,6 +298,13 @@ static const fm_opt_spec table[] = {
     {"--kinematics-distance", NULL, 1, kinematics_distance},
     {"--kinematics-fallback", NULL, 1, kinematics_fallback},
     {"--eqsim-coords", NULL, 1, eqsim_coords},
+    {"--elastic-check", NULL, 0, elastic_check},
+    {"--elastic-fraction", NULL, 1, elastic_fraction},
+    {"--elastic-radius", NULL, 1, elastic_radius},
+    {"--elastic-medium", NULL, 1, elastic_medium},
+    {"--shear-modulus", NULL, 1, shear_modulus},
+    {"--poisson-ratio", NULL, 1, poisson_ratio},
+    {"--stiffness-matrix", NULL, 1, stiffness_matrix},
 };
 
 int fm_run_take_option(fm_run *run, int argc, const char *const *argv, int *i, fm_error *err)

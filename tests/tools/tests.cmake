@@ -314,6 +314,15 @@ if(FM_SYSTEM_PYTHON)
             ${CMAKE_CURRENT_BINARY_DIR}/tmp/connect_loop ${FM_SYSTEM_PYTHON})
   set_tests_properties(connect_loop PROPERTIES TIMEOUT 600)
 endif()
+# elastic_check: the elastic interaction check flags a planted near-overlap
+# (two faults 75 m apart over 6 km) and not a clean T-junction; the
+# stiffness matrices read back by numpy (issue 19).
+if(FM_SYSTEM_PYTHON)
+  add_test(NAME elastic_check
+    COMMAND bash ${FM_TOOLS}/elastic_check.sh $<TARGET_FILE:faultmesh_cli>
+            ${CMAKE_CURRENT_BINARY_DIR}/tmp/elastic_check ${FM_SYSTEM_PYTHON})
+  set_tests_properties(elastic_check PROPERTIES TIMEOUT 900)
+endif()
 # connect_cfm_puente_hills: the Puente Hills thrust system of the CFM,
 # connected at 1 km, passes check_connect --criteria (skipped without the CFM).
 add_test(NAME cfm_connect_puente_hills
