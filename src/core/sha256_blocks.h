@@ -6,6 +6,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* The 64 round constants K (sha256_k.c). */
+extern const uint32_t fm_sha256_k[64];
+
 /* 1 when fm_sha256_x86_blocks may be called (x86-64 with SHA-NI, SSSE3
  * and SSE4.1). */
 int fm_sha256_x86_available(void);
