@@ -11,6 +11,7 @@
 
 #include "elastic_internal.h"
 #include "fm_parallel.h"
+#include "fm_sort.h"
 
 #define CHUNK 256
 
@@ -47,36 +48,17 @@ void fm_elastic_options_default(fm_elastic_options *o)
     o->threads = 1;
 }
 
-typedef struct cell_ref {
-    int64_t ix, iy, iz;
-    size_t t;
-} cell_ref;
+/* A cell (ix, iy, iz) as one sort key, CELL_BITS bits an axis, each
+ * index shifted by one so that the neighbours of the first cell (-1) have
+ * keys too: the grid is then core's keyed sort and lower bound, as in
+ * carve.c and tile_grid.c. make_grid widens the cells to keep every index
+ * within the bits. */
+#define CELL_BITS 21
 
-static int cmp_cell(const void *pa, const void *pb)
+static uint64_t cell_key(int64_t ix, int64_t iy, int64_t iz)
 {
-    const cell_ref *a = pa, *b = pb;
-    if (a->ix != b->ix)
-        return a->ix < b->ix ? -1 : 1;
-    if (a->iy != b->iy)
-        return a->iy < b->iy ? -1 : 1;
-    if (a->iz != b->iz)
-        return a->iz < b->iz ? -1 : 1;
-    return (a->t > b->t) - (a->t < b->t);
-}
-
-/* The first entry of cells[0 .. n) at or after cell (ix, iy, iz). */
-static size_t cell_lower(const cell_ref *cells, size_t n, int64_t ix, int64_t iy, int64_t iz)
-{
-    cell_ref key = {ix, iy, iz, 0};
-    size_t lo = 0, hi = n;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (cmp_cell(&cells[mid], &key) < 0)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
+    return (uint64_t)(ix + 1) << (2 * CELL_BITS) | (uint64_t)(iy + 1) << CELL_BITS |
+           (uint64_t)(iz + 1);
 }
 
 /* One chunk's findings. */
@@ -95,7 +77,7 @@ typedef struct work {
     const int32_t *tag;
     size_t n;
     double *self;
-    const cell_ref *cells;
+    const fm_keyed *cells; /* cell_key of each usable element, sorted */
     size_t ncells;
     double cell, origin[3];
     chunk_out *out;
@@ -156,11 +138,10 @@ static void mutual_chunk(void *user, size_t k)
         for (int64_t dx = -1; dx <= 1; dx++)
             for (int64_t dy = -1; dy <= 1; dy++)
                 for (int64_t dz = -1; dz <= 1; dz++) {
-                    size_t q = cell_lower(w->cells, w->ncells, c[0] + dx, c[1] + dy, c[2] + dz);
-                    for (; q < w->ncells && w->cells[q].ix == c[0] + dx &&
-                           w->cells[q].iy == c[1] + dy && w->cells[q].iz == c[2] + dz;
-                         q++) {
-                        size_t j = w->cells[q].t;
+                    uint64_t key = cell_key(c[0] + dx, c[1] + dy, c[2] + dz);
+                    for (size_t q = fm_keyed_lower_bound(w->cells, w->ncells, key);
+                         q < w->ncells && w->cells[q].key == key; q++) {
+                        size_t j = w->cells[q].index;
                         if (j <= i || w->tag[j] == w->tag[i] || el[j].state != EL_OK)
                             continue;
                         double r = w->opt->radius * fmax(el[i].h, el[j].h), d2 = 0;
@@ -307,32 +288,44 @@ static el_elem *make_elements(const fm_elastic_input *in, fm_elastic_summary *s)
     return el;
 }
 
-/* The grid: every usable element under its cell, sorted. */
-static cell_ref *make_grid(work *w, size_t *ncells)
+/* The grid: every usable element under its cell, sorted by cell and
+ * within a cell by element (the order pairs are found in). */
+static fm_keyed *make_grid(work *w, size_t *ncells)
 {
-    double hmax = 0;
+    double hmax = 0, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int d = 0; d < 3; d++)
         w->origin[d] = INFINITY;
     for (size_t t = 0; t < w->n; t++)
         if (w->el[t].state == EL_OK) {
             hmax = fmax(hmax, w->el[t].h);
-            for (int d = 0; d < 3; d++)
+            for (int d = 0; d < 3; d++) {
                 w->origin[d] = fmin(w->origin[d], w->el[t].c[d]);
+                hi[d] = fmax(hi[d], w->el[t].c[d]);
+            }
         }
+    /* cells one search radius wide, wider only when the set spans more
+     * cells than a key holds (the radius itself is checked pair by pair) */
     w->cell = fmax(w->opt->radius * hmax, 1e-9);
-    cell_ref *cells = malloc((w->n + 1) * sizeof *cells);
+    for (int d = 0; d < 3; d++)
+        if (hi[d] > w->origin[d])
+            w->cell = fmax(w->cell, (hi[d] - w->origin[d]) / (double)((1 << CELL_BITS) - 4));
+    fm_keyed *cells = malloc((w->n + 1) * sizeof *cells);
     size_t m = 0;
     for (size_t t = 0; cells && t < w->n; t++)
         if (w->el[t].state == EL_OK)
-            cells[m++] = (cell_ref){cell_of(w, w->el[t].c[0], 0), cell_of(w, w->el[t].c[1], 1),
-                                    cell_of(w, w->el[t].c[2], 2), t};
-    if (cells)
-        qsort(cells, m, sizeof *cells, cmp_cell);
+            cells[m++] = (fm_keyed){cell_key(cell_of(w, w->el[t].c[0], 0),
+                                             cell_of(w, w->el[t].c[1], 1),
+                                             cell_of(w, w->el[t].c[2], 2)),
+                                    t};
+    if (cells && fm_sort_keyed(cells, m)) {
+        free(cells);
+        cells = NULL;
+    }
     *ncells = m;
     return cells;
 }
 
-static fm_status nomem(fm_elastic *e, el_elem *el, cell_ref *cells, fm_error *err)
+static fm_status nomem(fm_elastic *e, el_elem *el, fm_keyed *cells, fm_error *err)
 {
     free(el);
     free(cells);
@@ -379,7 +372,7 @@ fm_status fm_check_elastic(const fm_elastic_input *in, const fm_elastic_options 
     e->sum.self_wrong_sign = e->nwrong;
     if (!(e->sum.self_min <= e->sum.self_max))
         e->sum.self_min = e->sum.self_max = 0;
-    cell_ref *cells = make_grid(&w, &w.ncells);
+    fm_keyed *cells = make_grid(&w, &w.ncells);
     w.cells = cells;
     w.out = calloc(nchunks + 1, sizeof *w.out);
     if (!cells || !w.out) {
