@@ -16,9 +16,10 @@ void rp_elastic(FILE *fp, const fm_report *r)
     fprintf(fp, "<h3 id=\"elastic\">Elastic interaction: faults that act as one (%zu groups, "
                 "%zu element pairs)</h3>\n",
             r->neg, pairs);
-    fprintf(fp, "<p>Pairs of elements of two faults whose mutual stiffness (shear traction "
-                "along the rake per unit rake slip, half space) exceeds %g of the smaller "
-                "self-stiffness, by fault pair and junction (numbered as in the junction "
+    fprintf(fp, "<p>Pairs of elements of two faults whose coupling sqrt(|K<sub>ij</sub> "
+                "K<sub>ji</sub>| / (K<sub>ii</sub> K<sub>jj</sub>)) exceeds %g (K: shear "
+                "traction along the rake per unit rake slip; for elements of one size, the "
+                "mutual stiffness over the self-stiffness), by fault pair and junction (numbered as in the junction "
                 "table; none: the two faults have no junction). Elements are numbered from 1 "
                 "in the order of mesh.vtu. %zu elements have a self-stiffness of the wrong "
                 "sign.</p>\n",
