@@ -735,7 +735,8 @@ fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_ti
     for (size_t f = 0; !bad && f < nfaults; f++)
         bad = tile_fault_best(&tl, &w, (int32_t)f, order + start[f], start[f + 1] - start[f]) != 0;
     if (!bad)
-        bad = tile_fill_junctions(t, set, &sd) || tile_separate(t) || by_fault(t) ||
+        bad = tile_fill_junctions(t, set, &sd) || tile_separate(t) || by_fault(t) || tile_grow(t, set, &w) ||
+              by_fault(t) ||
               tile_measure(t, set, &sd, &w);
     free(w.stamp);
     free(w.list);

@@ -37,7 +37,7 @@ static double max_radius(const fm_tiles *t)
     return r;
 }
 
-static int tiles_meet(const fm_tile *a, const fm_tile *b)
+int tile_meet(const fm_tile *a, const fm_tile *b)
 {
     if (a->length <= 0 || b->length <= 0)
         return 0;
@@ -130,7 +130,7 @@ static int separate_pair(size_t j, void *user)
                    c->c0[c->i][2] - c->c0[j][2]};
     if (sqrt(fm_dot3(r, r)) > c->rad[c->i] + c->rad[j])
         return 0;
-    for (int round = 0; round < 8 && tiles_meet(a, b); round++) {
+    for (int round = 0; round < 8 && tile_meet(a, b); round++) {
         fm_tile ca, cb;
         double la = cut(a, b, &ca), lb = cut(b, a, &cb);
         if (la == INFINITY && lb == INFINITY)
@@ -140,7 +140,7 @@ static int separate_pair(size_t j, void *user)
         else
             *b = cb;
     }
-    if (tiles_meet(a, b)) {
+    if (tile_meet(a, b)) {
         /* nothing cuts them apart (one lies across the other's plane at
          * its centre): the smaller goes */
         fm_tile *gone = a->length * a->width <= b->length * b->width ? a : b;
@@ -184,7 +184,7 @@ static double cut_loss(const fm_tile *a, const fm_tile *b, int halves_dip)
     halve(a, halves_dip, h);
     double l = 0;
     for (int k = 0; k < 2; k++)
-        l += tiles_meet(&h[k], b) ? cut(&h[k], b, &o) : 0;
+        l += tile_meet(&h[k], b) ? cut(&h[k], b, &o) : 0;
     return l;
 }
 
@@ -192,7 +192,7 @@ static int mark_pair(size_t j, void *user)
 {
     split_ctx *c = user;
     fm_tile *a = &c->t->tile[c->i], *b = &c->t->tile[j];
-    if (j == c->i || a->fault == b->fault || c->mark[c->i] || !tiles_meet(a, b))
+    if (j == c->i || a->fault == b->fault || c->mark[c->i] || !tile_meet(a, b))
         return 0;
     double la = cut_loss(a, b, -1), lb = cut_loss(b, a, -1);
     if (la > lb)
@@ -332,7 +332,7 @@ static int count_meeting(size_t j, void *user)
 {
     near_ctx *c = user;
     const fm_tile *a = &c->t->tile[c->i], *b = &c->t->tile[j];
-    if (j > c->i && a->fault != b->fault && tiles_meet(a, b))
+    if (j > c->i && a->fault != b->fault && tile_meet(a, b))
         c->count++;
     return 0;
 }

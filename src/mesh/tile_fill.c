@@ -15,6 +15,42 @@
 #include "tile_internal.h"
 #include "fm_vec3.h"
 
+int tile_square(const double *x, const int32_t *tri, size_t k, int32_t f, const double c[3],
+                double s, const double level[3], fm_tile *out)
+{
+    const double *a = x + 3 * (size_t)tri[3 * k], *b = x + 3 * (size_t)tri[3 * k + 1],
+                 *cc = x + 3 * (size_t)tri[3 * k + 2];
+    double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double e2[3] = {cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]}, n[3];
+    fm_cross3(e1, e2, n);
+    double ln = sqrt(fm_dot3(n, n));
+    if (!(ln > 0))
+        return 0;
+    for (int d = 0; d < 3; d++)
+        n[d] /= ln;
+    /* the strike horizontal in the triangle's plane; on a level triangle,
+     * along level */
+    double st[3] = {-n[1], n[0], 0};
+    double ls = hypot(st[0], st[1]);
+    if (ls < 1e-9) {
+        st[0] = level[0];
+        st[1] = level[1];
+        ls = hypot(st[0], st[1]);
+        if (!(ls > 0))
+            return 0;
+    }
+    st[0] /= ls;
+    st[1] /= ls;
+    double dip[3];
+    tile_frame(st, n, dip);
+    fm_tile tl = {.fault = f, .triangle = (int32_t)k, .row = 1, .length = s, .width = s};
+    memcpy(tl.centre, c, sizeof tl.centre);
+    memcpy(tl.strike, st, sizeof st);
+    memcpy(tl.dip, dip, sizeof dip);
+    *out = tl;
+    return 1;
+}
+
 /* The filling tile of fault f at junction point p on the edge u-v of its
  * triangle k; 0 when that triangle has no plane. */
 static int make_fill(const double *x, const int32_t *tri, size_t k, int32_t f, const double p[3],
@@ -25,11 +61,6 @@ static int make_fill(const double *x, const int32_t *tri, size_t k, int32_t f, c
     double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
     double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]}, n[3];
     fm_cross3(e1, e2, n);
-    double ln = sqrt(fm_dot3(n, n));
-    if (!(ln > 0))
-        return 0;
-    for (int d = 0; d < 3; d++)
-        n[d] /= ln;
     const double *pu = x + 3 * (size_t)u, *pv = x + 3 * (size_t)v;
     double e[3] = {pv[0] - pu[0], pv[1] - pu[1], pv[2] - pu[2]}, in[3];
     fm_cross3(n, e, in);
@@ -39,29 +70,10 @@ static int make_fill(const double *x, const int32_t *tri, size_t k, int32_t f, c
     /* into the triangle: towards its centroid */
     double g[3] = {(a[0] + b[0] + c[0]) / 3 - p[0], (a[1] + b[1] + c[1]) / 3 - p[1],
                    (a[2] + b[2] + c[2]) / 3 - p[2]};
-    double sg = fm_dot3(in, g) < 0 ? -1 : 1;
-    /* the strike horizontal in the triangle's plane; on a level triangle,
-     * along the junction edge */
-    double st[3] = {-n[1], n[0], 0};
-    double ls = hypot(st[0], st[1]);
-    if (ls < 1e-9) {
-        st[0] = e[0];
-        st[1] = e[1];
-        ls = hypot(st[0], st[1]);
-        if (!(ls > 0))
-            return 0;
-    }
-    st[0] /= ls;
-    st[1] /= ls;
-    double dip[3];
-    tile_frame(st, n, dip);
-    fm_tile tl = {.fault = f, .triangle = (int32_t)k, .row = 1, .length = s, .width = s};
+    double sg = fm_dot3(in, g) < 0 ? -1 : 1, centre[3];
     for (int d = 0; d < 3; d++)
-        tl.centre[d] = p[d] + sg * in[d] / li * s / 2;
-    memcpy(tl.strike, st, sizeof st);
-    memcpy(tl.dip, dip, sizeof dip);
-    *out = tl;
-    return 1;
+        centre[d] = p[d] + sg * in[d] / li * s / 2;
+    return tile_square(x, tri, k, f, centre, s, e, out);
 }
 
 int tile_fill_junctions(fm_tiles *t, const fm_mesh *set, const tile_sides *sd)

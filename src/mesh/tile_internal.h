@@ -36,6 +36,19 @@ typedef struct tile_sides {
  * flatness over the surface tile_region finds for it); -1 when memory
  * runs out (tile_apart.c). */
 int tile_separate(fm_tiles *t);
+/* Whether two tiles meet, by the exact predicates on their triangles
+ * (tile_apart.c). */
+int tile_meet(const fm_tile *a, const fm_tile *b);
+/* Each tile's sides pushed out over the bare surface of its fault beside
+ * it, clear of other faults' tiles; the tiles in fault order (by_fault);
+ * -1 when memory runs out (tile_grow.c). */
+struct tile_walk;
+int tile_grow(fm_tiles *t, const fm_mesh *set, struct tile_walk *w);
+/* A square tile of fault f, side s, centred at c in the plane of
+ * triangle k, its strike level (along level[] on a level triangle); 0
+ * when the triangle has no plane (tile_fill.c). */
+int tile_square(const double *x, const int32_t *tri, size_t k, int32_t f, const double c[3],
+                double s, const double level[3], fm_tile *out);
 /* Tiles added for each fault at the junction points (where tile_measure
  * measures gaps) that none of its tiles comes within 0.4 of the size of;
  * -1 when memory runs out (tile_fill.c). */
@@ -148,6 +161,8 @@ typedef struct tile_grid {
 /* Cells of about reach over t's tiles as they are now; -1 when memory runs
  * out (free g->e either way). */
 int tile_grid_make(tile_grid *g, const fm_tiles *t, double reach);
+/* The same over n points, the i-th at base + i * stride bytes. */
+int tile_grid_make_points(tile_grid *g, const void *base, size_t stride, size_t n, double reach);
 /* Calls fn for every tile whose centre lies in a cell within reach of p,
  * until it returns non-zero. */
 typedef int (*tile_grid_fn)(size_t tile, void *user);
