@@ -24,7 +24,11 @@
  * the size that follows a slanted outline or junction (dropping those
  * standing past it, adding those over a bare wedge). Where a fault
  * reaches a junction only as a strip its rows miss, a tile of half the
- * size on the junction covers it.
+ * size on the junction covers it. Given its parts (sheets), a fault whose
+ * tiling comes over 3 % from its area is tiled part by part as well.
+ * Where the tiles still fall short of a fault's area (the rows' widths
+ * average their surface, a slanted junction leaves a staircase), they
+ * grow into the bare surface beside them and squares fill its wedges.
  *
  * What rectangles cannot do is measured rather than hidden: where the
  * tiles of two faults still meet (a tile's corner past the other fault's
@@ -57,6 +61,7 @@ typedef struct fm_tile {
     double width;      /* down dip, m */
     double flatness;   /* farthest the fault's surface under the tile lies from its plane, m */
     int shrunk;        /* cut back where it met another fault's tile */
+    int32_t part;      /* 0: the fault tiled whole; p + 1: its part p tiled on its own */
 } fm_tile;
 
 typedef struct fm_tile_fault {
@@ -102,6 +107,15 @@ typedef struct fm_tiles fm_tiles;
  * by row from the top, along each contour. */
 fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_tiles **out,
                           fm_error *err);
+/* The same, with part (NULL: none) giving per triangle the part of its
+ * fault it belongs to (a sheet: non-negative, small). A fault of several
+ * parts whose tiles, tiled whole, fall over 3 % short of or over its area
+ * (strands side by side, splays off a branch line, which one set of rows
+ * cannot follow) is also tiled part by part, in rows by depth, the parts
+ * kept apart as two faults are; whichever comes closer to its area is
+ * kept. */
+fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t nfaults,
+                                double size, fm_tiles **out, fm_error *err);
 void fm_tiles_destroy(fm_tiles *t);
 
 size_t fm_tiles_count(const fm_tiles *t);

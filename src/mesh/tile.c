@@ -51,6 +51,7 @@ typedef struct tiler {
     double size;
     double up[3];        /* the fault's (tile_fault_best) */
     int extra_rows;      /* added to the row count closest to the size */
+    int depth_only;      /* rows by depth only (a part of a fault, tile_fault_parts) */
     double rowdw;        /* the row's width down dip (tile_fault) */
     fm_tiles *out;
     /* one contour */
@@ -558,7 +559,7 @@ static int tile_fault_best(tiler *tl, tile_walk *w, int32_t f, const size_t *tri
     static const int extra[5] = {0, -1, 1, -2, 2};
     double g[3], atri = 0, best = INFINITY, bup[3];
     size_t first = t->n, nb = 0, cap = 0;
-    int ndir = 1 + fault_up(tl, tris, n, g);
+    int ndir = tl->depth_only ? 1 : 1 + fault_up(tl, tris, n, g);
     for (size_t i = 0; i < n; i++)
         atri += fm_triangle_area(tl->x + 3 * (size_t)tl->tri[3 * tris[i]],
                                  tl->x + 3 * (size_t)tl->tri[3 * tris[i] + 1],
@@ -617,6 +618,85 @@ static int tile_fault_best(tiler *tl, tile_walk *w, int32_t f, const size_t *tri
         bad = tile_push(t, keep + i, kb[i][0], kb[i][1], kb[i][2], (int)kb[i][3]);
     free(keep);
     free(kb);
+    return bad ? -1 : 0;
+}
+
+static double tiles_area(const fm_tiles *t, size_t first)
+{
+    double a = 0;
+    for (size_t i = first; i < t->n; i++)
+        a += t->tile[i].length * t->tile[i].width;
+    return a;
+}
+
+/* Fault f tiled whole (tile_fault_best) and, where that comes over 3 %
+ * from its area and it has several parts, part by part in rows by depth
+ * (nbr_part: nbr cut where the part changes), the closer to its area
+ * kept (fm_tiles_create_parts); -1 when memory runs out. */
+static int tile_fault_parts(tiler *tl, tile_walk *w, int32_t f, const size_t *tris, size_t n,
+                            const int32_t *part, const int32_t *nbr_part)
+{
+    fm_tiles *t = tl->out;
+    size_t first = t->n;
+    if (tile_fault_best(tl, w, f, tris, n))
+        return -1;
+    int several = 0;
+    for (size_t i = 1; part && i < n; i++)
+        several |= part[tris[i]] != part[tris[0]];
+    double atri = 0;
+    for (size_t i = 0; several && i < n; i++)
+        atri += fm_triangle_area(tl->x + 3 * (size_t)tl->tri[3 * tris[i]],
+                                 tl->x + 3 * (size_t)tl->tri[3 * tris[i] + 1],
+                                 tl->x + 3 * (size_t)tl->tri[3 * tris[i] + 2]);
+    double whole = atri > 0 ? fabs(tiles_area(t, first) / atri - 1) : 0;
+    if (!(whole > 0.03))
+        return 0;
+    size_t m = t->n - first, unrowed = t->stats.unrowed;
+    fm_tile *keep = malloc((m + 1) * sizeof *keep);
+    double(*kb)[4] = malloc((m + 1) * sizeof *kb), up[3];
+    fm_keyed *by = malloc((n + 1) * sizeof *by);
+    size_t *run = malloc((n + 1) * sizeof *run);
+    int bad = !keep || !kb || !by || !run;
+    if (!bad) {
+        memcpy(keep, t->tile + first, m * sizeof *keep);
+        memcpy(kb, t->band + first, m * sizeof *kb);
+        memcpy(up, t->up[f], sizeof up);
+        /* the triangles part by part, each part's in their order */
+        for (size_t i = 0; i < n; i++)
+            by[i] = (fm_keyed){(uint64_t)(uint32_t)part[tris[i]] << 32 | (uint64_t)i, tris[i]};
+        bad = fm_sort_keyed(by, n);
+    }
+    const int32_t *nbr0 = tl->nbr, *wnbr0 = w->nbr;
+    tl->nbr = w->nbr = nbr_part;
+    tl->depth_only = 1;
+    t->n = first;
+    for (size_t i = 0; !bad && i < n;) {
+        size_t j = i;
+        while (j < n && by[j].key >> 32 == by[i].key >> 32)
+            j++;
+        for (size_t k = i; k < j; k++)
+            run[k - i] = by[k].index;
+        size_t s0 = t->n;
+        bad = tile_fault_best(tl, w, f, run, j - i) != 0;
+        for (size_t k = s0; k < t->n; k++)
+            t->tile[k].part = (int32_t)(by[i].key >> 32) + 1;
+        i = j;
+    }
+    tl->nbr = nbr0;
+    w->nbr = wnbr0;
+    tl->depth_only = 0;
+    if (!bad && !(fabs(tiles_area(t, first) / atri - 1) < whole - 1e-3)) {
+        /* the whole tiling stays */
+        t->n = first;
+        t->stats.unrowed = unrowed;
+        memcpy(t->up[f], up, sizeof up);
+        for (size_t i = 0; !bad && i < m; i++)
+            bad = tile_push(t, keep + i, kb[i][0], kb[i][1], kb[i][2], (int)kb[i][3]);
+    }
+    free(keep);
+    free(kb);
+    free(by);
+    free(run);
     return bad ? -1 : 0;
 }
 
@@ -684,6 +764,12 @@ static int make_sides(const fm_mesh *set, tile_sides *sd, int32_t *nbr)
 fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_tiles **out,
                           fm_error *err)
 {
+    return fm_tiles_create_parts(set, NULL, nfaults, size, out, err);
+}
+
+fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t nfaults,
+                                double size, fm_tiles **out, fm_error *err)
+{
     *out = NULL;
     if (!(size > 0) || !isfinite(size))
         return fm_error_set(err, FM_ERR_INVALID, NULL, 0, "tile size must be positive");
@@ -732,8 +818,15 @@ fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_ti
                    .nbr = nbr, .stamp = calloc(nt + 1, sizeof(uint32_t)),
                    .list = malloc((nt + 1) * sizeof(int32_t))};
     bad = bad || !w.stamp || !w.list;
+    /* the sides across which the part changes cut too */
+    int32_t *nbr_part = part && !bad ? malloc((3 * nt + 1) * sizeof *nbr_part) : NULL;
+    bad = bad || (part && !nbr_part);
+    for (size_t i = 0; nbr_part && i < 3 * nt; i++)
+        nbr_part[i] = nbr[i] >= 0 && part[nbr[i]] == part[i / 3] ? nbr[i] : -1;
     for (size_t f = 0; !bad && f < nfaults; f++)
-        bad = tile_fault_best(&tl, &w, (int32_t)f, order + start[f], start[f + 1] - start[f]) != 0;
+        bad = tile_fault_parts(&tl, &w, (int32_t)f, order + start[f], start[f + 1] - start[f],
+                               part, nbr_part) != 0;
+    free(nbr_part);
     if (!bad)
         bad = tile_fill_junctions(t, set, &sd) || tile_separate(t) || by_fault(t) || tile_grow(t, set, &w) ||
               by_fault(t) ||

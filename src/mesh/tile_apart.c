@@ -124,7 +124,7 @@ static int separate_pair(size_t j, void *user)
 {
     sep_ctx *c = user;
     fm_tile *a = &c->t->tile[c->i], *b = &c->t->tile[j];
-    if (j <= c->i || a->fault == b->fault)
+    if (j <= c->i || tile_same_unit(a, b))
         return 0;
     double r[3] = {c->c0[c->i][0] - c->c0[j][0], c->c0[c->i][1] - c->c0[j][1],
                    c->c0[c->i][2] - c->c0[j][2]};
@@ -192,7 +192,7 @@ static int mark_pair(size_t j, void *user)
 {
     split_ctx *c = user;
     fm_tile *a = &c->t->tile[c->i], *b = &c->t->tile[j];
-    if (j == c->i || a->fault == b->fault || c->mark[c->i] || !tile_meet(a, b))
+    if (j == c->i || tile_same_unit(a, b) || c->mark[c->i] || !tile_meet(a, b))
         return 0;
     double la = cut_loss(a, b, -1), lb = cut_loss(b, a, -1);
     if (la > lb)
@@ -332,7 +332,7 @@ static int count_meeting(size_t j, void *user)
 {
     near_ctx *c = user;
     const fm_tile *a = &c->t->tile[c->i], *b = &c->t->tile[j];
-    if (j > c->i && a->fault != b->fault && tile_meet(a, b))
+    if (j > c->i && !tile_same_unit(a, b) && tile_meet(a, b))
         c->count++;
     return 0;
 }

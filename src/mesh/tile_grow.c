@@ -149,7 +149,7 @@ static int meets_other(size_t j, void *user)
 {
     grow_ctx *c = user;
     const fm_tile *a = c->tl, *b = &c->t->tile[j];
-    if (b->fault == a->fault)
+    if (tile_same_unit(a, b))
         return 0;
     double r[3] = {a->centre[0] - b->centre[0], a->centre[1] - b->centre[1],
                    a->centre[2] - b->centre[2]};
@@ -219,7 +219,7 @@ static int over_point(size_t j, void *user)
     double w;
     int inside;
     tile_distance(b, c->pt, &w, &inside);
-    if (inside && fabs(w) <= c->t->stats.size / 2) {
+    if (inside && fabs(w) <= COVER * c->t->stats.size) {
         c->hit = 1;
         return 1;
     }
@@ -227,7 +227,9 @@ static int over_point(size_t j, void *user)
 }
 
 /* Whether any of a 3 x 3 grid of points over square q lies over a tile
- * of the fault or a square added to it before. */
+ * of the fault or a square added to it before (within the normal distance
+ * a sample counts as covered at: a strand a few hundred metres beside
+ * this one does not hold it off). */
 static int over_own(grow_ctx *c, const fm_tile *q)
 {
     for (int a = 0; a < 3; a++)
@@ -241,7 +243,7 @@ static int over_own(grow_ctx *c, const fm_tile *q)
                 double w;
                 int inside;
                 tile_distance(&c->fill[j], c->pt, &w, &inside);
-                c->hit = inside && fabs(w) <= c->t->stats.size / 2;
+                c->hit = inside && fabs(w) <= COVER * c->t->stats.size;
             }
             if (c->hit)
                 return 1;

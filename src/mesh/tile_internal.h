@@ -36,6 +36,14 @@ typedef struct tile_sides {
  * flatness over the surface tile_region finds for it); -1 when memory
  * runs out (tile_apart.c). */
 int tile_separate(fm_tiles *t);
+/* Whether two tiles belong to one surface: of one fault, and of one
+ * part of it or tiled with it whole (part 0); tiles of different ones are
+ * kept apart. */
+static inline int tile_same_unit(const fm_tile *a, const fm_tile *b)
+{
+    return a->fault == b->fault && (a->part == b->part || !a->part || !b->part);
+}
+
 /* Whether two tiles meet, by the exact predicates on their triangles
  * (tile_apart.c). */
 int tile_meet(const fm_tile *a, const fm_tile *b);

@@ -37,10 +37,12 @@ double quad_rake_from(const fm_tile *tl, const double *a, const double *b, const
     return r <= -180 ? r + 360 : r;
 }
 
-fm_status write_quads(const remesh_cli *cli, const fm_faultset *fs, sim_attrs *sa,
+fm_status write_quads(const remesh_cli *cli, const fm_faultset *fs, const int32_t *sheet,
+                      sim_attrs *sa,
                       output_log *log, fm_error *err)
 {
-    fm_status st = fm_tiles_create(fs->mesh, fs->nfaults, cli->mesh.size, &sa->tiles, err);
+    fm_status st =
+        fm_tiles_create_parts(fs->mesh, sheet, fs->nfaults, cli->mesh.size, &sa->tiles, err);
     if (st != FM_OK)
         return st;
     const fm_tiles *t = sa->tiles;

@@ -16,11 +16,12 @@ struct output_log;
 double quad_rake_from(const fm_tile *tl, const double *a, const double *b, const double *c,
                       double rake);
 
-/* Tiles fs (sa->tiles, freed with sa) and writes the outputs cli->formats
- * asks for among mesh.vtu, mesh.msh, mesh.rsqsim and mesh.eqsim, each
- * noted in log; the first failure in *err. */
-fm_status write_quads(const struct remesh_cli *cli, const fm_faultset *fs, sim_attrs *sa,
-                      struct output_log *log, fm_error *err);
+/* Tiles fs (sa->tiles, freed with sa; sheet, per triangle, the sheet of
+ * its fault: its parts, fm_tiles_create_parts) and writes the outputs
+ * cli->formats asks for among mesh.vtu, mesh.msh, mesh.rsqsim and
+ * mesh.eqsim, each noted in log; the first failure in *err. */
+fm_status write_quads(const struct remesh_cli *cli, const fm_faultset *fs, const int32_t *sheet,
+                      sim_attrs *sa, struct output_log *log, fm_error *err);
 
 /* report.json's "rectangles". */
 void quads_json(fm_json *j, const sim_attrs *sa, const char *const *names);

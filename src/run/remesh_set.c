@@ -605,7 +605,7 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
         if (want_sim)
             side_start(&sim);
         if (cli->quads)
-            sst = write_quads(cli, &fs, sa, rs->outputs, &err);
+            sst = write_quads(cli, &fs, rs->sheet, sa, rs->outputs, &err);
         else if (fm & (FMT_ALL & ~(FMT_IGS | FMT_RSQSIM | FMT_EQSIM | FMT_HTML | FMT_NAMES)))
             st = fm_faultset_write_all(&fs, &out, cli->jobs, &err);
         if (fm & FMT_IGS)

@@ -174,6 +174,80 @@ static void test_slanted_junction_keeps_area(void)
     }
 }
 
+/* One fault of two parts (sheets) forking from a vertical branch line,
+ * nothing beyond it: part 0 the plane x = 0, part 1 a plane at angle a
+ * from it, each 10 km long and deep, meshed at 500 m sharing the branch
+ * line's nodes (as the CFM's Ocotillo fault, whose strands fork at about
+ * 25 degrees, 0.78 of its area at 2 km). Tiled whole, a row's contour runs
+ * up one strand, round the fork and down the other, and its tiles cut the
+ * corner: 0.93 and 0.88 of the area at a = 0.25 and sizes of 1.5 and
+ * 3 km. Tiled part by part, each strand keeps its area, and the two
+ * strands' tiles are kept apart as two faults' are. */
+static fm_mesh *fork_mesh(double a, int32_t *part)
+{
+    fm_mesh *m = fm_mesh_create();
+    const int ns = 20, nz = 20;
+    for (int k = 0; k <= nz; k++)
+        for (int i = 0; i <= ns; i++)
+            fm_mesh_add_vertex(m, 0, 500.0 * i, -500.0 * k);
+    int32_t base = (int32_t)fm_mesh_nvertices(m);
+    for (int k = 0; k <= nz; k++)
+        for (int i = 1; i <= ns; i++)
+            fm_mesh_add_vertex(m, 500.0 * i * sin(a), 500.0 * i * cos(a), -500.0 * k);
+    size_t np = 0;
+    for (int k = 0; k < nz; k++)
+        for (int i = 0; i < ns; i++) {
+            int32_t p = k * (ns + 1) + i, q = p + 1, r = p + ns + 1, s = r + 1;
+            fm_mesh_add_triangle(m, p, q, s, 0);
+            fm_mesh_add_triangle(m, p, s, r, 0);
+            /* column 0 of part 1 is the branch line, part 0's */
+            int32_t p1 = i == 0 ? k * (ns + 1) : base + k * ns + i - 1;
+            int32_t r1 = i == 0 ? (k + 1) * (ns + 1) : base + (k + 1) * ns + i - 1;
+            int32_t q1 = base + k * ns + i, s1 = base + (k + 1) * ns + i;
+            fm_mesh_add_triangle(m, p1, q1, s1, 0);
+            fm_mesh_add_triangle(m, p1, s1, r1, 0);
+            part[np++] = 0;
+            part[np++] = 0;
+            part[np++] = 1;
+            part[np++] = 1;
+        }
+    return m;
+}
+
+static void test_fork_tiled_by_parts(void)
+{
+    const double a[2] = {0.6, 0.25}, size[2] = {1500, 3000};
+    int32_t *part = malloc(1600 * sizeof *part);
+    CHECK(part != NULL);
+    for (int k = 0; part && k < 4; k++) {
+        fm_mesh *m = fork_mesh(a[k / 2], part);
+        CHECK_EQ(fm_mesh_ntriangles(m), 1600);
+        fm_tiles *t = NULL;
+        CHECK_EQ(fm_tiles_create_parts(m, part, 1, size[k % 2], &t, NULL), FM_OK);
+        const fm_tile_fault *tf = fm_tiles_fault(t, 0);
+        CHECK(fabs(tf->area_tiles / tf->area_triangles - 1) <= 0.03);
+        CHECK_EQ(fm_tiles_stats(t)->meeting, 0);
+        /* each tile of one part, and both parts tiled */
+        int seen[3] = {0, 0, 0};
+        for (size_t i = 0; i < fm_tiles_count(t); i++) {
+            int32_t p = fm_tiles_get(t, i)->part;
+            CHECK(p >= 0 && p <= 2);
+            seen[p >= 0 && p <= 2 ? p : 0] = 1;
+        }
+        CHECK(seen[1] && seen[2]);
+        fm_tiles_destroy(t);
+        /* a fault of one part is tiled whole, as without parts */
+        for (size_t i = 0; i < 1600; i++)
+            part[i] = 7;
+        CHECK_EQ(fm_tiles_create_parts(m, part, 1, size[k % 2], &t, NULL), FM_OK);
+        for (size_t i = 0; i < fm_tiles_count(t); i++)
+            CHECK_EQ(fm_tiles_get(t, i)->part, 0);
+        fm_tiles_destroy(t);
+        fm_mesh_destroy(m);
+    }
+    free(part);
+}
+
 /* Fault 1 reaching fault 0 only as a strip 500 m tall and 3 km long from
  * its body (the tee's fault 1 with its triangles below 500 m gone for
  * x < 3 km): its rows' contours pass below the strip or leave it to
@@ -432,7 +506,8 @@ static void test_bad_input(void)
 }
 
 FM_TEST_MAIN(FM_CASE(test_planar_rows_and_columns), FM_CASE(test_curved_area),
-             FM_CASE(test_tee_junction), FM_CASE(test_slanted_junction_keeps_area), FM_CASE(test_crossing_faults_cut_apart),
+             FM_CASE(test_tee_junction), FM_CASE(test_slanted_junction_keeps_area),
+             FM_CASE(test_fork_tiled_by_parts), FM_CASE(test_crossing_faults_cut_apart),
              FM_CASE(test_climbing_top_edge), FM_CASE(test_valley_in_top_edge),
              FM_CASE(test_detachment_tiles_on_it), FM_CASE(test_ramp_into_flat),
              FM_CASE(test_thin_strip_to_junction), FM_CASE(test_slanted_edges),
