@@ -65,19 +65,23 @@ typedef struct grow_ctx {
     size_t nfill, fcap, fill_first; /* this fault's from fill_first on */
 } grow_ctx;
 
-static int covers(size_t j, void *user)
+/* Whether tile b stands over point p: p projects into it, within the
+ * normal distance a sample counts as covered at. */
+static int stands_over(const grow_ctx *c, const fm_tile *b, const double p[3])
 {
-    grow_ctx *c = user;
-    const fm_tile *b = &c->t->tile[c->first + j];
-    const sample *sp = &c->s[c->ns];
     double w;
     int inside;
-    tile_distance(b, sp->p, &w, &inside);
-    if (inside && fabs(w) <= COVER * c->t->stats.size) {
-        c->hit = 1;
-        return 1;
-    }
-    return 0;
+    tile_distance(b, p, &w, &inside);
+    return inside && fabs(w) <= COVER * c->t->stats.size;
+}
+
+/* Grid callbacks over the fault's tiles (j from c->first): whether one
+ * stands over c->pt. */
+static int over_point(size_t j, void *user)
+{
+    grow_ctx *c = user;
+    c->hit = stands_over(c, &c->t->tile[c->first + j], c->pt);
+    return c->hit;
 }
 
 /* The fault's surface sampled, the samples a tile of it covers dropped. */
@@ -120,8 +124,9 @@ static int sample_fault(grow_ctx *c, const fm_mesh *set, const size_t *tris, siz
                     sp->area = w;
                     sp->tri = (int32_t)tris[i];
                     sp->taken = 0;
+                    memcpy(c->pt, sp->p, sizeof c->pt);
                     c->hit = 0;
-                    tile_grid_near(&c->own, sp->p, c->own_reach, covers, c);
+                    tile_grid_near(&c->own, c->pt, c->own_reach, over_point, c);
                     if (!c->hit)
                         c->ns++;
                 }
@@ -212,20 +217,6 @@ static fm_tile grown(const fm_tile *a, int k, double e)
     return g;
 }
 
-static int over_point(size_t j, void *user)
-{
-    grow_ctx *c = user;
-    const fm_tile *b = &c->t->tile[c->first + j];
-    double w;
-    int inside;
-    tile_distance(b, c->pt, &w, &inside);
-    if (inside && fabs(w) <= COVER * c->t->stats.size) {
-        c->hit = 1;
-        return 1;
-    }
-    return 0;
-}
-
 /* Whether any of a 3 x 3 grid of points over square q lies over a tile
  * of the fault or a square added to it before (within the normal distance
  * a sample counts as covered at: a strand a few hundred metres beside
@@ -239,12 +230,8 @@ static int over_own(grow_ctx *c, const fm_tile *q)
                 c->pt[d] = q->centre[d] + da * q->strike[d] + db * q->dip[d];
             c->hit = 0;
             tile_grid_near(&c->own, c->pt, c->own_reach, over_point, c);
-            for (size_t j = c->fill_first; j < c->nfill && !c->hit; j++) {
-                double w;
-                int inside;
-                tile_distance(&c->fill[j], c->pt, &w, &inside);
-                c->hit = inside && fabs(w) <= COVER * c->t->stats.size;
-            }
+            for (size_t j = c->fill_first; j < c->nfill && !c->hit; j++)
+                c->hit = stands_over(c, &c->fill[j], c->pt);
             if (c->hit)
                 return 1;
         }
@@ -310,10 +297,7 @@ static double grow_side(grow_ctx *c, size_t i, int k, reach_at **buf, size_t *bc
 static int take(size_t j, void *user)
 {
     grow_ctx *c = user;
-    double w;
-    int inside;
-    tile_distance(c->tl, c->s[j].p, &w, &inside);
-    if (inside && fabs(w) <= COVER * c->t->stats.size)
+    if (stands_over(c, c->tl, c->s[j].p))
         c->s[j].taken = 1;
     return 0;
 }
