@@ -49,7 +49,8 @@ typedef struct grow_ctx {
     sample *s;
     size_t ns, cap;
     tile_grid own;   /* the fault's tiles, as separated */
-    double own_reach;
+    double own_rmax;  /* the fault's largest tile radius as separated */
+    double own_reach; /* as grown */
     tile_grid samp;  /* its samples */
     tile_grid all;   /* every tile, as separated */
     double reach;    /* for all */
@@ -82,6 +83,14 @@ static int over_point(size_t j, void *user)
     grow_ctx *c = user;
     c->hit = stands_over(c, &c->t->tile[c->first + j], c->pt);
     return c->hit;
+}
+
+static int take(size_t j, void *user)
+{
+    grow_ctx *c = user;
+    if (stands_over(c, c->tl, c->s[j].p))
+        c->s[j].taken = 1;
+    return 0;
 }
 
 /* The fault's surface sampled, the samples a tile of it covers dropped. */
@@ -124,13 +133,27 @@ static int sample_fault(grow_ctx *c, const fm_mesh *set, const size_t *tris, siz
                     sp->area = w;
                     sp->tri = (int32_t)tris[i];
                     sp->taken = 0;
-                    memcpy(c->pt, sp->p, sizeof c->pt);
-                    c->hit = 0;
-                    tile_grid_near(&c->own, c->pt, c->own_reach, over_point, c);
-                    if (!c->hit)
-                        c->ns++;
+                    c->ns++;
                 }
     }
+    /* each tile marks the samples it stands over (a point a tile stands
+     * over lies within its radius of its centre), which leave */
+    if (!c->ns)
+        return 0;
+    if (tile_grid_make_points(&c->samp, c->s[0].p, sizeof *c->s, c->ns, c->t->stats.size))
+        return -1;
+    for (size_t i = c->first; i < c->last; i++) {
+        c->tl = &c->t->tile[i];
+        tile_grid_near(&c->samp, c->tl->centre, 0.5 * hypot(c->tl->length, c->tl->width), take,
+                       c);
+    }
+    free(c->samp.e);
+    c->samp.e = NULL;
+    size_t m = 0;
+    for (size_t i = 0; i < c->ns; i++)
+        if (!c->s[i].taken)
+            c->s[m++] = c->s[i];
+    c->ns = m;
     return 0;
 }
 
@@ -294,13 +317,6 @@ static double grow_side(grow_ctx *c, size_t i, int k, reach_at **buf, size_t *bc
     return 0;
 }
 
-static int take(size_t j, void *user)
-{
-    grow_ctx *c = user;
-    if (stands_over(c, c->tl, c->s[j].p))
-        c->s[j].taken = 1;
-    return 0;
-}
 
 /* Squares of half, a quarter and an eighth of the size, on bare samples
  * in turn while the fault's tiles fall short of its area: where a
@@ -365,11 +381,14 @@ static int grow_fault(grow_ctx *c, const fm_mesh *set, const size_t *tris, size_
     double H = c->t->stats.size, rmax = 0;
     for (size_t i = c->first; i < c->last; i++)
         rmax = fmax(rmax, 0.5 * hypot(c->t->tile[i].length, c->t->tile[i].width));
+    /* cells of the largest tile's radius: a point a tile stands over lies
+     * within it of the tile's centre, until the tiles grow */
+    c->own_rmax = fmax(rmax, H / 4);
     c->own_reach = 2 * fmax(rmax, 1.1 * H) + H;
     c->fill_first = c->nfill;
     c->own.e = c->samp.e = NULL;
     int bad = tile_grid_make_points(&c->own, c->t->tile[c->first].centre, sizeof *c->t->tile,
-                                    c->last - c->first, c->own_reach) ||
+                                    c->last - c->first, c->own_rmax) ||
               sample_fault(c, set, tris, n);
     if (!bad && c->ns)
         bad = tile_grid_make_points(&c->samp, c->s[0].p, sizeof *c->s, c->ns, H);
