@@ -7,14 +7,18 @@
  * wide, that no tile covers (on the whole CFM at 2 km, 31 faults lost over
  * 3 % of their area to them). Each fault's surface is sampled on a
  * triangular grid of about a sixth of the size; the samples no tile of the
- * fault stands over are the bare surface. Then each tile in turn pushes
- * each of its four sides out as far as the bare surface beyond it reaches
- * (up to half the size, the tile staying under 1.5 times the size), where
- * that surface lies within the flatness bound of the tile's plane and
- * fills most of the strip, and not into another fault's tile (by the same
- * exact test as tile_separate; halved until it does not). The samples a
- * grown tile stands over are no longer bare, so two tiles never grow into
- * the same strip. */
+ * fault stands over are the bare surface. While the fault's tiles cover
+ * less than its area, each tile in turn pushes each of its four sides out
+ * as far as the bare surface beyond it reaches (up to half the size, the
+ * tile staying under 1.5 times the size), where that surface lies within
+ * the flatness bound of the tile's plane and fills half the strip or
+ * more, the surface the grown tile stands for lies no farther from its
+ * plane than before, and it runs into no other fault's tile (by the same
+ * exact test as tile_separate; halved until it does not). Then squares
+ * fill the wedges no side could grow into. The samples a grown tile or a
+ * square stands over are no longer bare, so two never take the same
+ * strip; and no fault's tiles grow past its area, since where tiles lean
+ * away from a bending surface the samples under them count as bare. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,13 +28,11 @@
 
 /* Sample spacing, as a fraction of the size. */
 #define SPACING (1.0 / 6)
-/* Share of a strip the bare samples under it must fill: half, so that
- * a side grown across a wedge of bare surface (an outline or junction
- * running at a slant to it) stands past the edge by as much as it
- * covers, as a row's width averages its surface (tile.c); and of a
- * square. */
+/* Share of a strip (or a square) the bare samples under it must fill:
+ * half, so that a side grown across a wedge of bare surface (an outline
+ * or junction running at a slant to it) stands past the edge by as much
+ * as it covers, as a row's width averages its surface (tile.c). */
 #define FILL 0.5
-#define FILL_SQUARE 0.5
 /* Normal distance within which a sample lies under a tile (as covering
  * it) and, for growing, within the flatness bound of tile_fit_planes. */
 #define COVER (1.0 / 4)
@@ -56,7 +58,6 @@ typedef struct grow_ctx {
     double reach;    /* for all */
     /* one query's findings */
     const fm_tile *tl;
-    int side;
     size_t *cand;
     size_t nc, ccap;
     int hit;
@@ -351,7 +352,7 @@ static int fill_bare(grow_ctx *c, const fm_mesh *set, double atri, double atiles
                 if (!sp->taken && inside && fabs(w) <= FLAT * H)
                     bare += sp->area;
             }
-            if (bare < FILL_SQUARE * sz * sz || over_own(c, &sq) ||
+            if (bare < FILL * sz * sz || over_own(c, &sq) ||
                 tile_flat_as_is(c->w, &sq) > FLAT * H)
                 continue;
             c->tl = &sq;
