@@ -113,9 +113,10 @@ fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_ti
  * (strands side by side, splays off a branch line, which one set of rows
  * cannot follow) is also tiled part by part, in rows by depth, the parts
  * kept apart as two faults are; whichever comes closer to its area is
- * kept. */
+ * kept. The faults are tiled on up to jobs threads, with the same tiles
+ * for any number. */
 fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t nfaults,
-                                double size, fm_tiles **out, fm_error *err);
+                                double size, int jobs, fm_tiles **out, fm_error *err);
 void fm_tiles_destroy(fm_tiles *t);
 
 size_t fm_tiles_count(const fm_tiles *t);

@@ -1,9 +1,11 @@
 /* Rectangular elements: rows by down-dip distance, columns along each
  * row's middle contour (fm_tile.h). */
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "fm_parallel.h"
 #include "tile_internal.h"
 #include "fm_vec3.h"
 
@@ -700,6 +702,125 @@ static int tile_fault_parts(tiler *tl, tile_walk *w, int32_t f, const size_t *tr
     return bad ? -1 : 0;
 }
 
+/* One thread's means to tile a fault: its own scratch (stamps per
+ * triangle, contour buffers) and an fm_tiles of its own that the fault's
+ * tiles go to, sharing the set's per-fault row directions (each fault
+ * writes only its own). */
+typedef struct tile_scratch {
+    tiler tl;
+    tile_walk w;
+    fm_tiles out;
+} tile_scratch;
+
+typedef struct fault_tiling {
+    fm_tile *tile;
+    double (*band)[4];
+    size_t n, unrowed;
+} fault_tiling;
+
+typedef struct tile_par {
+    tile_scratch *sc;
+    int *idle;
+    int nidle;
+    pthread_mutex_t mu;
+    const size_t *order, *start;
+    const int32_t *part, *nbr_part;
+    fault_tiling *res; /* per fault */
+    int bad;
+} tile_par;
+
+/* Fault f tiled on whichever scratch is idle; what it gets does not depend
+ * on which, nor on the other faults. */
+static void tile_one_fault(void *user, size_t f)
+{
+    tile_par *p = user;
+    pthread_mutex_lock(&p->mu);
+    int k = p->idle[--p->nidle], bad = p->bad;
+    pthread_mutex_unlock(&p->mu);
+    tile_scratch *s = &p->sc[k];
+    if (!bad) {
+        s->out.n = 0;
+        s->out.stats.unrowed = 0;
+        bad = tile_fault_parts(&s->tl, &s->w, (int32_t)f, p->order + p->start[f],
+                               p->start[f + 1] - p->start[f], p->part, p->nbr_part) != 0;
+        fault_tiling *r = &p->res[f];
+        r->n = s->out.n;
+        r->unrowed = s->out.stats.unrowed;
+        if (!bad && r->n) {
+            r->tile = malloc(r->n * sizeof *r->tile);
+            r->band = malloc(r->n * sizeof *r->band);
+            bad = !r->tile || !r->band;
+            if (!bad) {
+                memcpy(r->tile, s->out.tile, r->n * sizeof *r->tile);
+                memcpy(r->band, s->out.band, r->n * sizeof *r->band);
+            }
+        }
+    }
+    pthread_mutex_lock(&p->mu);
+    p->idle[p->nidle++] = k;
+    p->bad |= bad;
+    pthread_mutex_unlock(&p->mu);
+}
+
+/* Every fault tiled (tile_fault_parts) on up to jobs threads, the tiles
+ * then taken in fault order; -1 when memory runs out. */
+static int tile_faults(fm_tiles *t, const tiler *proto, const tile_walk *wproto, size_t nt,
+                       const size_t *order, const size_t *start, const int32_t *part,
+                       const int32_t *nbr_part, int jobs)
+{
+    int ns = jobs > 1 ? jobs : 1;
+    if ((size_t)ns > t->nfaults)
+        ns = t->nfaults > 0 ? (int)t->nfaults : 1;
+    tile_par p = {.sc = calloc((size_t)ns, sizeof *p.sc), .idle = malloc((size_t)ns * sizeof(int)),
+                  .order = order, .start = start, .part = part, .nbr_part = nbr_part,
+                  .res = calloc(t->nfaults + 1, sizeof *p.res)};
+    int bad = !p.sc || !p.idle || !p.res;
+    for (int k = 0; !bad && k < ns; k++) {
+        tile_scratch *s = &p.sc[k];
+        s->tl = (tiler){.x = proto->x, .tri = proto->tri, .nbr = proto->nbr,
+                        .stamp = calloc(nt + 1, sizeof(int32_t)), .size = proto->size,
+                        .out = &s->out};
+        s->w = *wproto;
+        s->w.stamp = calloc(nt + 1, sizeof(uint32_t));
+        s->w.list = malloc((nt + 1) * sizeof(int32_t));
+        s->out.nfaults = t->nfaults;
+        s->out.up = t->up;
+        s->out.stats.size = t->stats.size;
+        bad = !s->tl.stamp || !s->w.stamp || !s->w.list;
+        p.idle[p.nidle++] = k;
+    }
+    if (!bad) {
+        pthread_mutex_init(&p.mu, NULL);
+        fm_parallel_for(t->nfaults, ns, tile_one_fault, &p, NULL, NULL, 0, t->nfaults);
+        pthread_mutex_destroy(&p.mu);
+        bad = p.bad;
+    }
+    for (size_t f = 0; p.res && f < t->nfaults; f++) {
+        fault_tiling *r = &p.res[f];
+        t->stats.unrowed += r->unrowed;
+        for (size_t i = 0; !bad && i < r->n; i++)
+            bad = tile_push(t, &r->tile[i], r->band[i][0], r->band[i][1], r->band[i][2],
+                            (int)r->band[i][3]);
+        free(r->tile);
+        free(r->band);
+    }
+    for (int k = 0; p.sc && k < ns; k++) {
+        tile_scratch *s = &p.sc[k];
+        free(s->tl.stamp);
+        free(s->tl.pt);
+        free(s->tl.seg);
+        free(s->tl.s);
+        free(s->w.stamp);
+        free(s->w.list);
+        free(s->out.tile);
+        free(s->out.band);
+    }
+    free(p.sc);
+    free(p.idle);
+    free(p.res);
+    return bad ? -1 : 0;
+}
+
 /* The tiles in fault order, each fault's in the order they were made (a
  * split tile's second half comes after the others); -1 when memory runs
  * out. */
@@ -764,11 +885,11 @@ static int make_sides(const fm_mesh *set, tile_sides *sd, int32_t *nbr)
 fm_status fm_tiles_create(const fm_mesh *set, size_t nfaults, double size, fm_tiles **out,
                           fm_error *err)
 {
-    return fm_tiles_create_parts(set, NULL, nfaults, size, out, err);
+    return fm_tiles_create_parts(set, NULL, nfaults, size, 1, out, err);
 }
 
 fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t nfaults,
-                                double size, fm_tiles **out, fm_error *err)
+                                double size, int jobs, fm_tiles **out, fm_error *err)
 {
     *out = NULL;
     if (!(size > 0) || !isfinite(size))
@@ -782,12 +903,12 @@ fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t 
                                 nfaults ? nfaults - 1 : 0);
     fm_tiles *t = calloc(1, sizeof *t);
     int32_t *nbr = malloc((3 * nt + 1) * sizeof *nbr);
-    int32_t *stamp = calloc(nt + 1, sizeof *stamp);
     size_t *start = calloc(nfaults + 2, sizeof *start), *order = malloc((nt + 1) * sizeof *order);
     tile_sides sd = {0};
-    tiler tl = {.x = fm_mesh_vertices(set), .tri = fm_mesh_triangles(set),
-                .nbr = nbr, .stamp = stamp, .size = size, .out = t};
-    int bad = !t || !nbr || !stamp || !start || !order;
+    /* what every fault's tiler shares (tile_faults) */
+    tiler tl = {.x = fm_mesh_vertices(set), .tri = fm_mesh_triangles(set), .nbr = nbr,
+                .size = size, .out = t};
+    int bad = !t || !nbr || !start || !order;
     if (!bad) {
         t->nfaults = nfaults;
         t->fault = calloc(nfaults + 1, sizeof *t->fault);
@@ -823,9 +944,8 @@ fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t 
     bad = bad || (part && !nbr_part);
     for (size_t i = 0; nbr_part && i < 3 * nt; i++)
         nbr_part[i] = nbr[i] >= 0 && part[nbr[i]] == part[i / 3] ? nbr[i] : -1;
-    for (size_t f = 0; !bad && f < nfaults; f++)
-        bad = tile_fault_parts(&tl, &w, (int32_t)f, order + start[f], start[f + 1] - start[f],
-                               part, nbr_part) != 0;
+    if (!bad)
+        bad = tile_faults(t, &tl, &w, nt, order, start, part, nbr_part, jobs);
     free(nbr_part);
     if (!bad)
         bad = tile_fill_junctions(t, set, &sd) || tile_separate(t) || by_fault(t) || tile_grow(t, set, &w) ||
@@ -838,14 +958,10 @@ fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t 
         t->band = NULL;
     }
     free(nbr);
-    free(stamp);
     free(start);
     free(order);
     free(sd.side);
     free(sd.junction);
-    free(tl.pt);
-    free(tl.seg);
-    free(tl.s);
     if (bad) {
         fm_tiles_destroy(t);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");

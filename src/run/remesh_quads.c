@@ -42,7 +42,8 @@ fm_status write_quads(const remesh_cli *cli, const fm_faultset *fs, const int32_
                       output_log *log, fm_error *err)
 {
     fm_status st =
-        fm_tiles_create_parts(fs->mesh, sheet, fs->nfaults, cli->mesh.size, &sa->tiles, err);
+        fm_tiles_create_parts(fs->mesh, sheet, fs->nfaults, cli->mesh.size, cli->jobs,
+                              &sa->tiles, err);
     if (st != FM_OK)
         return st;
     const fm_tiles *t = sa->tiles;

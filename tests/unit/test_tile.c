@@ -147,6 +147,18 @@ static void test_tee_junction(void)
  * Ocotillo 22 %). The tiles grow into the strips and squares fill the
  * wedges, so each fault keeps its area within 3 %, the tiles still
  * apart. */
+/* Field by field (the struct's padding is not its value). */
+static int same_tile(const fm_tile *a, const fm_tile *b)
+{
+    int same = a->fault == b->fault && a->triangle == b->triangle && a->row == b->row &&
+               a->length == b->length && a->width == b->width && a->flatness == b->flatness &&
+               a->shrunk == b->shrunk && a->part == b->part;
+    for (int d = 0; d < 3; d++)
+        same &= a->centre[d] == b->centre[d] && a->strike[d] == b->strike[d] &&
+                a->dip[d] == b->dip[d];
+    return same;
+}
+
 static void test_slanted_junction_keeps_area(void)
 {
     /* each failed without the growing (fault 1 at 0.963, 0.948, 0.948 and
@@ -169,6 +181,13 @@ static void test_slanted_junction_keeps_area(void)
             const fm_tile_fault *tf = fm_tiles_fault(t, (size_t)f);
             CHECK(fabs(tf->area_tiles / tf->area_triangles - 1) <= 0.03);
         }
+        /* the faults tiled on three threads: the same tiles */
+        fm_tiles *t3 = NULL;
+        CHECK_EQ(fm_tiles_create_parts(m, NULL, 2, c[k].size, 3, &t3, NULL), FM_OK);
+        CHECK_EQ(fm_tiles_count(t3), fm_tiles_count(t));
+        for (size_t i = 0; i < fm_tiles_count(t) && i < fm_tiles_count(t3); i++)
+            CHECK(same_tile(fm_tiles_get(t, i), fm_tiles_get(t3, i)));
+        fm_tiles_destroy(t3);
         fm_tiles_destroy(t);
         fm_mesh_destroy(m);
     }
@@ -223,7 +242,7 @@ static void test_fork_tiled_by_parts(void)
         fm_mesh *m = fork_mesh(a[k / 2], part);
         CHECK_EQ(fm_mesh_ntriangles(m), 1600);
         fm_tiles *t = NULL;
-        CHECK_EQ(fm_tiles_create_parts(m, part, 1, size[k % 2], &t, NULL), FM_OK);
+        CHECK_EQ(fm_tiles_create_parts(m, part, 1, size[k % 2], 1, &t, NULL), FM_OK);
         const fm_tile_fault *tf = fm_tiles_fault(t, 0);
         CHECK(fabs(tf->area_tiles / tf->area_triangles - 1) <= 0.03);
         CHECK_EQ(fm_tiles_stats(t)->meeting, 0);
@@ -239,7 +258,7 @@ static void test_fork_tiled_by_parts(void)
         /* a fault of one part is tiled whole, as without parts */
         for (size_t i = 0; i < 1600; i++)
             part[i] = 7;
-        CHECK_EQ(fm_tiles_create_parts(m, part, 1, size[k % 2], &t, NULL), FM_OK);
+        CHECK_EQ(fm_tiles_create_parts(m, part, 1, size[k % 2], 1, &t, NULL), FM_OK);
         for (size_t i = 0; i < fm_tiles_count(t); i++)
             CHECK_EQ(fm_tiles_get(t, i)->part, 0);
         fm_tiles_destroy(t);
