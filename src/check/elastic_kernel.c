@@ -7,20 +7,9 @@
 #include "elastic_internal.h"
 #include "fm_closest.h"
 #include "fm_elastic.h"
+#include "fm_vec3.h"
 
 #define DEG (3.14159265358979323846 / 180.0)
-
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double a[3], const double b[3], double o[3])
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 int el_elem_make(const fm_mesh *m, size_t t, double strike, double dip, double rake,
                  el_elem *e)
@@ -47,8 +36,8 @@ int el_elem_make(const fm_mesh *m, size_t t, double strike, double dip, double r
         ab[d] = e->tri[1][d] - e->tri[0][d];
         ac[d] = e->tri[2][d] - e->tri[0][d];
     }
-    cross3(ab, ac, nn);
-    double area = sqrt(dot3(nn, nn)) / 2;
+    fm_cross3(ab, ac, nn);
+    double area = sqrt(fm_dot3(nn, nn)) / 2;
     e->h = sqrt(area * 4 / sqrt(3.0));
     if (!below)
         return e->state = EL_ABOVE;
@@ -68,16 +57,16 @@ int el_elem_make(const fm_mesh *m, size_t t, double strike, double dip, double r
         e->u[d] = -down[d];
         e->r[d] = cos(pr) * e->s[d] + sin(pr) * e->u[d];
     }
-    cross3(down, e->s, e->n);
+    fm_cross3(down, e->s, e->n);
     /* The dislocation's slip is the displacement of its +n side relative
      * to the -n side; the rake's is the hanging wall's relative to the
      * footwall: the same vector when its n points into the hanging wall. */
     double tn[3], ts[3], td[3];
     if (fm_tde_frame((const double(*)[3])e->tri, tn, ts, td) != 0)
         return e->state = EL_DEGENERATE;
-    double sign = dot3(tn, e->n) >= 0 ? 1 : -1;
-    e->b[0] = sign * dot3(e->r, ts);
-    e->b[1] = sign * dot3(e->r, td);
+    double sign = fm_dot3(tn, e->n) >= 0 ? 1 : -1;
+    e->b[0] = sign * fm_dot3(e->r, ts);
+    e->b[1] = sign * fm_dot3(e->r, td);
     e->b[2] = 0;
     return e->state = EL_OK;
 }
@@ -102,10 +91,10 @@ static int traction(const el_elem *src, const el_elem *rcv, double mu, double nu
     double t[3] = {sig[0] * n[0] + sig[3] * n[1] + sig[4] * n[2],
                    sig[3] * n[0] + sig[1] * n[1] + sig[5] * n[2],
                    sig[4] * n[0] + sig[5] * n[1] + sig[2] * n[2]};
-    out[0] = dot3(t, rcv->s);
-    out[1] = dot3(t, rcv->u);
-    out[2] = dot3(t, rcv->r);
-    out[3] = dot3(t, n);
+    out[0] = fm_dot3(t, rcv->s);
+    out[1] = fm_dot3(t, rcv->u);
+    out[2] = fm_dot3(t, rcv->r);
+    out[3] = fm_dot3(t, n);
     for (int k = 0; k < 4; k++)
         if (!isfinite(out[k]))
             return -1;
@@ -134,8 +123,8 @@ static double seg_seg2(const double p0[3], const double p1[3], const double q0[3
         d2[k] = q1[k] - q0[k];
         r[k] = p0[k] - q0[k];
     }
-    double a = dot3(d1, d1), e = dot3(d2, d2), f = dot3(d2, r), c = dot3(d1, r);
-    double b = dot3(d1, d2), den = a * e - b * b;
+    double a = fm_dot3(d1, d1), e = fm_dot3(d2, d2), f = fm_dot3(d2, r), c = fm_dot3(d1, r);
+    double b = fm_dot3(d1, d2), den = a * e - b * b;
     double s = den > 1e-12 * a * e ? (b * f - c * e) / den : 0;
     s = s < 0 ? 0 : s > 1 ? 1 : s;
     double t = e > 0 ? (b * s + f) / e : 0;
