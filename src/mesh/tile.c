@@ -632,11 +632,11 @@ static double tiles_area(const fm_tiles *t, size_t first)
 }
 
 /* Fault f tiled whole (tile_fault_best) and, where that comes over 3 %
- * from its area and it has several parts, part by part in rows by depth
+ * from its area (its triangles', atri) and it has several parts, part by part in rows by depth
  * (nbr_part: nbr cut where the part changes), the closer to its area
  * kept (fm_tiles_create_parts); -1 when memory runs out. */
 static int tile_fault_parts(tiler *tl, tile_walk *w, int32_t f, const size_t *tris, size_t n,
-                            const int32_t *part, const int32_t *nbr_part)
+                            double atri, const int32_t *part, const int32_t *nbr_part)
 {
     fm_tiles *t = tl->out;
     size_t first = t->n;
@@ -645,12 +645,7 @@ static int tile_fault_parts(tiler *tl, tile_walk *w, int32_t f, const size_t *tr
     int several = 0;
     for (size_t i = 1; part && i < n; i++)
         several |= part[tris[i]] != part[tris[0]];
-    double atri = 0;
-    for (size_t i = 0; several && i < n; i++)
-        atri += fm_triangle_area(tl->x + 3 * (size_t)tl->tri[3 * tris[i]],
-                                 tl->x + 3 * (size_t)tl->tri[3 * tris[i] + 1],
-                                 tl->x + 3 * (size_t)tl->tri[3 * tris[i] + 2]);
-    double whole = atri > 0 ? fabs(tiles_area(t, first) / atri - 1) : 0;
+    double whole = several && atri > 0 ? fabs(tiles_area(t, first) / atri - 1) : 0;
     if (!(whole > 0.03))
         return 0;
     size_t m = t->n - first, unrowed = t->stats.unrowed;
@@ -725,7 +720,8 @@ typedef struct tile_par {
     pthread_mutex_t mu;
     const size_t *order, *start;
     const int32_t *part, *nbr_part;
-    fault_tiling *res; /* per fault */
+    const fm_tile_fault *fault; /* per fault: its triangles' area */
+    fault_tiling *res;          /* per fault */
     int bad;
 } tile_par;
 
@@ -742,7 +738,8 @@ static void tile_one_fault(void *user, size_t f)
         s->out.n = 0;
         s->out.stats.unrowed = 0;
         bad = tile_fault_parts(&s->tl, &s->w, (int32_t)f, p->order + p->start[f],
-                               p->start[f + 1] - p->start[f], p->part, p->nbr_part) != 0;
+                               p->start[f + 1] - p->start[f], p->fault[f].area_triangles,
+                               p->part, p->nbr_part) != 0;
         fault_tiling *r = &p->res[f];
         r->n = s->out.n;
         r->unrowed = s->out.stats.unrowed;
@@ -773,6 +770,7 @@ static int tile_faults(fm_tiles *t, const tiler *proto, const tile_walk *wproto,
         ns = t->nfaults > 0 ? (int)t->nfaults : 1;
     tile_par p = {.sc = calloc((size_t)ns, sizeof *p.sc), .idle = malloc((size_t)ns * sizeof(int)),
                   .order = order, .start = start, .part = part, .nbr_part = nbr_part,
+                  .fault = t->fault,
                   .res = calloc(t->nfaults + 1, sizeof *p.res)};
     int bad = !p.sc || !p.idle || !p.res;
     for (int k = 0; !bad && k < ns; k++) {
@@ -924,7 +922,7 @@ fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t 
         for (size_t f = 0; f < nfaults; f++)
             start[f + 1] += start[f];
     }
-    /* each fault's triangles, in order */
+    /* each fault's triangles, in order, and their area */
     if (!bad) {
         size_t *pos = malloc((nfaults + 1) * sizeof *pos);
         bad = !pos;
@@ -934,6 +932,11 @@ fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t 
                 order[pos[tag[i]]++] = i;
             free(pos);
         }
+        const double *x = tl.x;
+        for (size_t i = 0; i < nt; i++)
+            t->fault[tag[i]].area_triangles +=
+                fm_triangle_area(x + 3 * (size_t)tl.tri[3 * i], x + 3 * (size_t)tl.tri[3 * i + 1],
+                                 x + 3 * (size_t)tl.tri[3 * i + 2]);
     }
     tile_walk w = {.x = tl.x, .up = t ? (const double(*)[3])t->up : NULL, .tri = tl.tri,
                    .nbr = nbr, .stamp = calloc(nt + 1, sizeof(uint32_t)),
@@ -948,7 +951,7 @@ fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t 
         bad = tile_faults(t, &tl, &w, nt, order, start, part, nbr_part, jobs);
     free(nbr_part);
     if (!bad)
-        bad = tile_fill_junctions(t, set, &sd) || tile_separate(t) || by_fault(t) || tile_grow(t, set, &w) ||
+        bad = tile_fill_junctions(t, set, &sd) || tile_separate(t) || by_fault(t) || tile_grow(t, set, &w, order, start) ||
               by_fault(t) ||
               tile_measure(t, set, &sd, &w);
     free(w.stamp);

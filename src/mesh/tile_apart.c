@@ -450,19 +450,12 @@ static int measure_gaps(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, c
 
 int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, tile_walk *w)
 {
-    const double *x = fm_mesh_vertices(set);
-    const int32_t *tri = fm_mesh_triangles(set), *tag = fm_mesh_tags(set);
-    size_t nt = fm_mesh_ntriangles(set);
     double rmax = max_radius(t);
     tile_grid g = {0};
     if (t->n && tile_grid_make(&g, t, rmax)) {
         free(g.e);
         return -1;
     }
-    for (size_t i = 0; i < nt; i++)
-        t->fault[tag[i]].area_triangles +=
-            fm_triangle_area(x + 3 * (size_t)tri[3 * i], x + 3 * (size_t)tri[3 * i + 1],
-                             x + 3 * (size_t)tri[3 * i + 2]);
     /* flatness: the surface each tile stands for, sampled at its
      * triangles' corners, side midpoints and centroids, where it lies
      * under the tile */

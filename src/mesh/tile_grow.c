@@ -50,9 +50,8 @@ typedef struct grow_ctx {
     size_t first, last; /* the fault's tiles */
     sample *s;
     size_t ns, cap;
-    tile_grid own;   /* the fault's tiles, as separated */
-    double own_rmax;  /* the fault's largest tile radius as separated */
-    double own_reach; /* as grown */
+    tile_grid own;   /* while filling: the fault's tiles, as grown */
+    double own_r;    /* their largest radius: the grid's cell and reach */
     tile_grid samp;  /* its samples */
     tile_grid all;   /* every tile, as separated */
     double reach;    /* for all */
@@ -253,7 +252,7 @@ static int over_own(grow_ctx *c, const fm_tile *q)
             for (int d = 0; d < 3; d++)
                 c->pt[d] = q->centre[d] + da * q->strike[d] + db * q->dip[d];
             c->hit = 0;
-            tile_grid_near(&c->own, c->pt, c->own_reach, over_point, c);
+            tile_grid_near(&c->own, c->pt, c->own_r, over_point, c);
             for (size_t j = c->fill_first; j < c->nfill && !c->hit; j++)
                 c->hit = stands_over(c, &c->fill[j], c->pt);
             if (c->hit)
@@ -330,6 +329,13 @@ static int fill_bare(grow_ctx *c, const fm_mesh *set, double atri, double atiles
     const int32_t *tri = fm_mesh_triangles(set);
     double H = c->t->stats.size;
     static const double level[3] = {1, 0, 0};
+    /* a point a tile stands over lies within its radius of its centre */
+    c->own_r = H / 4;
+    for (size_t i = c->first; i < c->last; i++)
+        c->own_r = fmax(c->own_r, 0.5 * hypot(c->t->tile[i].length, c->t->tile[i].width));
+    if (tile_grid_make_points(&c->own, c->t->tile[c->first].centre, sizeof *c->t->tile,
+                              c->last - c->first, c->own_r))
+        return -1;
     for (size_t q = 0; q < c->ns && atiles < atri; q++) {
         if (c->s[q].taken)
             continue;
@@ -379,29 +385,16 @@ static int fill_bare(grow_ctx *c, const fm_mesh *set, double atri, double atiles
 
 static int grow_fault(grow_ctx *c, const fm_mesh *set, const size_t *tris, size_t n)
 {
-    double H = c->t->stats.size, rmax = 0;
-    for (size_t i = c->first; i < c->last; i++)
-        rmax = fmax(rmax, 0.5 * hypot(c->t->tile[i].length, c->t->tile[i].width));
-    /* cells of the largest tile's radius: a point a tile stands over lies
-     * within it of the tile's centre, until the tiles grow */
-    c->own_rmax = fmax(rmax, H / 4);
-    c->own_reach = 2 * fmax(rmax, 1.1 * H) + H;
+    double H = c->t->stats.size;
     c->fill_first = c->nfill;
     c->own.e = c->samp.e = NULL;
-    int bad = tile_grid_make_points(&c->own, c->t->tile[c->first].centre, sizeof *c->t->tile,
-                                    c->last - c->first, c->own_rmax) ||
-              sample_fault(c, set, tris, n);
+    int bad = sample_fault(c, set, tris, n);
     if (!bad && c->ns)
         bad = tile_grid_make_points(&c->samp, c->s[0].p, sizeof *c->s, c->ns, H);
     /* the tiles grow while their area falls short of the surface's: where
      * tiles lean away from a surface that bends (a ramp into a flat) the
      * samples under them count as bare */
-    double atri = 0, atiles = 0;
-    const double *x = fm_mesh_vertices(set);
-    const int32_t *tri = fm_mesh_triangles(set);
-    for (size_t i = 0; i < n; i++)
-        atri += fm_triangle_area(x + 3 * (size_t)tri[3 * tris[i]], x + 3 * (size_t)tri[3 * tris[i] + 1],
-                                 x + 3 * (size_t)tri[3 * tris[i] + 2]);
+    double atri = c->t->fault[c->t->tile[c->first].fault].area_triangles, atiles = 0;
     for (size_t i = c->first; i < c->last; i++)
         atiles += c->t->tile[i].length * c->t->tile[i].width;
     reach_at *buf = NULL;
@@ -440,13 +433,11 @@ static int grow_fault(grow_ctx *c, const fm_mesh *set, const size_t *tris, size_
     return bad ? -1 : 0;
 }
 
-int tile_grow(fm_tiles *t, const fm_mesh *set, tile_walk *w)
+int tile_grow(fm_tiles *t, const fm_mesh *set, tile_walk *w, const size_t *order,
+              const size_t *start)
 {
     if (!t->n)
         return 0;
-    const int32_t *tag = fm_mesh_tags(set);
-    size_t nt = fm_mesh_ntriangles(set);
-    size_t *start = calloc(t->nfaults + 2, sizeof *start), *order = malloc((nt + 1) * sizeof *order);
     grow_ctx c = {.t = t, .w = w};
     double rmax = 0;
     for (size_t i = 0; i < t->n; i++)
@@ -455,21 +446,7 @@ int tile_grow(fm_tiles *t, const fm_mesh *set, tile_walk *w)
      * moves by under the size: the pairs that may meet lie within reach
      * of each other's centres as separated */
     c.reach = 2 * fmax(rmax, 1.1 * t->stats.size) + 2 * t->stats.size;
-    int bad = !start || !order || tile_grid_make(&c.all, t, c.reach);
-    if (!bad) {
-        for (size_t i = 0; i < nt; i++)
-            start[tag[i] + 1]++;
-        for (size_t f = 0; f < t->nfaults; f++)
-            start[f + 1] += start[f];
-        size_t *pos = malloc((t->nfaults + 1) * sizeof *pos);
-        bad = !pos;
-        if (pos) {
-            memcpy(pos, start, t->nfaults * sizeof *pos);
-            for (size_t i = 0; i < nt; i++)
-                order[pos[tag[i]]++] = i;
-            free(pos);
-        }
-    }
+    int bad = tile_grid_make(&c.all, t, c.reach);
     /* the tiles are in fault order (by_fault) */
     for (size_t i = 0; !bad && i < t->n;) {
         size_t j = i;
@@ -487,7 +464,5 @@ int tile_grow(fm_tiles *t, const fm_mesh *set, tile_walk *w)
     free(c.all.e);
     free(c.s);
     free(c.cand);
-    free(start);
-    free(order);
     return bad ? -1 : 0;
 }

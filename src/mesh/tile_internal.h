@@ -48,10 +48,12 @@ static inline int tile_same_unit(const fm_tile *a, const fm_tile *b)
  * (tile_apart.c). */
 int tile_meet(const fm_tile *a, const fm_tile *b);
 /* Each tile's sides pushed out over the bare surface of its fault beside
- * it, clear of other faults' tiles; the tiles in fault order (by_fault);
- * -1 when memory runs out (tile_grow.c). */
+ * it, clear of other faults' tiles; the tiles in fault order (by_fault),
+ * fault f's triangles order[start[f] .. start[f + 1]) and their area in
+ * t->fault[f].area_triangles; -1 when memory runs out (tile_grow.c). */
 struct tile_walk;
-int tile_grow(fm_tiles *t, const fm_mesh *set, struct tile_walk *w);
+int tile_grow(fm_tiles *t, const fm_mesh *set, struct tile_walk *w, const size_t *order,
+              const size_t *start);
 /* A square tile of fault f, side s, centred at c in the plane of
  * triangle k, its strike level (along level[] on a level triangle); 0
  * when the triangle has no plane (tile_fill.c). */
@@ -151,6 +153,9 @@ static inline void tile_frame(double st[3], double n[3], double dip[3])
     }
     fm_cross3(st, n, dip);
 }
+/* The measures of fm_tile_fault (but its triangles' area, set when the
+ * tiling starts), fm_tile_junction and fm_tile_stats; -1 when memory runs
+ * out (tile_apart.c). */
 struct tile_walk;
 int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, struct tile_walk *w);
 
