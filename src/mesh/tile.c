@@ -819,32 +819,6 @@ static int tile_faults(fm_tiles *t, const tiler *proto, const tile_walk *wproto,
     return bad ? -1 : 0;
 }
 
-/* The tiles in fault order, each fault's in the order they were made (a
- * split tile's second half comes after the others); -1 when memory runs
- * out. */
-static int by_fault(fm_tiles *t)
-{
-    size_t *start = calloc(t->nfaults + 1, sizeof *start);
-    fm_tile *sorted = malloc((t->n + 1) * sizeof *sorted);
-    if (!start || !sorted) {
-        free(start);
-        free(sorted);
-        return -1;
-    }
-    for (size_t i = 0; i < t->n; i++)
-        if ((size_t)t->tile[i].fault + 1 < t->nfaults)
-            start[t->tile[i].fault + 1]++;
-    for (size_t f = 1; f < t->nfaults; f++)
-        start[f] += start[f - 1];
-    for (size_t i = 0; i < t->n; i++)
-        sorted[start[t->tile[i].fault]++] = t->tile[i];
-    free(t->tile);
-    t->tile = sorted;
-    t->cap = t->n + 1;
-    free(start);
-    return 0;
-}
-
 /* Neighbours across sides within a fault, and which sides are junctions. */
 static int make_sides(const fm_mesh *set, tile_sides *sd, int32_t *nbr)
 {
@@ -910,9 +884,10 @@ fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t 
     if (!bad) {
         t->nfaults = nfaults;
         t->fault = calloc(nfaults + 1, sizeof *t->fault);
+        t->left_out = calloc(nfaults + 1, sizeof *t->left_out);
         t->up = calloc(nfaults + 1, sizeof *t->up);
         t->stats.size = size;
-        bad = !t->fault || !t->up || make_sides(set, &sd, nbr);
+        bad = !t->fault || !t->left_out || !t->up || make_sides(set, &sd, nbr);
         for (size_t f = 0; !bad && f < nfaults; f++)
             t->up[f][2] = 1;
     }
@@ -951,8 +926,7 @@ fm_status fm_tiles_create_parts(const fm_mesh *set, const int32_t *part, size_t 
         bad = tile_faults(t, &tl, &w, nt, order, start, part, nbr_part, jobs);
     free(nbr_part);
     if (!bad)
-        bad = tile_fill_junctions(t, set, &sd) || tile_separate(t) || by_fault(t) || tile_grow(t, set, &w, order, start) ||
-              by_fault(t) ||
+        bad = tile_fill_junctions(t, set, &sd) || tile_settle(t, set, &w, order, start) ||
               tile_measure(t, set, &sd, &w);
     free(w.stamp);
     free(w.list);
@@ -979,6 +953,7 @@ void fm_tiles_destroy(fm_tiles *t)
         return;
     free(t->tile);
     free(t->fault);
+    free(t->left_out);
     free(t->up);
     free(t->junction);
     free(t);

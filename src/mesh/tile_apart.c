@@ -113,6 +113,14 @@ static double cut(const fm_tile *a, const fm_tile *b, fm_tile *out)
     return best;
 }
 
+int tile_a_gives_way(const fm_tiles *t, const fm_tile *a, const fm_tile *b, double la, double lb)
+{
+    int fa = t->favour && t->favour[a->fault], fb = t->favour && t->favour[b->fault];
+    if (fa != fb && (fa ? lb : la) < INFINITY)
+        return fb;
+    return la <= lb;
+}
+
 typedef struct sep_ctx {
     fm_tiles *t;
     const double *rad; /* radius of each tile as made */
@@ -124,7 +132,9 @@ static int separate_pair(size_t j, void *user)
 {
     sep_ctx *c = user;
     fm_tile *a = &c->t->tile[c->i], *b = &c->t->tile[j];
-    if (j <= c->i || tile_same_unit(a, b))
+    /* a pair of tiles both cut here is taken once; a tile that stays is
+     * taken from the other's side */
+    if ((j <= c->i && tile_active(c->t, b->fault)) || tile_same_unit(a, b))
         return 0;
     double r[3] = {c->c0[c->i][0] - c->c0[j][0], c->c0[c->i][1] - c->c0[j][1],
                    c->c0[c->i][2] - c->c0[j][2]};
@@ -135,7 +145,7 @@ static int separate_pair(size_t j, void *user)
         double la = cut(a, b, &ca), lb = cut(b, a, &cb);
         if (la == INFINITY && lb == INFINITY)
             break;
-        if (la <= lb)
+        if (tile_a_gives_way(c->t, a, b, la, lb))
             *a = ca;
         else
             *b = cb;
@@ -195,7 +205,7 @@ static int mark_pair(size_t j, void *user)
     if (j == c->i || tile_same_unit(a, b) || c->mark[c->i] || !tile_meet(a, b))
         return 0;
     double la = cut_loss(a, b, -1), lb = cut_loss(b, a, -1);
-    if (la > lb)
+    if (!tile_a_gives_way(c->t, a, b, la, lb))
         return 0; /* b is the one cut: its own turn decides */
     double area = a->length * a->width, least = c->t->stats.size / 8;
     if (!(la > 0.05 * area))
@@ -227,7 +237,8 @@ static int split_for_cuts(fm_tiles *t)
     split_ctx c = {t, mark, 0};
     for (size_t i = 0; i < t->n; i++) {
         c.i = i;
-        tile_grid_near(&g, t->tile[i].centre, 2 * rmax, mark_pair, &c);
+        if (tile_active(t, t->tile[i].fault))
+            tile_grid_near(&g, t->tile[i].centre, 2 * rmax, mark_pair, &c);
     }
     free(g.e);
     size_t n = t->n;
@@ -278,7 +289,7 @@ int tile_separate(fm_tiles *t)
     sep_ctx ctx = {t, rad, (const double(*)[3])c0, 0};
     for (size_t i = 0; i < t->n; i++) {
         ctx.i = i;
-        if (t->tile[i].length > 0)
+        if (t->tile[i].length > 0 && tile_active(t, t->tile[i].fault))
             tile_grid_near(&g, c0[i], rad[i] + rmax, separate_pair, &ctx);
     }
     /* the tiles given up leave the list */
@@ -289,10 +300,8 @@ int tile_separate(fm_tiles *t)
         double least = fmin(t->tile[i].length, t->tile[i].width);
         if (least >= t->stats.size / 20)
             t->tile[m++] = t->tile[i];
-        else if (least > 0)
-            t->stats.slivers++;
         else
-            t->stats.dropped++;
+            t->left_out[t->tile[i].fault][least > 0 ? 0 : 1]++;
     }
     t->n = m;
     free(rad);
@@ -487,6 +496,10 @@ int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, tile_wal
         flat[i] = tl->flatness;
     }
     t->stats.ntiles = t->n;
+    for (size_t f = 0; f < t->nfaults; f++) {
+        t->stats.slivers += t->left_out[f][0];
+        t->stats.dropped += t->left_out[f][1];
+    }
     if (t->n) {
         qsort(flat, t->n, sizeof *flat, dbl_cmp);
         t->stats.flatness_p99 = flat[(size_t)floor(0.99 * (double)(t->n - 1))];

@@ -261,6 +261,22 @@ static int over_own(grow_ctx *c, const fm_tile *q)
     return 0;
 }
 
+/* Whether side k of tile tl may grow by e: it runs into no other fault's
+ * tile or square, and the surface the grown tile stands for (a strand
+ * beside this one, a bend beyond the strip) lies no farther from its
+ * plane than from the tile's as it was, or the flatness bound. */
+static int grow_passes(grow_ctx *c, const fm_tile *tl, int k, double e)
+{
+    fm_tile g = grown(tl, k, e);
+    c->tl = &g;
+    c->hit = 0;
+    tile_grid_near(&c->all, g.centre, c->reach, meets_other, c);
+    if (c->hit || meets_fill(c, &g))
+        return 0;
+    double H = c->t->stats.size;
+    return tile_flat_as_is(c->w, &g) <= fmax(tile_flat_as_is(c->w, tl), FLAT * H);
+}
+
 /* How far side k of tile i grows: 0 when it does not. */
 static double grow_side(grow_ctx *c, size_t i, int k, reach_at **buf, size_t *bcap)
 {
@@ -298,23 +314,25 @@ static double grow_side(grow_ctx *c, size_t i, int k, reach_at **buf, size_t *bc
         if (sum >= FILL * ek * across)
             e = ek;
     }
-    double flat0 = -1;
-    for (; e >= H / 40; e /= 2) {
-        fm_tile g = grown(tl, k, e);
-        c->tl = &g;
-        c->hit = 0;
-        tile_grid_near(&c->all, g.centre, c->reach, meets_other, c);
-        if (c->hit || meets_fill(c, &g))
-            continue;
-        /* the surface the grown tile stands for (a strand beside this
-         * one, a bend beyond the strip) no farther from its plane than
-         * from the tile's as it was, or the flatness bound */
-        if (flat0 < 0)
-            flat0 = fmax(tile_flat_as_is(c->w, tl), FLAT * H);
-        if (tile_flat_as_is(c->w, &g) <= flat0)
-            return e;
+    /* the longest growth up to e that passes: halved until one does,
+     * then bisected towards the one that failed, so that a side grown
+     * towards another fault's tiles stops within a thirty-second of its
+     * growth of them rather than up to half of it short */
+    double ok = 0, fail = 0;
+    for (; e >= H / 40 && !ok; e /= 2) {
+        if (grow_passes(c, tl, k, e))
+            ok = e;
+        else
+            fail = e;
     }
-    return 0;
+    for (int b = 0; ok > 0 && fail > 0 && b < 5; b++) {
+        double mid = 0.5 * (ok + fail);
+        if (grow_passes(c, tl, k, mid))
+            ok = mid;
+        else
+            fail = mid;
+    }
+    return ok;
 }
 
 
@@ -447,7 +465,7 @@ int tile_grow(fm_tiles *t, const fm_mesh *set, tile_walk *w, const size_t *order
      * of each other's centres as separated */
     c.reach = 2 * fmax(rmax, 1.1 * t->stats.size) + 2 * t->stats.size;
     int bad = tile_grid_make(&c.all, t, c.reach);
-    /* the tiles are in fault order (by_fault) */
+    /* the tiles are in fault order (tile_by_fault) */
     for (size_t i = 0; !bad && i < t->n;) {
         size_t j = i;
         while (j < t->n && t->tile[j].fault == t->tile[i].fault)
@@ -455,7 +473,8 @@ int tile_grow(fm_tiles *t, const fm_mesh *set, tile_walk *w, const size_t *order
         int32_t f = t->tile[i].fault;
         c.first = i;
         c.last = j;
-        bad = grow_fault(&c, set, order + start[f], start[f + 1] - start[f]) != 0;
+        if (tile_active(t, f))
+            bad = grow_fault(&c, set, order + start[f], start[f + 1] - start[f]) != 0;
         i = j;
     }
     for (size_t i = 0; !bad && i < c.nfill; i++)

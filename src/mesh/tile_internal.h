@@ -21,7 +21,19 @@ struct fm_tiles {
                             width down dip at the fault's mean dip in that band; and
                             whether its columns are open at the start (1) or the end (2)
                             of the strike: it ends its contour there */
+    size_t (*left_out)[2]; /* per fault, tiles tile_separate left out: as slivers, and
+                              given up with nothing left */
+    unsigned char *favour; /* per fault, while tile_settle tiles again: whether its tiles
+                              keep their area where they meet another's (NULL: none do) */
+    unsigned char *active; /* per fault, while tile_settle tiles again: whether its tiles
+                              are cut and grown again (NULL: all are) */
 };
+
+/* Whether fault f's tiles are being cut and grown. */
+static inline int tile_active(const struct fm_tiles *t, int32_t f)
+{
+    return !t->active || t->active[f];
+}
 
 /* The set's triangle sides (fm_mesh_sides) with, per run of one key,
  * whether triangles of two faults hold it (a junction edge). */
@@ -44,11 +56,27 @@ static inline int tile_same_unit(const fm_tile *a, const fm_tile *b)
     return a->fault == b->fault && (a->part == b->part || !a->part || !b->part);
 }
 
+struct tile_walk;
+/* The tiles in fault order, each fault's in the order they were made (a
+ * split tile's second half comes after the others); -1 when memory runs
+ * out (tile_settle.c). */
+int tile_by_fault(fm_tiles *t);
+/* The tiles as made cut apart (tile_separate) and grown (tile_grow), in
+ * fault order; then, where that leaves faults over 3 % short of their
+ * area, again with those faults' tiles favoured where they meet others',
+ * the second tiling kept if fewer faults end up outside 3 %; -1 when
+ * memory runs out (tile_settle.c). */
+int tile_settle(fm_tiles *t, const fm_mesh *set, struct tile_walk *w, const size_t *order,
+                const size_t *start);
+/* Whether tile a, rather than b, is cut where they meet, given what each
+ * cut loses: a favoured fault's tile is kept while the other may be cut,
+ * otherwise the one losing less goes (tile_apart.c). */
+int tile_a_gives_way(const fm_tiles *t, const fm_tile *a, const fm_tile *b, double la, double lb);
 /* Whether two tiles meet, by the exact predicates on their triangles
  * (tile_apart.c). */
 int tile_meet(const fm_tile *a, const fm_tile *b);
 /* Each tile's sides pushed out over the bare surface of its fault beside
- * it, clear of other faults' tiles; the tiles in fault order (by_fault),
+ * it, clear of other faults' tiles; the tiles in fault order (tile_by_fault),
  * fault f's triangles order[start[f] .. start[f + 1]) and their area in
  * t->fault[f].area_triangles; -1 when memory runs out (tile_grow.c). */
 struct tile_walk;

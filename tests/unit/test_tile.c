@@ -301,6 +301,25 @@ static void test_thin_strip_to_junction(void)
     fm_mesh_destroy(tee_m);
 }
 
+/* The faults' meshes in one set, not sharing nodes, fault f the mesh
+ * parts[f]; the parts destroyed. */
+static fm_mesh *joined(fm_mesh **parts, int n)
+{
+    fm_mesh *m = fm_mesh_create();
+    for (int f = 0; f < n; f++) {
+        int32_t base = (int32_t)fm_mesh_nvertices(m);
+        const double *x = fm_mesh_vertices(parts[f]);
+        for (size_t v = 0; v < fm_mesh_nvertices(parts[f]); v++)
+            fm_mesh_add_vertex(m, x[3 * v], x[3 * v + 1], x[3 * v + 2]);
+        const int32_t *tri = fm_mesh_triangles(parts[f]);
+        for (size_t i = 0; i < fm_mesh_ntriangles(parts[f]); i++)
+            fm_mesh_add_triangle(m, base + tri[3 * i], base + tri[3 * i + 1],
+                                 base + tri[3 * i + 2], f);
+        fm_mesh_destroy(parts[f]);
+    }
+    return m;
+}
+
 /* Fault 1 crossing fault 0 at a slant: tile corners reach across, and are
  * cut back. */
 static void tilted(const void *ctx, double s, double t, double p[3])
@@ -323,28 +342,72 @@ static void test_crossing_faults_cut_apart(void)
 {
     /* Two separate meshes in one set, not sharing nodes: the worst case,
      * tiles that run through each other, must still come apart. */
-    fm_mesh *a = fm_test_grid_mesh(20000, 8000, 500, vertical, NULL);
-    fm_mesh *b = fm_test_grid_mesh(10000, 8000, 500, tilted, NULL);
-    fm_mesh *m = fm_mesh_create();
-    const fm_mesh *parts[2] = {a, b};
-    for (int f = 0; f < 2; f++) {
-        int32_t base = (int32_t)fm_mesh_nvertices(m);
-        const double *x = fm_mesh_vertices(parts[f]);
-        for (size_t v = 0; v < fm_mesh_nvertices(parts[f]); v++)
-            fm_mesh_add_vertex(m, x[3 * v], x[3 * v + 1], x[3 * v + 2]);
-        const int32_t *tri = fm_mesh_triangles(parts[f]);
-        for (size_t i = 0; i < fm_mesh_ntriangles(parts[f]); i++)
-            fm_mesh_add_triangle(m, base + tri[3 * i], base + tri[3 * i + 1],
-                                 base + tri[3 * i + 2], f);
-    }
+    fm_mesh *parts[2] = {fm_test_grid_mesh(20000, 8000, 500, vertical, NULL),
+                         fm_test_grid_mesh(10000, 8000, 500, tilted, NULL)};
+    fm_mesh *m = joined(parts, 2);
     fm_tiles *t = NULL;
     CHECK_EQ(fm_tiles_create(m, 2, 2000, &t, NULL), FM_OK);
     CHECK_EQ(fm_tiles_stats(t)->meeting, 0);
     CHECK(fm_tiles_stats(t)->shrunk > 0);
     fm_tiles_destroy(t);
-    fm_mesh_destroy(a);
-    fm_mesh_destroy(b);
     fm_mesh_destroy(m);
+}
+
+/* A small fault dipping 20 degrees east, 6 by 5 km, crossed 880 m apart
+ * by five long faults dipping 50 or 70 degrees that strike at an angle to
+ * it (as the CFM's Laguna Salada east branch is by its neighbours, 0.956
+ * of its area at 2 km): each crossing takes a strip off the small fault,
+ * where the cut loses less, and it ended 0.937 and 0.915 of its area
+ * while its neighbours kept theirs. Tiled again with its tiles favoured,
+ * it keeps its area, and the others stay within 3 % of theirs. */
+static double small_dip;
+
+static void low_dip(const void *ctx, double s, double t, double p[3])
+{
+    (void)ctx;
+    p[0] = t * cos(small_dip);
+    p[1] = s;
+    p[2] = -t * sin(small_dip);
+}
+
+typedef struct crosser {
+    double x0, strike, dip;
+} crosser;
+
+static void crossing(const void *ctx, double s, double t, double p[3])
+{
+    const crosser *c = ctx;
+    double h = t * cos(c->dip);
+    p[0] = c->x0 + (s - 8000) * sin(c->strike) + h * cos(c->strike);
+    p[1] = 3000 + (s - 8000) * cos(c->strike) - h * sin(c->strike);
+    p[2] = -t * sin(c->dip);
+}
+
+static void test_crossed_fault_keeps_area(void)
+{
+    const double deg = 3.14159265358979323846 / 180;
+    const struct {
+        double strike, dip;
+    } c[2] = {{0.3, 50 * deg}, {0.5, 70 * deg}};
+    small_dip = 20 * deg;
+    for (int k = 0; k < 2; k++) {
+        crosser cr[5];
+        fm_mesh *parts[6] = {fm_test_grid_mesh(6000, 5000, 250, low_dip, NULL)};
+        for (int j = 0; j < 5; j++) {
+            cr[j] = (crosser){500 + 880.0 * j, c[k].strike, c[k].dip};
+            parts[j + 1] = fm_test_grid_mesh(16000, 6000, 250, crossing, &cr[j]);
+        }
+        fm_mesh *m = joined(parts, 6);
+        fm_tiles *t = NULL;
+        CHECK_EQ(fm_tiles_create(m, 6, 2000, &t, NULL), FM_OK);
+        CHECK_EQ(fm_tiles_stats(t)->meeting, 0);
+        for (size_t f = 0; f < 6; f++) {
+            const fm_tile_fault *tf = fm_tiles_fault(t, f);
+            CHECK(fabs(tf->area_tiles / tf->area_triangles - 1) <= 0.03);
+        }
+        fm_tiles_destroy(t);
+        fm_mesh_destroy(m);
+    }
 }
 
 /* A vertical fault whose top edge climbs along strike, from 4 km deep to
@@ -527,6 +590,7 @@ static void test_bad_input(void)
 FM_TEST_MAIN(FM_CASE(test_planar_rows_and_columns), FM_CASE(test_curved_area),
              FM_CASE(test_tee_junction), FM_CASE(test_slanted_junction_keeps_area),
              FM_CASE(test_fork_tiled_by_parts), FM_CASE(test_crossing_faults_cut_apart),
+             FM_CASE(test_crossed_fault_keeps_area),
              FM_CASE(test_climbing_top_edge), FM_CASE(test_valley_in_top_edge),
              FM_CASE(test_detachment_tiles_on_it), FM_CASE(test_ramp_into_flat),
              FM_CASE(test_thin_strip_to_junction), FM_CASE(test_slanted_edges),
