@@ -66,8 +66,8 @@ static size_t outside(const fm_tiles *t, double *area, unsigned char *favour)
     size_t n = 0;
     for (size_t f = 0; f < t->nfaults; f++) {
         double at = t->fault[f].area_triangles;
-        if (!(at > 0) || !(area[f] > 0))
-            continue;
+        if (!(at > 0))
+            continue; /* a fault with surface but no tile left is short too */
         double r = area[f] / at;
         n += r < 1 - OFF || r > 1 + OFF;
         if (favour)
