@@ -20,12 +20,12 @@ while [ $# -gt 0 ]; do
     esac
 done
 H=${1:-1000}
-data="$here/../shared/cfm/CFM5.3/500m"
+# shellcheck source=bench/lib.sh
+. "$here/bench/lib.sh"
+bench_data bench_cad
 py=/usr/bin/python3
-[ -d "$data" ] || { echo "bench_cad: $data absent, skipped"; exit 0; }
 "$py" -c "import gmsh" 2>/dev/null || { echo "bench_cad: no gmsh module, skipped"; exit 0; }
-exe="$build/faultmesh"
-[ -x "$exe" ] || { echo "bench_cad: build $exe first" >&2; exit 2; }
+bench_exe bench_cad
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT INT TERM
 echo "machine: $(nproc) cores, $(uname -m), load $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -22,15 +22,11 @@ while [ $# -gt 0 ]; do
     esac
 done
 H=${1:-1000}
-data="$here/../shared/cfm/CFM5.3/500m"
-if [ ! -d "$data" ]; then
-    echo "bench_elastic: $data absent, skipped"
-    exit 0
-fi
-exe="$build/faultmesh"
-[ -x "$exe" ] || { echo "bench_elastic: build $exe first" >&2; exit 2; }
-timer=/usr/bin/time
-[ -x "$timer" ] || { echo "bench_elastic: needs GNU time (/usr/bin/time)" >&2; exit 2; }
+# shellcheck source=bench/lib.sh
+. "$here/bench/lib.sh"
+bench_data bench_elastic
+bench_exe bench_elastic
+bench_timer bench_elastic
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT INT TERM
 echo "machine: $(nproc) cores, $(uname -m), load $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -21,13 +21,10 @@ while [ $# -gt 0 ]; do
     esac
 done
 H=${1:-1000}
-data="$here/../shared/cfm/CFM5.3/500m"
-if [ ! -d "$data" ]; then
-    echo "bench_jobs_speedup: $data absent, skipped"
-    exit 0
-fi
-exe="$build/faultmesh"
-[ -x "$exe" ] || { echo "bench_jobs_speedup: build $exe first" >&2; exit 2; }
+# shellcheck source=bench/lib.sh
+. "$here/bench/lib.sh"
+bench_data bench_jobs_speedup
+bench_exe bench_jobs_speedup
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT INT TERM
 now() { date +%s.%N; }

@@ -20,17 +20,17 @@ while [ $# -gt 0 ]; do
     esac
 done
 [ $# -gt 0 ] || set -- 2000
-data="$here/../shared/cfm/CFM5.3/500m"
-if [ ! -d "$data" ]; then
-    echo "bench_quads: $data absent, skipped"
-    exit 0
-fi
+# shellcheck source=bench/lib.sh
+. "$here/bench/lib.sh"
+bench_data bench_quads
+bench_exe bench_quads
+bench_timer bench_quads
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for H in "$@"; do
     # every size fits (--no-cache), as the figures in docs/ were measured
     # shellcheck disable=SC2086
-    /usr/bin/time -f "%e %U %S %M" -o "$out/time" "$build/faultmesh" remesh $jobs --quiet \
+    "$timer" -f "%e %U %S %M" -o "$out/time" "$exe" remesh $jobs --quiet \
         --no-cache --size "$H" --elements quad --eqsim-coords utm -o "$out/$H" "$data" || true
     read -r wall user sys rss <"$out/time"
     /usr/bin/python3 - "$out/$H/report.json" "$H" "$wall" "$user" "$sys" "$rss" <<'PY'

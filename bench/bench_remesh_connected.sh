@@ -22,15 +22,11 @@ while [ $# -gt 0 ]; do
     esac
 done
 [ $# -gt 0 ] || set -- 1000
-data="$here/../shared/cfm/CFM5.3/500m"
-if [ ! -d "$data" ]; then
-    echo "bench_remesh_connected: $data absent, skipped"
-    exit 0
-fi
-exe="$build/faultmesh"
-[ -x "$exe" ] || { echo "bench_remesh_connected: build $exe first" >&2; exit 2; }
-timer=/usr/bin/time
-[ -x "$timer" ] || { echo "bench_remesh_connected: needs GNU time (/usr/bin/time)" >&2; exit 2; }
+# shellcheck source=bench/lib.sh
+. "$here/bench/lib.sh"
+bench_data bench_remesh_connected
+bench_exe bench_remesh_connected
+bench_timer bench_remesh_connected
 py=/usr/bin/python3
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT INT TERM

@@ -36,15 +36,11 @@ while [ $# -gt 0 ]; do
     esac
 done
 [ $# -gt 0 ] || set -- 2000 1000 500 250
-data="$here/../shared/cfm/CFM5.3/500m"
-if [ ! -d "$data" ]; then
-    echo "bench_scale: $data absent, skipped"
-    exit 0
-fi
-exe="$build/faultmesh"
-[ -x "$exe" ] || { echo "bench_scale: build $exe first" >&2; exit 2; }
-timer=/usr/bin/time
-[ -x "$timer" ] || { echo "bench_scale: needs GNU time (/usr/bin/time)" >&2; exit 2; }
+# shellcheck source=bench/lib.sh
+. "$here/bench/lib.sh"
+bench_data bench_scale
+bench_exe bench_scale
+bench_timer bench_scale
 py=/usr/bin/python3
 cold=""
 if "$exe" remesh --help 2>&1 | grep -q -e '--no-cache'; then
