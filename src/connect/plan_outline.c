@@ -75,7 +75,7 @@ fm_status pl_outline_build(const fm_model *m, size_t sheet, pl_outline *o, fm_er
             fm_mesh_add_triangle(om, o->a[k], o->b[k], o->b[k], 0);
         }
     }
-    o->tree = fm_closest_tree_create(om, err);
+    o->tree = fm_closest_tree_create_quick(om, err);
     fm_mesh_destroy(om);
     if (!o->tree) {
         pl_outline_free(o);

@@ -423,7 +423,7 @@ static fm_status mesh_object(const char *path, const fm_mesh *orig,
     double t2 = fm_clock_seconds();
     r->t_mesh = t2 - t1;
     if (st == FM_OK && fm_mesh_ntriangles(*fault) > 0) {
-        fm_closest_tree *tree = fm_closest_tree_create(orig, err);
+        fm_closest_tree *tree = fm_closest_tree_create_quick(orig, err);
         st = tree ? fm_check_quality(*fault, -1, r->mesh.size, &r->q) : FM_ERR_NOMEM;
         if (st == FM_OK)
             st = fm_check_fidelity(*fault, -1, orig, tree, &r->fid);
