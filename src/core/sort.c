@@ -23,12 +23,24 @@ double fm_median(double *v, size_t n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/* 11-bit digits: six passes at most over 64 bits, and a pass whose digit
- * is the same for every key (the high bits of small vertex numbers) is
- * skipped; 2048 counts per digit stay in cache. */
+/* 11-bit digits, 2048 counts each staying in cache. Only the bits in which
+ * the keys differ are sorted on, each digit starting at the next such bit:
+ * an edge key (fm_edge_key) of vertex numbers under 2^22 takes four
+ * passes, not the five of digits at fixed places (the high bits of the
+ * low number and the low bit of the high one fall in one). */
 #define RADIX_BITS 11
 #define RADIX_DIGITS 6
 #define RADIX_SIZE (1 << RADIX_BITS)
+
+static int lowest_bit(uint64_t x)
+{
+    int b = 0;
+    while (!(x & 1)) {
+        x >>= 1;
+        b++;
+    }
+    return b;
+}
 
 int fm_sort_keyed(fm_keyed *v, size_t n)
 {
@@ -46,7 +58,21 @@ int fm_sort_keyed(fm_keyed *v, size_t n)
         }
         return 0;
     }
-    size_t(*count)[RADIX_SIZE] = calloc(RADIX_DIGITS, sizeof *count);
+    uint64_t differ = 0;
+    for (size_t i = 1; i < n; i++)
+        differ |= v[i].key ^ v[0].key;
+    if (!differ)
+        return 0;
+    unsigned shift[RADIX_DIGITS];
+    int nd = 0;
+    for (int at = lowest_bit(differ); nd < RADIX_DIGITS;) {
+        shift[nd++] = (unsigned)at;
+        at += RADIX_BITS;
+        if (at >= 64 || !(differ >> at))
+            break;
+        at += lowest_bit(differ >> at);
+    }
+    size_t(*count)[RADIX_SIZE] = calloc((size_t)nd, sizeof *count);
     fm_keyed *tmp = malloc(n * sizeof *tmp);
     if (!count || !tmp) {
         free(count);
@@ -54,13 +80,12 @@ int fm_sort_keyed(fm_keyed *v, size_t n)
         return -1;
     }
     for (size_t i = 0; i < n; i++)
-        for (int d = 0; d < RADIX_DIGITS; d++)
-            count[d][(v[i].key >> (RADIX_BITS * d)) & (RADIX_SIZE - 1)]++;
+        for (int d = 0; d < nd; d++)
+            count[d][(v[i].key >> shift[d]) & (RADIX_SIZE - 1)]++;
     fm_keyed *src = v, *dst = tmp;
-    for (int d = 0; d < RADIX_DIGITS; d++) {
+    for (int d = 0; d < nd; d++) {
         size_t *c = count[d];
-        unsigned shift = (unsigned)(RADIX_BITS * d);
-        if (c[(src[0].key >> shift) & (RADIX_SIZE - 1)] == n)
+        if (c[(src[0].key >> shift[d]) & (RADIX_SIZE - 1)] == n)
             continue;
         size_t sum = 0;
         for (size_t b = 0; b < RADIX_SIZE; b++) {
@@ -69,7 +94,7 @@ int fm_sort_keyed(fm_keyed *v, size_t n)
             sum += t;
         }
         for (size_t i = 0; i < n; i++)
-            dst[c[(src[i].key >> shift) & (RADIX_SIZE - 1)]++] = src[i];
+            dst[c[(src[i].key >> shift[d]) & (RADIX_SIZE - 1)]++] = src[i];
         fm_keyed *t = src;
         src = dst;
         dst = t;

@@ -1,6 +1,7 @@
 /* fm_sort_keyed (src/core/sort.c) against qsort by (key, index): edge keys
  * of small and large vertex numbers, many duplicates, every size class of
- * the radix (insertion sort, skipped digits, all six digits). */
+ * the radix (insertion sort, skipped digits, all six digits), keys all
+ * the same and keys differing in scattered bits only. */
 #include <stdint.h>
 
 #include "fm_sort.h"
@@ -63,6 +64,17 @@ static uint64_t any_key(void) { return next_random(); }
 
 static uint64_t few_keys(void) { return next_random() % 3; }
 
+static uint64_t same_key(void) { return 0x123456789abcdefu; }
+
+/* Keys differing only in bits a digit's width apart and in the top bit:
+ * every digit sorts on one bit (six digits). */
+static uint64_t sparse_bits(void)
+{
+    const uint64_t mask = 1u | 1u << 11 | (uint64_t)1 << 22 | (uint64_t)1 << 33 |
+                          (uint64_t)1 << 44 | (uint64_t)1 << 55 | (uint64_t)1 << 63;
+    return (next_random() & mask) | 0x40;
+}
+
 static void test_against_qsort(void)
 {
     const size_t sizes[] = {0, 1, 2, 31, 32, 33, 100, 5000, 200000};
@@ -71,6 +83,8 @@ static void test_against_qsort(void)
         check_sort(sizes[s], large_edge);
         check_sort(sizes[s], any_key);
         check_sort(sizes[s], few_keys);
+        check_sort(sizes[s], same_key);
+        check_sort(sizes[s], sparse_bits);
     }
 }
 
