@@ -34,9 +34,11 @@
  * tiles of two faults still meet (a tile's corner past the other fault's
  * plane), the one losing less area is shrunk (cut back along strike or
  * dip, or scaled about its centre) until no two tiles of different faults
- * meet, by the exact predicates; the area each fault keeps, how far the
- * surface departs from each tile's plane, and the gap left along each
- * junction are given per fault and per junction. */
+ * meet, by the exact predicates; where that leaves a fault over 3 % short
+ * of its area, it and its neighbours are tiled again with its tiles kept
+ * where the neighbour's may be cut instead. The area each fault keeps,
+ * how far the surface departs from each tile's plane, and the gap left
+ * along each junction are given per fault and per junction. */
 #ifndef FM_TILE_H
 #define FM_TILE_H
 

@@ -632,9 +632,10 @@ static double tiles_area(const fm_tiles *t, size_t first)
 }
 
 /* Fault f tiled whole (tile_fault_best) and, where that comes over 3 %
- * from its area (its triangles', atri) and it has several parts, part by part in rows by depth
- * (nbr_part: nbr cut where the part changes), the closer to its area
- * kept (fm_tiles_create_parts); -1 when memory runs out. */
+ * from its area (its triangles', atri) and it has several parts, part by
+ * part in rows by depth (nbr_part: nbr cut where the part changes), the
+ * closer to its area kept (fm_tiles_create_parts); -1 when memory runs
+ * out. */
 static int tile_fault_parts(tiler *tl, tile_walk *w, int32_t f, const size_t *tris, size_t n,
                             double atri, const int32_t *part, const int32_t *nbr_part)
 {

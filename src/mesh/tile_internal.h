@@ -43,10 +43,10 @@ typedef struct tile_sides {
     unsigned char *junction; /* per entry of side, the same for a whole run */
 } tile_sides;
 
-/* Tiles of different faults that meet cut back until none does, then the
- * measures of fm_tile_fault, fm_tile_junction and fm_tile_stats (a tile's
- * flatness over the surface tile_region finds for it); -1 when memory
- * runs out (tile_apart.c). */
+/* Tiles of different faults that meet cut back until none does, the one
+ * tile_a_gives_way names each time (only the active faults' tiles are
+ * split and cut, while tile_settle tiles again); the tiles left too thin
+ * counted per fault in left_out; -1 when memory runs out (tile_apart.c). */
 int tile_separate(fm_tiles *t);
 /* Whether two tiles belong to one surface: of one fault, and of one
  * part of it or tiled with it whole (part 0); tiles of different ones are
@@ -79,7 +79,6 @@ int tile_meet(const fm_tile *a, const fm_tile *b);
  * it, clear of other faults' tiles; the tiles in fault order (tile_by_fault),
  * fault f's triangles order[start[f] .. start[f + 1]) and their area in
  * t->fault[f].area_triangles; -1 when memory runs out (tile_grow.c). */
-struct tile_walk;
 int tile_grow(fm_tiles *t, const fm_mesh *set, struct tile_walk *w, const size_t *order,
               const size_t *start);
 /* A square tile of fault f, side s, centred at c in the plane of
@@ -184,7 +183,6 @@ static inline void tile_frame(double st[3], double n[3], double dip[3])
 /* The measures of fm_tile_fault (but its triangles' area, set when the
  * tiling starts), fm_tile_junction and fm_tile_stats; -1 when memory runs
  * out (tile_apart.c). */
-struct tile_walk;
 int tile_measure(fm_tiles *t, const fm_mesh *set, const tile_sides *sd, struct tile_walk *w);
 
 /* Distance from p to the tile's rectangle, and from p to its plane in

@@ -56,9 +56,10 @@ static int cut_and_grow(fm_tiles *t, const fm_mesh *set, tile_walk *w, const siz
            tile_by_fault(t);
 }
 
-/* Per fault, its tiles' area against its triangles'; the number outside
- * OFF, and those short flagged in favour (when given). */
-static size_t outside(const fm_tiles *t, double *area, unsigned char *favour)
+/* The number of faults whose tiles' area is off their triangles' by more
+ * than OFF (area: per fault, the tiles' area); those short flagged in
+ * shortf when given. */
+static size_t outside(const fm_tiles *t, double *area, unsigned char *shortf)
 {
     memset(area, 0, t->nfaults * sizeof *area);
     for (size_t i = 0; i < t->n; i++)
@@ -70,8 +71,8 @@ static size_t outside(const fm_tiles *t, double *area, unsigned char *favour)
             continue; /* a fault with surface but no tile left is short too */
         double r = area[f] / at;
         n += r < 1 - OFF || r > 1 + OFF;
-        if (favour)
-            favour[f] = r < 1 - OFF;
+        if (shortf)
+            shortf[f] = r < 1 - OFF;
     }
     return n;
 }
