@@ -248,10 +248,10 @@ def main():
               "report.json: %d elements, %d meeting" % (rr["elements"], rr["meeting_pairs"]))
         if a.limits:
             H = rr["size_m"]
-            fs = [f for f in rr["faults"] if f["elements"]]
-            # a fault with surface but no rectangle left is lost: outside too
-            out = [f for f in fs if abs(f["area_ratio"] - 1) > 0.03] + [
-                f for f in rr["faults"] if not f["elements"] and f["area_triangles_m2"] > 0]
+            # every fault with surface: one with no rectangle left (ratio 0)
+            # is outside too
+            fs = [f for f in rr["faults"] if f["area_triangles_m2"] > 0]
+            out = [f for f in fs if abs(f["area_ratio"] - 1) > 0.03]
             tot = sum(f["area_triangles_m2"] for f in fs)
             til = sum(f["area_rectangles_m2"] for f in fs)
             print("area: all faults %.4f of the triangles'; %d of %d faults outside 3 %%"
