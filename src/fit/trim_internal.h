@@ -130,9 +130,4 @@ fm_status trim_measure_piece(const trim_input *in, trim_piece *pc, double H, dou
 double trim_segment_distance(const double p[2], const double a[2], const double b[2],
                              const double *M);
 
-/* --- trim_sample.c --- */
-
-/* Arc length of the piece between parameters a <= b (Gauss per span). */
-double trim_arc_length(const trim_piece *pc, double a, double b);
-
 #endif
