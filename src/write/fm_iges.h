@@ -67,14 +67,14 @@
  *     tolerance     quantum   control points   model.igs   deviation
  *     exact (< 0)   -         1,881,227        106.6 MB    0
  *     0.01 m        1 mm      1,878,868        102.8 MB    0.003 m
- *     0.09 m (res.) 1 cm      1,859,414         90.3 MB    0.033 m
+ *     0.09 m (res.) 1 cm      1,859,414         90.3 MB    0.034 m
  *     0.5 m         10 cm     1,831,180         80.5 MB    0.17 m
  *     1 m           10 cm     1,810,408         79.6 MB    0.39 m
  * The fitted fault surfaces are rough at their knot spacing (~530 m): a
  * single knot's removal, row by row, moves the row by more than 1 m in
  * half the cases, and a knot goes only where every row lets it, so
- * removal takes 1 to 4 % of the points at these tolerances (11 % at 5 m,
- * 48 % at 50 m); the quantum does most of the rest.
+ * removal takes 1 to 4 % of the points at these tolerances (9 % at 5 m,
+ * 43 % at 50 m: 46.8 MB); the quantum does most of the rest.
  *
  * The file: Start section = the description; Global section with "," and
  * ";" delimiters, native system id "faultmesh", the significant digits of
