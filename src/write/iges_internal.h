@@ -31,6 +31,9 @@ void iges_lines_init(iges_lines *l, FILE *fp, char letter, long first_seq);
  * finishes its last line (each PD entity starts on a new line). */
 void iges_int(iges_lines *l, long long v);
 void iges_real(iges_lines *l, double v);
+/* v rounded to the nearest multiple of 10^quantum_exp, as a decimal of
+ * exactly that many places (trailing zeros dropped). */
+void iges_real_quantum(iges_lines *l, double v, int quantum_exp);
 void iges_str(iges_lines *l, const char *s); /* NULL or "" = defaulted (empty) */
 void iges_end(iges_lines *l);
 
@@ -41,6 +44,11 @@ void iges_format_real(double x, char *buf);
 /* x rounded to `digits` (1..17) significant digits, IGES style, shortest
  * form (no trailing zeros); buf needs 32 bytes. */
 void iges_format_real_digits(double x, int digits, char *buf);
+
+/* x rounded to the nearest multiple of 10^quantum_exp (|x| below 1e15
+ * quanta), as a decimal of that many places with the zeros at its end
+ * dropped ("-1231.09", "40178.", "0."); buf needs 48 bytes. */
+void iges_format_quantum(double x, int quantum_exp, char *buf);
 
 /* One fixed-layout line: data (padded/truncated to 72), section letter
  * and sequence number. */
@@ -70,6 +78,32 @@ typedef struct iges_window {
  * none): the B-spline restricted to them is the same surface there, so
  * the control points that only shape the unused extension are left out. */
 void iges_face_window(const fm_iges_face *f, iges_window *w);
+
+/* What of a face's surface is written: its window (copied), maybe with
+ * knots removed (iges_reduce.c) and its coordinates rounded to a decimal
+ * quantum. */
+typedef struct iges_net {
+    int pu, pv;
+    size_t nu, nv;
+    double *knots_u, *knots_v; /* nu + pu + 1 and nv + pv + 1 values */
+    double *ctrl;              /* 3 nu nv, point (i, j) at 3 (j nu + i) */
+    double *weights;           /* nu nv, or NULL = polynomial */
+    double r[4];               /* parameter range: u0, u1, v0, v1 */
+    int rounded;               /* 1: coordinates rounded to 10^quantum_exp */
+    int quantum_exp;
+    double removal;            /* bound of the knot removal's deviation (0: none) */
+} iges_net;
+
+/* The window of the face's surface as a net of its own; FM_ERR_NOMEM or
+ * FM_OK. */
+fm_status iges_net_copy(const fm_iges_surface *s, const iges_window *w, iges_net *net);
+void iges_net_free(iges_net *net);
+
+/* Removes knots of a polynomial net while the distance between the net's
+ * surface and the one it was given, on its parameter range, provably
+ * stays within budget; sets net->removal to that bound. A rational net
+ * is left as it is. FM_ERR_NOMEM or FM_OK (the net unchanged on failure). */
+fm_status iges_reduce(iges_net *net, double budget);
 
 /* 1 when every character is printable ASCII. */
 int iges_printable(const char *s);

@@ -142,6 +142,64 @@ void iges_real(iges_lines *l, double v)
     place(l, t, strlen(t), "", 0, 0);
 }
 
+void iges_format_quantum(double x, int quantum_exp, char *buf)
+{
+    static const double p10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                 1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    int k = quantum_exp < 0 ? -quantum_exp : quantum_exp;
+    if (k > 22 || !isfinite(x)) {
+        iges_format_real(x, buf);
+        return;
+    }
+    /* multiples of the quantum as an integer: the caller keeps |x| below
+     * 1e15 quanta, far inside long long */
+    double q = quantum_exp < 0 ? x * p10[k] : x / p10[k];
+    long long n = llround(q);
+    if (n == 0) {
+        strcpy(buf, "0.");
+        return;
+    }
+    char d[48];
+    int nd = 0;
+    unsigned long long u = n < 0 ? 0ULL - (unsigned long long)n : (unsigned long long)n;
+    while (u) {
+        d[nd++] = (char)('0' + u % 10);
+        u /= 10;
+    }
+    /* d holds the digits least significant first */
+    size_t o = 0;
+    if (n < 0)
+        buf[o++] = '-';
+    if (quantum_exp >= 0) {
+        for (int i = nd - 1; i >= 0; i--)
+            buf[o++] = d[i];
+        for (int i = 0; i < quantum_exp; i++)
+            buf[o++] = '0';
+        buf[o++] = '.';
+        buf[o] = '\0';
+        return;
+    }
+    while (nd <= k)
+        d[nd++] = '0'; /* at least one digit before the point */
+    for (int i = nd - 1; i >= k; i--)
+        buf[o++] = d[i];
+    buf[o++] = '.';
+    int first = 0; /* fraction digits d[k - 1] .. d[first], zeros at the end dropped */
+    while (first < k && d[first] == '0')
+        first++;
+    for (int i = k - 1; i >= first; i--)
+        buf[o++] = d[i];
+    buf[o] = '\0';
+}
+
+void iges_real_quantum(iges_lines *l, double v, int quantum_exp)
+{
+    char t[48];
+    iges_format_quantum(v, quantum_exp, t);
+    place(l, t, strlen(t), "", 0, 0);
+}
+
 void iges_str(iges_lines *l, const char *s)
 {
     size_t n = s ? strlen(s) : 0;

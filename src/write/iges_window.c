@@ -10,6 +10,8 @@
 #include "iges_internal.h"
 
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 /* Control points [*i0, *i0 + *ni) and the parameter interval [*a, *b] for
  * the spans of knots (degree p, n control points) that meet [lo, hi]
@@ -62,4 +64,42 @@ void iges_face_window(const fm_iges_face *f, iges_window *w)
               &w->r[1]);
     window_1d(s->knots_v, s->degree_v, s->nv, lo[1], hi[1], r[2], r[3], &w->j0, &w->nj, &w->r[2],
               &w->r[3]);
+}
+
+void iges_net_free(iges_net *net)
+{
+    free(net->knots_u);
+    free(net->knots_v);
+    free(net->ctrl);
+    free(net->weights);
+    memset(net, 0, sizeof *net);
+}
+
+fm_status iges_net_copy(const fm_iges_surface *s, const iges_window *w, iges_net *net)
+{
+    memset(net, 0, sizeof *net);
+    net->pu = s->degree_u;
+    net->pv = s->degree_v;
+    net->nu = w->ni;
+    net->nv = w->nj;
+    size_t mu = w->ni + (size_t)s->degree_u + 1, mv = w->nj + (size_t)s->degree_v + 1;
+    size_t n = w->ni * w->nj;
+    net->knots_u = malloc(mu * sizeof *net->knots_u);
+    net->knots_v = malloc(mv * sizeof *net->knots_v);
+    net->ctrl = malloc(3 * n * sizeof *net->ctrl);
+    net->weights = s->weights ? malloc(n * sizeof *net->weights) : NULL;
+    if (!net->knots_u || !net->knots_v || !net->ctrl || (s->weights && !net->weights)) {
+        iges_net_free(net);
+        return FM_ERR_NOMEM;
+    }
+    memcpy(net->knots_u, s->knots_u + w->i0, mu * sizeof *net->knots_u);
+    memcpy(net->knots_v, s->knots_v + w->j0, mv * sizeof *net->knots_v);
+    for (size_t j = 0; j < w->nj; j++) {
+        size_t from = (w->j0 + j) * s->nu + w->i0;
+        memcpy(net->ctrl + 3 * j * w->ni, s->ctrl + 3 * from, 3 * w->ni * sizeof *net->ctrl);
+        if (s->weights)
+            memcpy(net->weights + j * w->ni, s->weights + from, w->ni * sizeof *net->weights);
+    }
+    memcpy(net->r, w->r, sizeof net->r);
+    return FM_OK;
 }

@@ -29,7 +29,7 @@ typedef struct iges_walk {
     const fm_iges_face *faces;
     size_t nfaces;
     const unsigned char *rev; /* per face 1 + nholes flags, faces in order */
-    const iges_window *win;   /* per face: what of its surface is written */
+    const iges_net *nets;     /* per face: what of its surface is written */
     int digits;               /* of the reals in the Parameter Data */
     iges_entity *ents;
     size_t nents, next;       /* entities, and the next to emit */
@@ -77,36 +77,37 @@ static void end(iges_walk *w, size_t e)
         w->ents[e].pd_lines = w->pd.seq + 1 - w->ents[e].pd_first;
 }
 
-static void emit_surface(iges_walk *w, const fm_iges_surface *s, const iges_window *win)
+static void emit_surface(iges_walk *w, const iges_net *net)
 {
     size_t e = begin(w, 128, 0, STATUS_DEPENDENT, NULL);
     iges_lines *l = &w->pd;
-    iges_int(l, (long long)win->ni - 1);
-    iges_int(l, (long long)win->nj - 1);
-    iges_int(l, s->degree_u);
-    iges_int(l, s->degree_v);
+    iges_int(l, (long long)net->nu - 1);
+    iges_int(l, (long long)net->nv - 1);
+    iges_int(l, net->pu);
+    iges_int(l, net->pv);
     /* Closed and periodic flags 0: readers recompute closure from the
      * data, and fault surfaces are open. */
     iges_int(l, 0);
     iges_int(l, 0);
-    iges_int(l, s->weights ? 0 : 1);
+    iges_int(l, net->weights ? 0 : 1);
     iges_int(l, 0);
     iges_int(l, 0);
-    for (size_t i = 0; i < win->ni + (size_t)s->degree_u + 1; i++)
-        iges_real(l, s->knots_u[win->i0 + i]);
-    for (size_t j = 0; j < win->nj + (size_t)s->degree_v + 1; j++)
-        iges_real(l, s->knots_v[win->j0 + j]);
-    for (size_t j = 0; j < win->nj; j++)
-        for (size_t i = 0; i < win->ni; i++)
-            iges_real(l, s->weights ? s->weights[(win->j0 + j) * s->nu + win->i0 + i] : 1.0);
-    for (size_t j = 0; j < win->nj; j++)
-        for (size_t i = 0; i < win->ni; i++) {
-            const double *c = s->ctrl + 3 * ((win->j0 + j) * s->nu + win->i0 + i);
-            for (int d = 0; d < 3; d++)
-                iges_real(l, c[d]);
+    for (size_t i = 0; i < net->nu + (size_t)net->pu + 1; i++)
+        iges_real(l, net->knots_u[i]);
+    for (size_t j = 0; j < net->nv + (size_t)net->pv + 1; j++)
+        iges_real(l, net->knots_v[j]);
+    size_t n = net->nu * net->nv;
+    for (size_t k = 0; k < n; k++)
+        iges_real(l, net->weights ? net->weights[k] : 1.0);
+    for (size_t k = 0; k < n; k++)
+        for (int d = 0; d < 3; d++) {
+            if (net->rounded)
+                iges_real_quantum(l, net->ctrl[3 * k + (size_t)d], net->quantum_exp);
+            else
+                iges_real(l, net->ctrl[3 * k + (size_t)d]);
         }
     for (int i = 0; i < 4; i++)
-        iges_real(l, win->r[i]);
+        iges_real(l, net->r[i]);
     end(w, e);
 }
 
@@ -198,10 +199,10 @@ static size_t entities_of_face(const fm_iges_face *f)
 }
 
 static void emit_face(iges_walk *w, const fm_iges_face *f, const unsigned char *rev,
-                      const iges_window *win)
+                      const iges_net *net)
 {
     size_t surf = w->next;
-    emit_surface(w, &f->surface, win);
+    emit_surface(w, net);
     size_t outer = 0;
     int has_outer = 1;
     if (f->outer) {
@@ -260,7 +261,7 @@ static void walk_faces(iges_walk *w, FILE *fp, long first_seq)
     w->next = 0;
     const unsigned char *rev = w->rev;
     for (size_t i = 0; i < w->nfaces; i++) {
-        emit_face(w, &w->faces[i], rev, &w->win[i]);
+        emit_face(w, &w->faces[i], rev, &w->nets[i]);
         rev += 1 + w->faces[i].nholes;
     }
 }
@@ -389,6 +390,60 @@ static int auto_digits(double max_coord, double resolution)
     return d < 6 ? 6 : d > 17 ? 17 : d;
 }
 
+/* The largest power of ten (its exponent) whose rounding moves a point by
+ * at most half the tolerance: half of a quantum in each of 3 coordinates
+ * is sqrt(3) / 2 quanta. */
+static int quantum_exp_for(double tol)
+{
+    double half = 0.5 * sqrt(3.0), want = 0.5 * tol;
+    int e = (int)floor(log10(tol / sqrt(3.0)));
+    while (e > -22 && pow(10.0, e) * half > want)
+        e--;
+    while (e < 22 && pow(10.0, e + 1) * half <= want)
+        e++;
+    return e < -22 ? -22 : e > 22 ? 22 : e;
+}
+
+/* What of each face's surface is written: exactly its window when the
+ * tolerance is negative; otherwise the window with knots removed within
+ * what the rounding leaves of the tolerance (iges_reduce.c), its
+ * coordinates rounded to the quantum of quantum_exp_for. */
+static fm_status make_nets(const char *path, const fm_iges_face *faces, const iges_window *win,
+                           size_t n, double tolerance, double max_coord, iges_net *nets,
+                           fm_error *err)
+{
+    for (size_t i = 0; i < n; i++)
+        if (iges_net_copy(&faces[i].surface, &win[i], &nets[i]) != FM_OK)
+            return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    if (tolerance < 0)
+        return FM_OK;
+    int qe = quantum_exp_for(tolerance);
+    /* never finer than a double holds the coordinates: below 1e15 quanta */
+    while (qe < 22 && max_coord / pow(10.0, qe) >= 1e15)
+        qe++;
+    double budget = tolerance - 0.5 * sqrt(3.0) * pow(10.0, qe);
+    for (size_t i = 0; i < n; i++) {
+        nets[i].rounded = 1;
+        nets[i].quantum_exp = qe;
+        if (iges_reduce(&nets[i], budget) != FM_OK)
+            return fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
+    }
+    return FM_OK;
+}
+
+/* Global 20: the largest coordinate of a control point as written. */
+static double nets_max_coord(const iges_net *nets, size_t n)
+{
+    double m = 0;
+    for (size_t i = 0; i < n; i++) {
+        const iges_net *net = &nets[i];
+        double slack = net->rounded ? 0.5 * pow(10.0, net->quantum_exp) : 0;
+        for (size_t k = 0; k < 3 * net->nu * net->nv; k++)
+            m = fmax(m, fabs(net->ctrl[k]) + slack);
+    }
+    return m;
+}
+
 static fm_status check_options(const char *path, const fm_iges_options *o, fm_error *err)
 {
     if (!unit_name(o->unit_flag))
@@ -398,6 +453,8 @@ static fm_status check_options(const char *path, const fm_iges_options *o, fm_er
         return fm_error_set(err, FM_ERR_INVALID, path, 0, "model scale must be positive");
     if (!isfinite(o->resolution) || o->resolution < 0)
         return fm_error_set(err, FM_ERR_INVALID, path, 0, "resolution must be >= 0");
+    if (!isfinite(o->tolerance))
+        return fm_error_set(err, FM_ERR_INVALID, path, 0, "tolerance must be finite");
     if (o->digits < 0 || o->digits > 17)
         return fm_error_set(err, FM_ERR_INVALID, path, 0, "digits must be 0..17");
     if (o->time != FM_IGES_TIME_AUTO && (o->time < 0 || o->time >= 253402300800LL))
@@ -456,8 +513,6 @@ fm_status fm_iges_write(const char *path, const fm_iges_face *faces, size_t nfac
     for (size_t i = 0; i < nfaces && !st; i++) {
         st = iges_check_face(path, i, &faces[i], r, err);
         r += 1 + faces[i].nholes;
-        if (!st)
-            nents += entities_of_face(&faces[i]);
     }
     iges_window *win = NULL;
     if (!st) {
@@ -469,12 +524,25 @@ fm_status fm_iges_write(const char *path, const fm_iges_face *faces, size_t nfac
     }
     iges_global g = {0};
     double diag = 0;
+    iges_net *nets = NULL;
     if (!st) {
         control_box(faces, win, nfaces, &g.max_coord, &diag);
         g.resolution = opt->resolution > 0 ? opt->resolution : diag > 0 ? 1e-7 * diag : 1e-7;
         g.digits = opt->digits ? opt->digits : auto_digits(g.max_coord, g.resolution);
+        nets = calloc(nfaces ? nfaces : 1, sizeof *nets);
+        if (!nets)
+            st = fm_error_set(err, FM_ERR_NOMEM, path, 0, "out of memory");
     }
-    iges_walk w = {faces, nfaces, rev, win, g.digits, NULL, nents, 0, {0}};
+    if (!st)
+        st = make_nets(path, faces, win, nfaces,
+                       opt->tolerance != 0 ? opt->tolerance : g.resolution, g.max_coord, nets,
+                       err);
+    if (!st) {
+        g.max_coord = nets_max_coord(nets, nfaces);
+        for (size_t i = 0; i < nfaces; i++)
+            nents += entities_of_face(&faces[i]);
+    }
+    iges_walk w = {faces, nfaces, rev, nets, g.digits, NULL, nents, 0, {0}};
     if (!st && 2 * nents > (size_t)IGES_MAX_SEQ)
         st = fm_error_set(err, FM_ERR_INVALID, path, 0, "too many entities for IGES (%zu)", nents);
     if (!st) {
@@ -514,6 +582,9 @@ fm_status fm_iges_write(const char *path, const fm_iges_face *faces, size_t nfac
         st = write_file(path, &w, &g, desc, err);
     }
     free(w.ents);
+    for (size_t i = 0; nets && i < nfaces; i++)
+        iges_net_free(&nets[i]);
+    free(nets);
     free(win);
     free(rev);
     return st;

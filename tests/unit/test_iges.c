@@ -13,6 +13,7 @@
 #include "fm_atomic.h"
 #include "fm_iges.h"
 #include "fm_test.h"
+#include "iges_internal.h"
 
 /* ---- sample geometry (check_iges.py knows the same numbers) ---- */
 
@@ -129,6 +130,7 @@ static void options(fm_iges_options *o)
     o->organization = "faultmesh";
     o->time = 1700000000; /* 2023-11-14 22:13:20 UTC */
     o->digits = 17; /* exact texts, so that the reals can be compared bit for bit */
+    o->tolerance = -1; /* the control points as given */
 }
 
 static int write_samples(const char *dir, fm_error *err)
@@ -578,8 +580,8 @@ static void test_deterministic(void)
 }
 
 /* A loop in a corner of face B: only the knot spans it reaches are
- * written, and by default the reals are rounded within 1/100 of the
- * resolution. */
+ * written, and with the tolerance off and digits automatic the reals are
+ * rounded within 1/100 of the resolution. */
 static void test_window_and_digits(void)
 {
     char path[1024];
@@ -642,6 +644,132 @@ static void test_window_and_digits(void)
     CHECK_EQ(par(s, at + 3), 4000.0);
     CHECK_EQ(s->npar, at + 4);
     free_igs(&g);
+}
+
+/* Cubic B-spline basis at t (knots U, n points): first index, values. */
+static size_t cubic_basis(const double *U, size_t n, double t, double N[4])
+{
+    size_t s = 3;
+    while (s + 1 < n && U[s + 1] <= t)
+        s++;
+    double left[4], right[4];
+    N[0] = 1;
+    for (int j = 1; j <= 3; j++) {
+        left[j] = t - U[s + 1 - (size_t)j];
+        right[j] = U[s + (size_t)j] - t;
+        double saved = 0;
+        for (int r = 0; r < j; r++) {
+            double tmp = N[r] / (right[r + 1] + left[j - r]);
+            N[r] = saved + right[r + 1] * tmp;
+            saved = left[j - r] * tmp;
+        }
+        N[j] = saved;
+    }
+    return s - 3;
+}
+
+/* By default (tolerance automatic: the resolution) the bowl, a single
+ * quadratic, loses every interior knot: one span, 4 x 4 control points
+ * instead of 13 x 11, each coordinate on the decimal quantum; read back,
+ * it stays within the tolerance of the analytic bowl. */
+static void test_default_reduces(void)
+{
+    char path[1024];
+    tmp_path(path, sizeof path, "iges_r.igs");
+    fm_iges_options o;
+    fm_iges_options_default(&o);
+    o.time = 1700000000;
+    fm_iges_face f = face_b();
+    fm_error err;
+    CHECK_EQ(fm_iges_write(path, &f, 1, &o, &err), FM_OK);
+    igs g;
+    read_igs(path, &g);
+    if (!g.ok)
+        return;
+    ent *s = &g.e[0];
+    CHECK_EQ(s->type, 128);
+    int nu = atoi(s->par[1]) + 1, nv = atoi(s->par[2]) + 1;
+    CHECK_EQ(nu, 4);
+    CHECK_EQ(nv, 4);
+    CHECK_EQ(s->npar, 10 + (nu + 4) + (nv + 4) + 4 * nu * nv + 4);
+    if (nu != 4 || nv != 4 || s->npar != 10 + 8 + 8 + 64 + 4) {
+        free_igs(&g);
+        return;
+    }
+    double ku[8], kv[8], c[48];
+    for (int i = 0; i < 8; i++) {
+        ku[i] = par(s, 10 + i);
+        kv[i] = par(s, 18 + i);
+    }
+    CHECK_EQ(ku[3], 0.0);
+    CHECK_EQ(ku[4], 10000.0);
+    CHECK_EQ(kv[3], 0.0);
+    CHECK_EQ(kv[4], 8000.0);
+    double res = strtod(g.gpar[18], NULL);
+    for (int k = 0; k < 48; k++) {
+        const char *t = s->par[10 + 16 + 16 + k];
+        c[k] = par(s, 10 + 16 + 16 + k);
+        /* the quantum for this resolution: 1e-4 (1e-4 sqrt(3) / 2 <= res / 2 < 1e-3 sqrt(3) / 2) */
+        const char *dot = strchr(t, '.');
+        CHECK(dot != NULL && strlen(dot + 1) <= 4);
+    }
+    CHECK(res > 1e-4 * sqrt(3.0) && res < 1e-3 * sqrt(3.0));
+    double worst = 0;
+    for (int b = 0; b <= 80; b++)
+        for (int a = 0; a <= 100; a++) {
+            double u = 100.0 * a, v = 100.0 * b, Nu[4], Nv[4], x[3] = {0, 0, 0};
+            size_t iu = cubic_basis(ku, 4, u, Nu), iv = cubic_basis(kv, 4, v, Nv);
+            for (size_t j = 0; j < 4; j++)
+                for (size_t i = 0; i < 4; i++)
+                    for (size_t d = 0; d < 3; d++)
+                        x[d] += Nu[i] * Nv[j] * c[3 * ((iv + j) * 4 + iu + i) + d];
+            double z = -3000 + B_A * ((u - 5000) * (u - 5000) + (v - 4000) * (v - 4000));
+            worst = fmax(worst, sqrt((x[0] - 380000 - u) * (x[0] - 380000 - u) +
+                                     (x[1] - 3760000 - v) * (x[1] - 3760000 - v) +
+                                     (x[2] - z) * (x[2] - z)));
+        }
+    printf("bowl read back: within %.2g m of the analytic one (tolerance %.2g m)\n", worst, res);
+    CHECK(worst <= res);
+    free_igs(&g);
+
+    /* A tolerance of its own: the quantum follows it (0.1 for 0.5). */
+    o.tolerance = 0.5;
+    CHECK_EQ(fm_iges_write(path, &f, 1, &o, &err), FM_OK);
+    read_igs(path, &g);
+    if (g.ok && g.e[0].npar > 42) {
+        const char *t = g.e[0].par[42];
+        CHECK(strchr(t, '.') && strlen(strchr(t, '.') + 1) <= 1);
+    }
+    free_igs(&g);
+    o.tolerance = NAN;
+    CHECK_EQ(fm_iges_write(path, &f, 1, &o, &err), FM_ERR_INVALID);
+}
+
+/* Reals on a decimal quantum: as many places as the quantum has, the
+ * zeros at the end dropped. */
+static void test_quantum_text(void)
+{
+    char b[48];
+    iges_format_quantum(-1231.089506, -2, b);
+    CHECK_STR(b, "-1231.09");
+    iges_format_quantum(4017812.806, -3, b);
+    CHECK_STR(b, "4017812.806");
+    iges_format_quantum(515673.3773, -1, b);
+    CHECK_STR(b, "515673.4");
+    iges_format_quantum(0.004, -2, b);
+    CHECK_STR(b, "0.");
+    iges_format_quantum(-0.004, -2, b);
+    CHECK_STR(b, "0.");
+    iges_format_quantum(-0.25, -3, b);
+    CHECK_STR(b, "-0.25");
+    iges_format_quantum(0.0503, -4, b);
+    CHECK_STR(b, "0.0503");
+    iges_format_quantum(12345.6, 1, b);
+    CHECK_STR(b, "12350.");
+    iges_format_quantum(-7.0, 0, b);
+    CHECK_STR(b, "-7.");
+    iges_format_quantum(3.5, -2, b);
+    CHECK_STR(b, "3.5");
 }
 
 static void test_rejects(void)
@@ -728,6 +856,8 @@ int main(int argc, char **argv)
         FM_CASE(test_untrimmed_face),
         FM_CASE(test_deterministic),
         FM_CASE(test_window_and_digits),
+        FM_CASE(test_default_reduces),
+        FM_CASE(test_quantum_text),
         FM_CASE(test_rejects),
     };
     return fm_test_run(cases, sizeof cases / sizeof cases[0]);
