@@ -9,6 +9,7 @@
 #include "fm_check.h"
 #include "fm_closest.h"
 #include "fm_faultset_write.h"
+#include "fm_parallel.h"
 #include "remesh_quads.h"
 #include "fm_reproject.h"
 #include "fm_sort.h"
@@ -185,11 +186,30 @@ static void measure_again(run_state *rs, int32_t tag)
         run_log(rs->ctl, FM_LOG_ERROR, "%s: out of memory measuring it again", r->name);
 }
 
-/* Every fault that gave way in cr measured again, once (unit: the fault
- * of each tag of cr, NULL when the tags are faults). */
-static void measure_yielded(run_state *rs, const fm_carve_result *cr, const int32_t *unit)
+typedef struct again_work {
+    run_state *rs;
+    const int32_t *fault;
+} again_work;
+
+static void again_one(void *user, size_t k)
 {
-    for (size_t k = 0; k < fm_carve_npairs(cr); k++) {
+    again_work *w = user;
+    measure_again(w->rs, w->fault[k]);
+}
+
+/* Every fault that gave way in cr measured again, once (unit: the fault
+ * of each tag of cr, NULL when the tags are faults). Each reads the set
+ * whole and writes only its own result, so they run on the threads. */
+static void measure_yielded(run_state *rs, const fm_carve_result *cr, const int32_t *unit,
+                            int jobs)
+{
+    size_t np = fm_carve_npairs(cr), n = 0;
+    int32_t *fault = malloc((np + 1) * sizeof *fault);
+    if (!fault) {
+        run_log(rs->ctl, FM_LOG_ERROR, "out of memory measuring the carved faults again");
+        return;
+    }
+    for (size_t k = 0; k < np; k++) {
         const fm_carve_pair *p = fm_carve_pair_at(cr, k);
         int32_t f = p->fault[p->yielded];
         f = unit ? unit[f] : f;
@@ -199,8 +219,11 @@ static void measure_yielded(run_state *rs, const fm_carve_result *cr, const int3
             seen = !q->kept && (unit ? unit[q->fault[q->yielded]] : q->fault[q->yielded]) == f;
         }
         if (!seen)
-            measure_again(rs, f);
+            fault[n++] = f;
     }
+    again_work w = {rs, fault};
+    fm_parallel_for(n, jobs, again_one, &w, NULL, NULL, 0, n);
+    free(fault);
 }
 
 /* The same guard between the sheets of each fault (a branching fault's
@@ -208,7 +231,7 @@ static void measure_yielded(run_state *rs, const fm_carve_result *cr, const int3
  * part): every sheet is a unit of its own for fm_carve_crossings, and the
  * fault tags are put back after. Not when a pair of faults was left
  * crossing: with unit tags it would be carved after all. */
-static void carve_sheets(run_state *rs, double H)
+static void carve_sheets(run_state *rs, double H, int jobs)
 {
     for (size_t k = 0; k < fm_carve_npairs(rs->carve); k++)
         if (fm_carve_pair_at(rs->carve, k)->kept)
@@ -251,7 +274,7 @@ static void carve_sheets(run_state *rs, double H)
     rs->sheet_carve = cr;
     rs->sheet_unit_fault = fault;
     rs->sheet_unit_first = first;
-    measure_yielded(rs, cr, fault);
+    measure_yielded(rs, cr, fault, jobs);
 }
 
 /* Where two faults still meet away from their shared curves (fm_carve.h),
@@ -269,8 +292,8 @@ void carve_set(const remesh_cli *cli, run_state *rs)
                 err.message);
         return;
     }
-    measure_yielded(rs, rs->carve, NULL);
-    carve_sheets(rs, H);
+    measure_yielded(rs, rs->carve, NULL, cli->jobs);
+    carve_sheets(rs, H, cli->jobs);
 }
 
 /* The set without vertices no triangle uses (what the last guard's
