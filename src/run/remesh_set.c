@@ -619,22 +619,32 @@ fm_status write_set(const remesh_cli *cli, const run_state *rs, sim_attrs *sa)
         /* model.igs and the simulator files beside the others (remesh_side.c) */
         side_write igs = {.kind = SIDE_IGES, .path = path + 5 * n, .cad = rs->cad,
                           .ncad = rs->ncad, .crs = fs.crs, .rp = rp};
-        side_write sim = {.kind = SIDE_SIM, .sc = &cli->sim, .fs = &fs, .sa = sa,
-                          .dir = cli->dir, .rsqsim = (fm & FMT_RSQSIM) != 0,
-                          .eqsim = (fm & FMT_EQSIM) != 0};
+        /* RSQSim's and EQSim's files each on a thread: either alone was
+         * the write stage's longest at fine sizes */
+        side_write sim[2];
+        for (int k = 0; k < 2; k++)
+            sim[k] = (side_write){.kind = SIDE_SIM, .sc = &cli->sim, .fs = &fs, .sa = sa,
+                                  .dir = cli->dir, .rsqsim = !k && (fm & FMT_RSQSIM),
+                                  .eqsim = k && (fm & FMT_EQSIM)};
         int want_sim = !cli->quads && (fm & (FMT_RSQSIM | FMT_EQSIM));
+        if (want_sim)
+            sim_say(&cli->sim, &fs, sa);
         if (fm & FMT_IGS)
             side_start(&igs);
-        if (want_sim)
-            side_start(&sim);
+        for (int k = 0; k < 2 && want_sim; k++)
+            if (sim[k].rsqsim || sim[k].eqsim)
+                side_start(&sim[k]);
         if (cli->quads)
             sst = write_quads(cli, &fs, rs->sheet, sa, rs->outputs, &err);
         else if (fm & (FMT_ALL & ~(FMT_IGS | FMT_RSQSIM | FMT_EQSIM | FMT_HTML | FMT_NAMES)))
             st = fm_faultset_write_all(&fs, &out, cli->jobs, &err);
         if (fm & FMT_IGS)
             cst = side_join(&igs, rs->outputs);
-        if (want_sim)
-            sst = side_join(&sim, rs->outputs);
+        for (int k = 0; k < 2 && want_sim; k++)
+            if (sim[k].rsqsim || sim[k].eqsim) {
+                fm_status ks = side_join(&sim[k], rs->outputs);
+                sst = sst != FM_OK ? sst : ks;
+            }
         if (fm & FMT_NAMES) {
             char *names = path; /* the first path's room, free again */
             snprintf(names, n, "%s/names.csv", cli->dir);

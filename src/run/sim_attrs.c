@@ -258,8 +258,7 @@ static void say_placeholders(const sim_cli *sc, const fm_faultset *fs, const sim
                                     "the metadata (names in report.json: attributes)");
 }
 
-fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
-                    const char *dir, int rsqsim, int eqsim, fm_output_done done, void *ctx)
+void sim_say(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a)
 {
     if (a->kin) {
         double A = 0, M = 0;
@@ -274,6 +273,11 @@ fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a
                 A > 0 ? 100 * M / A : 0, none, a->nfaults);
     }
     say_placeholders(sc, fs, a);
+}
+
+fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
+                    const char *dir, int rsqsim, int eqsim, fm_output_done done, void *ctx)
+{
     size_t n = strlen(dir) + 32;
     char *path = malloc(n);
     fm_sim_slip slip = {a->rake_f, a->rate_f, a->rake_t, a->rate_t};

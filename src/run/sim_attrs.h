@@ -71,8 +71,14 @@ typedef struct sim_attrs {
 int sim_attrs_make(const sim_cli *sc, const fm_faultset *fs, sim_attrs *a);
 void sim_attrs_free(sim_attrs *a);
 
+/* What the simulator files will hold that a user should know (the
+ * kinematics' cover, elements left with default rakes and rates): logged
+ * once, before they are written. */
+void sim_say(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a);
+
 /* DIR/mesh.rsqsim and DIR/mesh.eqsim (those asked for), each tried, each
- * told to done; the first failure's status. */
+ * told to done; the first failure's status. Logs nothing: one call per
+ * file may run on threads of their own. */
 fm_status sim_write(const sim_cli *sc, const fm_faultset *fs, const sim_attrs *a,
                     const char *dir, int rsqsim, int eqsim, fm_output_done done, void *ctx);
 
