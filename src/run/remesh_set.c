@@ -226,11 +226,71 @@ static void measure_yielded(run_state *rs, const fm_carve_result *cr, const int3
     free(fault);
 }
 
+/* The triangles the guard between sheets needs to see, as a mesh of the
+ * set's vertices (their numbers kept) in the set's order: those of faults
+ * of several sheets, and every triangle with two corners among theirs (a
+ * side shared with another fault says a sheet's triangle is on a junction
+ * there). The rest cannot matter: after the guard between faults, with no
+ * pair kept, no triangle of one fault meets another's, and the sheets of a
+ * fault of one sheet are never compared. NULL when out of memory; *at
+ * gets each triangle's index in the set. */
+static fm_mesh *sheet_guard_mesh(const fm_mesh *set, const int32_t *unit_first,
+                                 const int32_t *fault_tag, int32_t **at)
+{
+    size_t nv = fm_mesh_nvertices(set), nt = fm_mesh_ntriangles(set);
+    const int32_t *T = fm_mesh_triangles(set), *tag = fm_mesh_tags(set);
+    unsigned char *mark = calloc(nv + 1, 1);
+    unsigned char *take = calloc(nt + 1, 1);
+    fm_mesh *sub = fm_mesh_create();
+    *at = NULL;
+    if (!mark || !take || !sub) {
+        free(mark);
+        free(take);
+        fm_mesh_destroy(sub);
+        return NULL;
+    }
+    for (size_t t = 0; t < nt; t++) {
+        int32_t f = fault_tag[t];
+        if (unit_first[f + 1] - unit_first[f] > 1) {
+            take[t] = 1;
+            for (int c = 0; c < 3; c++)
+                mark[T[3 * t + c]] = 1;
+        }
+    }
+    size_t n = 0;
+    for (size_t t = 0; t < nt; t++) {
+        take[t] |= mark[T[3 * t]] + mark[T[3 * t + 1]] + mark[T[3 * t + 2]] >= 2;
+        n += take[t];
+    }
+    *at = malloc((n + 1) * sizeof **at);
+    if (!*at || fm_mesh_reserve(sub, nv, n) != FM_OK) {
+        free(mark);
+        free(take);
+        free(*at);
+        *at = NULL;
+        fm_mesh_destroy(sub);
+        return NULL;
+    }
+    const double *X = fm_mesh_vertices(set);
+    for (size_t v = 0; v < nv; v++)
+        fm_mesh_add_vertex(sub, X[3 * v], X[3 * v + 1], X[3 * v + 2]);
+    for (size_t t = 0, k = 0; t < nt; t++)
+        if (take[t]) {
+            fm_mesh_add_triangle(sub, T[3 * t], T[3 * t + 1], T[3 * t + 2], tag[t]);
+            (*at)[k++] = (int32_t)t;
+        }
+    free(mark);
+    free(take);
+    return sub;
+}
+
 /* The same guard between the sheets of each fault (a branching fault's
  * sheets that cross where their junction could not be made, or was made in
  * part): every sheet is a unit of its own for fm_carve_crossings, and the
  * fault tags are put back after. Not when a pair of faults was left
- * crossing: with unit tags it would be carved after all. */
+ * crossing: with unit tags it would be carved after all. It runs on the
+ * triangles that can matter (sheet_guard_mesh), and what it removes there
+ * is removed from the set. */
 static void carve_sheets(run_state *rs, double H, int jobs)
 {
     for (size_t k = 0; k < fm_carve_npairs(rs->carve); k++)
@@ -248,25 +308,58 @@ static void carve_sheets(run_state *rs, double H, int jobs)
         first[f + 1] += first[f];
     size_t units = (size_t)first[nf];
     int32_t *fault = units > nf ? malloc(units * sizeof *fault) : NULL;
-    if (!fault) { /* no fault of several sheets, or out of memory */
+    int32_t *ftag = fault ? malloc((nt + 1) * sizeof *ftag) : NULL;
+    if (!ftag) { /* no fault of several sheets, or out of memory */
         free(first);
+        free(fault);
         return;
     }
     for (size_t f = 0; f < nf; f++)
         for (int32_t u = first[f]; u < first[f + 1]; u++)
             fault[u] = (int32_t)f;
+    memcpy(ftag, tag, nt * sizeof *ftag);
     for (size_t t = 0; t < nt; t++)
         tag[t] = first[tag[t]] + rs->sheet[t];
+    int32_t *at = NULL;
+    fm_mesh *sub = sheet_guard_mesh(rs->set, first, ftag, &at);
+    size_t ntaken = sub ? fm_mesh_ntriangles(sub) : 0;
+    unsigned char *gone = sub ? calloc(nt + 1, 1) : NULL;
     fm_error err;
     fm_error_clear(&err);
     fm_carve_result *cr = NULL;
-    fm_status st = fm_carve_crossings(rs->set, 2 * H, rs->sheet, &cr, &err);
+    fm_status st = gone ? FM_OK : fm_error_set(&err, FM_ERR_NOMEM, NULL, 0, "out of memory");
+    if (st == FM_OK) {
+        /* at: the set's index of each triangle of sub, before and after */
+        for (size_t i = 0; i < ntaken; i++)
+            gone[at[i]] = 1;
+        st = fm_carve_crossings(sub, 2 * H, at, &cr, &err);
+    }
+    if (st == FM_OK) {
+        for (size_t i = 0; i < fm_mesh_ntriangles(sub); i++)
+            gone[at[i]] = 0;
+        /* what went from sub goes from the set, the others kept in order */
+        int32_t *T = fm_mesh_triangles_mut(rs->set);
+        size_t kept = 0;
+        for (size_t t = 0; t < nt; t++) {
+            if (gone[t])
+                continue;
+            memmove(T + 3 * kept, T + 3 * t, 3 * sizeof *T);
+            rs->sheet[kept] = rs->sheet[t];
+            tag[kept++] = tag[t];
+        }
+        fm_mesh_truncate(rs->set, fm_mesh_nvertices(rs->set), kept);
+    }
+    free(gone);
+    free(ftag);
+    fm_mesh_destroy(sub);
+    free(at);
     nt = fm_mesh_ntriangles(rs->set);
     for (size_t t = 0; t < nt; t++)
         tag[t] = fault[tag[t]];
     if (st != FM_OK) {
         run_log(rs->ctl, FM_LOG_WARN, "sheets of a fault that cross each other are left so: %s",
                 err.message);
+        fm_carve_result_destroy(cr);
         free(first);
         free(fault);
         return;
