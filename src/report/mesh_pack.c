@@ -308,7 +308,9 @@ fm_status rp_pack_set(const fm_report *r, size_t ntags, rp_pack *out)
     if (st == FM_OK) {
         uLongf n = compressBound((uLong)b.n);
         out->data = malloc(n + 1);
-        if (!out->data || compress2(out->data, &n, b.d, (uLong)b.n, Z_BEST_COMPRESSION) != Z_OK)
+        /* zlib's default level: the best level took 0.17 s more of the
+         * whole CFM's report at 1 km to save 8 KB of its 2.4 MB */
+        if (!out->data || compress2(out->data, &n, b.d, (uLong)b.n, Z_DEFAULT_COMPRESSION) != Z_OK)
             st = FM_ERR_NOMEM;
         out->n = n;
         out->raw = b.n;
