@@ -1,7 +1,7 @@
 /* What connecting faults cost (fm_check.h, fm_check_loss): the set's
  * topology once (outline edges per fault, nodes shared by two faults,
- * edge-connected pieces), then every fault measured on its own on any
- * thread, then the pairs gathered. */
+ * edge-connected pieces) beside its closest-point tree, then every fault
+ * measured on its own on any thread, then the pairs gathered. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -140,6 +140,31 @@ static fm_status shared_nodes(const fm_mesh *m, ck_set *s)
     s->shared = sh;
     s->nshared = np;
     return FM_OK;
+}
+
+/* The set's topology and its closest-point tree, side by side: neither
+ * reads what the other makes. */
+typedef struct prep_work {
+    const fm_mesh *m;
+    const int32_t *sheet;
+    size_t nf;
+    ck_set *s;
+    fm_status st[2];
+    fm_closest_tree *all;
+    fm_error err;
+} prep_work;
+
+static void prep_one(void *user, size_t k)
+{
+    prep_work *w = user;
+    if (k == 0) {
+        w->st[0] = topology(w->m, w->sheet, w->nf, w->s);
+        if (w->st[0] == FM_OK)
+            w->st[0] = shared_nodes(w->m, w->s);
+    } else {
+        w->all = fm_closest_tree_create_quick(w->m, &w->err);
+        w->st[1] = w->all ? FM_OK : w->err.code;
+    }
 }
 
 typedef struct loss_work {
@@ -288,16 +313,16 @@ fm_status fm_check_loss(const fm_loss_input *in, fm_loss **out, fm_error *err)
     ck_set s = {in, NULL, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL};
     ck_fault_out *fo = calloc(nf + 1, sizeof *fo);
     fm_status st = l && fo ? FM_OK : FM_ERR_NOMEM;
-    if (st == FM_OK)
-        st = topology(m, in->sheet, nf, &s);
-    if (st == FM_OK)
-        st = shared_nodes(m, &s);
-    fm_closest_tree *all = NULL;
+    prep_work pw = {m, in->sheet, nf, &s, {FM_OK, FM_OK}, NULL, {0}};
+    fm_error_clear(&pw.err);
     if (st == FM_OK) {
-        all = fm_closest_tree_create_quick(m, err);
-        st = all ? FM_OK : err ? err->code : FM_ERR_NOMEM;
-        s.all = all;
+        fm_parallel_for(2, in->threads, prep_one, &pw, NULL, NULL, 0, 0);
+        st = pw.st[0] != FM_OK ? pw.st[0] : pw.st[1];
+        if (pw.st[0] == FM_OK && pw.st[1] != FM_OK && err)
+            *err = pw.err;
     }
+    fm_closest_tree *all = pw.all;
+    s.all = all;
     if (st == FM_OK) {
         loss_work w = {&s, fo};
         fm_parallel_for(nf, in->threads, measure_one, &w, NULL, NULL, 0, 0);
