@@ -6,13 +6,16 @@
  * triangle is listed under every cell its box touches, the list is sorted
  * by cell, and two triangles of different faults in one cell are tested
  * when their boxes overlap and this cell holds the low corner of the
- * overlap, so that each pair is tested once. */
+ * overlap, so that each pair is tested once. What the decisions need of
+ * the set (areas, triangles on junctions, pieces) is made beside the
+ * search, on a second thread. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "carve_pieces.h"
 #include "fm_carve.h"
+#include "fm_parallel.h"
 #include "fm_predicates.h"
 #include "fm_sort.h"
 
@@ -279,22 +282,42 @@ static size_t still_there(const unsigned char *gone, const int32_t *t, size_t n)
  * Nor, by the area rule, is one cut in two when the other need not be:
  * the piece cut off would be an island of a few triangles.
  * left: triangles per fault not (yet) gone. -1 when out of memory. */
-static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *gone,
-                  size_t *left, fm_carve_result *r)
+/* What decide reads of the set: every fault's area, the triangles on a
+ * junction (on_junction), the pieces (carve_pieces.h). */
+typedef struct set_facts {
+    double *total;
+    unsigned char *junction;
+    cv_pieces *pieces;
+} set_facts;
+
+static void set_facts_make(const fm_mesh *m, set_facts *f)
 {
     size_t nf;
-    double *total = fault_areas(m, &nf);
-    unsigned char *junction = n ? on_junction(m) : calloc(1, 1);
-    cv_pieces *pieces = n ? cv_pieces_create(m) : NULL;
+    f->total = fault_areas(m, &nf);
+    f->junction = on_junction(m);
+    f->pieces = cv_pieces_create(m);
+}
+
+static void set_facts_free(set_facts *f)
+{
+    free(f->total);
+    free(f->junction);
+    cv_pieces_destroy(f->pieces);
+}
+
+static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *gone,
+                  size_t *left, const set_facts *facts, fm_carve_result *r)
+{
+    const double *total = facts->total;
+    const unsigned char *junction = facts->junction;
+    cv_pieces *pieces = facts->pieces;
     int32_t *ta = malloc((n + 1) * sizeof *ta), *tb = malloc((n + 1) * sizeof *tb);
     size_t npairs = 0;
     for (size_t i = 0; i < n; i++)
         npairs += !i || c[i].fa != c[i - 1].fa || c[i].fb != c[i - 1].fb;
     r->pairs = calloc(npairs + 1, sizeof *r->pairs);
-    if (!total || !junction || !ta || !tb || !r->pairs || (n && !pieces)) {
-        cv_pieces_destroy(pieces);
-        free(total);
-        free(junction);
+    /* with no contact the facts are not read (nor, for an empty set, made) */
+    if (!ta || !tb || !r->pairs || (n && (!total || !junction || !pieces))) {
         free(ta);
         free(tb);
         return -1;
@@ -342,9 +365,6 @@ static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *g
                 left[p->fault[p->yielded]]--;
             }
     }
-    cv_pieces_destroy(pieces);
-    free(total);
-    free(junction);
     free(ta);
     free(tb);
     return 0;
@@ -406,26 +426,47 @@ static size_t *faults_sizes(const fm_mesh *m)
     return n;
 }
 
-fm_status fm_carve_crossings(fm_mesh *set, double cell, int32_t *beside, fm_carve_result **out,
-                             fm_error *err)
+typedef struct search_work {
+    const fm_mesh *set;
+    double cell;
+    contact *c;
+    size_t n;
+    int rc;
+    set_facts facts;
+} search_work;
+
+static void search_one(void *user, size_t k)
+{
+    search_work *w = user;
+    if (k == 0)
+        w->rc = find_contacts(w->set, w->cell, &w->c, &w->n);
+    else
+        set_facts_make(w->set, &w->facts);
+}
+
+fm_status fm_carve_crossings(fm_mesh *set, double cell, int threads, int32_t *beside,
+                             fm_carve_result **out, fm_error *err)
 {
     *out = NULL;
     fm_carve_result *r = calloc(1, sizeof *r);
     size_t nt = fm_mesh_ntriangles(set);
     unsigned char *gone = calloc(nt + 1, 1);
     size_t *left = faults_sizes(set);
-    contact *c = NULL;
-    size_t n = 0;
+    search_work w = {set, cell, NULL, 0, -1, {NULL, NULL, NULL}};
+    if (r && gone && left)
+        fm_parallel_for(2, threads, search_one, &w, NULL, NULL, 0, 0);
     long slivers = -1;
-    if (!r || !gone || !left || find_contacts(set, cell, &c, &n) ||
-        decide(set, c, n, gone, left, r) || (slivers = tidy_notches(set, gone, left)) < 0) {
+    if (!r || !gone || !left || w.rc || decide(set, w.c, w.n, gone, left, &w.facts, r) ||
+        (slivers = tidy_notches(set, gone, left)) < 0) {
         free(gone);
         free(left);
-        free(c);
+        free(w.c);
+        set_facts_free(&w.facts);
         fm_carve_result_destroy(r);
         return fm_error_set(err, FM_ERR_NOMEM, NULL, 0, "out of memory");
     }
-    free(c);
+    free(w.c);
+    set_facts_free(&w.facts);
     r->slivers = (size_t)slivers;
     int32_t *T = fm_mesh_triangles_mut(set), *tag = fm_mesh_tags_mut(set);
     size_t kept = 0;

@@ -55,10 +55,11 @@ typedef struct fm_carve_result fm_carve_result;
  * search grid's cells (about twice the edge length; <= 0 takes twice the
  * mean edge length). beside (may be NULL): a value per triangle that the
  * caller keeps beside the mesh (a sheet index, say), compacted the same
- * way. *out lists the pairs of faults that met, ordered by tags; it is
- * NULL on failure. Deterministic. */
-fm_status fm_carve_crossings(fm_mesh *set, double cell, int32_t *beside, fm_carve_result **out,
-                             fm_error *err);
+ * way. threads: up to 2 are used (the search beside the facts the
+ * decisions read). *out lists the pairs of faults that met, ordered by
+ * tags; it is NULL on failure. Deterministic, whatever the threads. */
+fm_status fm_carve_crossings(fm_mesh *set, double cell, int threads, int32_t *beside,
+                             fm_carve_result **out, fm_error *err);
 
 size_t fm_carve_npairs(const fm_carve_result *r);
 const fm_carve_pair *fm_carve_pair_at(const fm_carve_result *r, size_t k);

@@ -332,7 +332,7 @@ static void carve_sheets(run_state *rs, double H, int jobs)
         /* at: the set's index of each triangle of sub, before and after */
         for (size_t i = 0; i < ntaken; i++)
             gone[at[i]] = 1;
-        st = fm_carve_crossings(sub, 2 * H, at, &cr, &err);
+        st = fm_carve_crossings(sub, 2 * H, jobs, at, &cr, &err);
     }
     if (st == FM_OK) {
         for (size_t i = 0; i < fm_mesh_ntriangles(sub); i++)
@@ -380,7 +380,7 @@ void carve_set(const remesh_cli *cli, run_state *rs)
     double H = cli->mesh.size;
     for (size_t f = 0; f < rs->nfaults; f++)
         H = fmax(H, rs->res[rs->set_res[f]].mesh.size);
-    if (fm_carve_crossings(rs->set, 2 * H, rs->sheet, &rs->carve, &err) != FM_OK) {
+    if (fm_carve_crossings(rs->set, 2 * H, cli->jobs, rs->sheet, &rs->carve, &err) != FM_OK) {
         run_log(cli->ctl, FM_LOG_WARN, "faults that cross each other are left so: %s",
                 err.message);
         return;

@@ -137,7 +137,7 @@ static void test_carve_crossing(void)
     fm_carve_result *r = NULL;
     fm_error err;
     fm_error_clear(&err);
-    CHECK_EQ(fm_carve_crossings(m, 0, was, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_crossings(m, 0, 2, was, &r, &err), FM_OK);
     /* the values beside the triangles follow them, in order */
     for (size_t t = 0; t < fm_mesh_ntriangles(m); t++) {
         CHECK(t == 0 || was[t] > was[t - 1]);
@@ -156,7 +156,7 @@ static void test_carve_crossing(void)
     CHECK_EQ(contacts(m), 0);
     fm_carve_result_destroy(r);
     /* nothing left to do */
-    CHECK_EQ(fm_carve_crossings(m, 0, NULL, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_crossings(m, 0, 1, NULL, &r, &err), FM_OK);
     CHECK_EQ(fm_carve_npairs(r), 0);
     CHECK_EQ(fm_carve_removed(r), 0);
     fm_carve_result_destroy(r);
@@ -175,7 +175,7 @@ static void test_carve_no_island(void)
     fm_carve_result *r = NULL;
     fm_error err;
     fm_error_clear(&err);
-    CHECK_EQ(fm_carve_crossings(m, 0, NULL, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_crossings(m, 0, 2, NULL, &r, &err), FM_OK);
     CHECK_EQ(fm_carve_npairs(r), 1);
     const fm_carve_pair *p = fm_carve_pair_at(r, 0);
     CHECK(p && p->yielded == 1 && !p->kept);
@@ -209,7 +209,7 @@ static void test_carve_conforming(void)
     fm_carve_result *r = NULL;
     fm_error err;
     fm_error_clear(&err);
-    CHECK_EQ(fm_carve_crossings(m, 0.5, NULL, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_crossings(m, 0.5, 1, NULL, &r, &err), FM_OK);
     CHECK_EQ(fm_carve_npairs(r), 0);
     CHECK_EQ(fm_mesh_ntriangles(m), before);
     fm_carve_result_destroy(r);
@@ -237,7 +237,7 @@ static void test_carve_never_empties(void)
     fm_carve_result *r = NULL;
     fm_error err;
     fm_error_clear(&err);
-    CHECK_EQ(fm_carve_crossings(m, 0, NULL, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_crossings(m, 0, 2, NULL, &r, &err), FM_OK);
     CHECK_EQ(fm_carve_npairs(r), 1);
     const fm_carve_pair *p = fm_carve_pair_at(r, 0);
     CHECK(p && p->fault[0] == 0 && p->fault[1] == 1);
@@ -260,7 +260,7 @@ static void test_carve_never_empties(void)
     fm_mesh_add_vertex(m, 2, 1, 1);
     fm_mesh_add_triangle(m, 0, 1, 2, 0);
     fm_mesh_add_triangle(m, 3, 4, 5, 1);
-    CHECK_EQ(fm_carve_crossings(m, 0, NULL, &r, &err), FM_OK);
+    CHECK_EQ(fm_carve_crossings(m, 0, 1, NULL, &r, &err), FM_OK);
     CHECK_EQ(fm_carve_npairs(r), 1);
     p = fm_carve_pair_at(r, 0);
     CHECK(p && p->kept && p->removed == 0 && p->area == 0);
