@@ -13,6 +13,7 @@
 #include "fm_atomic.h"
 #include "fm_iges.h"
 #include "fm_test.h"
+#include "fm_test_bspline.h"
 #include "iges_internal.h"
 
 /* ---- sample geometry (check_iges.py knows the same numbers) ---- */
@@ -646,28 +647,6 @@ static void test_window_and_digits(void)
     free_igs(&g);
 }
 
-/* Cubic B-spline basis at t (knots U, n points): first index, values. */
-static size_t cubic_basis(const double *U, size_t n, double t, double N[4])
-{
-    size_t s = 3;
-    while (s + 1 < n && U[s + 1] <= t)
-        s++;
-    double left[4], right[4];
-    N[0] = 1;
-    for (int j = 1; j <= 3; j++) {
-        left[j] = t - U[s + 1 - (size_t)j];
-        right[j] = U[s + (size_t)j] - t;
-        double saved = 0;
-        for (int r = 0; r < j; r++) {
-            double tmp = N[r] / (right[r + 1] + left[j - r]);
-            N[r] = saved + right[r + 1] * tmp;
-            saved = left[j - r] * tmp;
-        }
-        N[j] = saved;
-    }
-    return s - 3;
-}
-
 /* By default (tolerance automatic: the resolution) the bowl, a single
  * quadratic, loses every interior knot: one span, 4 x 4 control points
  * instead of 13 x 11, each coordinate on the decimal quantum; read back,
@@ -718,7 +697,7 @@ static void test_default_reduces(void)
     for (int b = 0; b <= 80; b++)
         for (int a = 0; a <= 100; a++) {
             double u = 100.0 * a, v = 100.0 * b, Nu[4], Nv[4], x[3] = {0, 0, 0};
-            size_t iu = cubic_basis(ku, 4, u, Nu), iv = cubic_basis(kv, 4, v, Nv);
+            size_t iu = fm_test_cubic_basis(ku, 4, u, Nu), iv = fm_test_cubic_basis(kv, 4, v, Nv);
             for (size_t j = 0; j < 4; j++)
                 for (size_t i = 0; i < 4; i++)
                     for (size_t d = 0; d < 3; d++)

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "fm_test.h"
+#include "fm_test_bspline.h"
 #include "iges_internal.h"
 
 #define P 3
@@ -19,33 +20,11 @@ typedef struct {
     double c[MAXN * MAXN][3];
 } grid;
 
-/* Cox-de Boor: the p + 1 non-zero basis values at t and the first index. */
-static size_t basis(const double *U, size_t n, double t, double N[P + 1])
-{
-    size_t s = P;
-    while (s + 1 < n && U[s + 1] <= t)
-        s++;
-    double left[P + 1], right[P + 1];
-    N[0] = 1;
-    for (int j = 1; j <= P; j++) {
-        left[j] = t - U[s + 1 - (size_t)j];
-        right[j] = U[s + (size_t)j] - t;
-        double saved = 0;
-        for (int r = 0; r < j; r++) {
-            double tmp = N[r] / (right[r + 1] + left[j - r]);
-            N[r] = saved + right[r + 1] * tmp;
-            saved = left[j - r] * tmp;
-        }
-        N[j] = saved;
-    }
-    return s - P;
-}
-
 static void eval(const double *ku, const double *kv, size_t nu, size_t nv, const double *c,
                  double u, double v, double out[3])
 {
     double Nu[P + 1], Nv[P + 1];
-    size_t iu = basis(ku, nu, u, Nu), iv = basis(kv, nv, v, Nv);
+    size_t iu = fm_test_cubic_basis(ku, nu, u, Nu), iv = fm_test_cubic_basis(kv, nv, v, Nv);
     out[0] = out[1] = out[2] = 0;
     for (size_t b = 0; b <= P; b++)
         for (size_t a = 0; a <= P; a++)
