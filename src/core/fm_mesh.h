@@ -54,6 +54,12 @@ fm_status fm_mesh_append(fm_mesh *dst, const fm_mesh *src, int32_t tag);
 /* Shrink counts (keeps capacity); n must not exceed the current count. */
 void fm_mesh_truncate(fm_mesh *m, size_t nv, size_t nt);
 
+/* Removes the triangles t with gone[t] != 0, the others kept in order
+ * with their tags (vertices are kept); beside (may be NULL), a value per
+ * triangle the caller keeps beside the mesh, is compacted the same way.
+ * Returns the number removed. */
+size_t fm_mesh_drop_triangles(fm_mesh *m, const unsigned char *gone, int32_t *beside);
+
 /* Quality and size figures of a mesh, as reported by `faultmesh info` and
  * later by the check stage. Angles in degrees, lengths in metres, area in
  * square metres. Edges are counted once (shared edges are not doubled). */

@@ -142,6 +142,22 @@ void fm_mesh_truncate(fm_mesh *m, size_t nv, size_t nt)
         m->nt = nt;
 }
 
+size_t fm_mesh_drop_triangles(fm_mesh *m, const unsigned char *gone, int32_t *beside)
+{
+    size_t kept = 0;
+    for (size_t t = 0; t < m->nt; t++) {
+        if (gone[t])
+            continue;
+        memmove(m->tri + 3 * kept, m->tri + 3 * t, 3 * sizeof *m->tri);
+        if (beside)
+            beside[kept] = beside[t];
+        m->tag[kept++] = m->tag[t];
+    }
+    size_t removed = m->nt - kept;
+    m->nt = kept;
+    return removed;
+}
+
 fm_keyed *fm_mesh_sides(const fm_mesh *m, size_t *n)
 {
     size_t nt = fm_mesh_ntriangles(m);

@@ -271,17 +271,6 @@ static size_t still_there(const unsigned char *gone, const int32_t *t, size_t n)
     return k;
 }
 
-/* Decides each pair of faults in the sorted contacts and marks the
- * triangles to remove; fills r->pairs. The fault that gives way is the one
- * whose triangles there hold no piece of a curve it shares with a fault,
- * when only one of them is so, else the one losing the smaller share of
- * its area, so that a small fault is not eaten by a large one it touches.
- * Neither is emptied: when the one chosen would lose its last triangles
- * the other gives way, and when both would, the pair is kept (at sizes
- * near a fault's own extent, a fault of one triangle meets another's).
- * Nor, by the area rule, is one cut in two when the other need not be:
- * the piece cut off would be an island of a few triangles.
- * left: triangles per fault not (yet) gone. -1 when out of memory. */
 /* What decide reads of the set: every fault's area, the triangles on a
  * junction (on_junction), the pieces (carve_pieces.h). */
 typedef struct set_facts {
@@ -305,6 +294,17 @@ static void set_facts_free(set_facts *f)
     cv_pieces_destroy(f->pieces);
 }
 
+/* Decides each pair of faults in the sorted contacts and marks the
+ * triangles to remove; fills r->pairs. The fault that gives way is the one
+ * whose triangles there hold no piece of a curve it shares with a fault,
+ * when only one of them is so, else the one losing the smaller share of
+ * its area, so that a small fault is not eaten by a large one it touches.
+ * Neither is emptied: when the one chosen would lose its last triangles
+ * the other gives way, and when both would, the pair is kept (at sizes
+ * near a fault's own extent, a fault of one triangle meets another's).
+ * Nor, by the area rule, is one cut in two when the other need not be:
+ * the piece cut off would be an island of a few triangles.
+ * left: triangles per fault not (yet) gone. -1 when out of memory. */
 static int decide(const fm_mesh *m, const contact *c, size_t n, unsigned char *gone,
                   size_t *left, const set_facts *facts, fm_carve_result *r)
 {
@@ -468,19 +468,7 @@ fm_status fm_carve_crossings(fm_mesh *set, double cell, int threads, int32_t *be
     free(w.c);
     set_facts_free(&w.facts);
     r->slivers = (size_t)slivers;
-    int32_t *T = fm_mesh_triangles_mut(set), *tag = fm_mesh_tags_mut(set);
-    size_t kept = 0;
-    for (size_t t = 0; t < nt; t++) {
-        if (gone[t]) {
-            r->removed++;
-            continue;
-        }
-        memmove(T + 3 * kept, T + 3 * t, 3 * sizeof *T);
-        if (beside)
-            beside[kept] = beside[t];
-        tag[kept++] = tag[t];
-    }
-    fm_mesh_truncate(set, fm_mesh_nvertices(set), kept);
+    r->removed = fm_mesh_drop_triangles(set, gone, beside);
     free(gone);
     free(left);
     *out = r;

@@ -338,16 +338,7 @@ static void carve_sheets(run_state *rs, double H, int jobs)
         for (size_t i = 0; i < fm_mesh_ntriangles(sub); i++)
             gone[at[i]] = 0;
         /* what went from sub goes from the set, the others kept in order */
-        int32_t *T = fm_mesh_triangles_mut(rs->set);
-        size_t kept = 0;
-        for (size_t t = 0; t < nt; t++) {
-            if (gone[t])
-                continue;
-            memmove(T + 3 * kept, T + 3 * t, 3 * sizeof *T);
-            rs->sheet[kept] = rs->sheet[t];
-            tag[kept++] = tag[t];
-        }
-        fm_mesh_truncate(rs->set, fm_mesh_nvertices(rs->set), kept);
+        fm_mesh_drop_triangles(rs->set, gone, rs->sheet);
     }
     free(gone);
     free(ftag);

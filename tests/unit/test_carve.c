@@ -270,6 +270,33 @@ static void test_carve_never_empties(void)
     fm_mesh_destroy(m);
 }
 
-FM_TEST_MAIN(FM_CASE(test_contact_cases), FM_CASE(test_contact_shared),
+/* The removal the carve ends with (fm_mesh.h): the others in order with
+ * their corners, tags and values beside. */
+static void test_drop_triangles(void)
+{
+    fm_mesh *m = fm_mesh_create();
+    for (int v = 0; v < 7; v++)
+        fm_mesh_add_vertex(m, v, v * v, 0);
+    for (int t = 0; t < 5; t++)
+        fm_mesh_add_triangle(m, t, t + 1, t + 2, 10 + t);
+    unsigned char gone[5] = {1, 0, 1, 0, 0};
+    int32_t beside[5] = {100, 101, 102, 103, 104};
+    CHECK_EQ(fm_mesh_drop_triangles(m, gone, beside), 2);
+    CHECK_EQ(fm_mesh_ntriangles(m), 3);
+    CHECK_EQ(fm_mesh_nvertices(m), 7);
+    const int32_t keep[3] = {1, 3, 4};
+    for (int k = 0; k < 3; k++) {
+        CHECK_EQ(fm_mesh_triangles(m)[3 * k], keep[k]);
+        CHECK_EQ(fm_mesh_triangles(m)[3 * k + 2], keep[k] + 2);
+        CHECK_EQ(fm_mesh_tags(m)[k], 10 + keep[k]);
+        CHECK_EQ(beside[k], 100 + keep[k]);
+    }
+    unsigned char none[3] = {0, 0, 0};
+    CHECK_EQ(fm_mesh_drop_triangles(m, none, NULL), 0);
+    CHECK_EQ(fm_mesh_ntriangles(m), 3);
+    fm_mesh_destroy(m);
+}
+
+FM_TEST_MAIN(FM_CASE(test_drop_triangles), FM_CASE(test_contact_cases), FM_CASE(test_contact_shared),
              FM_CASE(test_contact_invariance), FM_CASE(test_carve_crossing),
              FM_CASE(test_carve_no_island), FM_CASE(test_carve_conforming), FM_CASE(test_carve_never_empties))
